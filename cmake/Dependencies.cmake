@@ -1,0 +1,39 @@
+# Every third-party library comes from Debian's packages (README: quick start). The traps of those
+# packages are handled here, once.
+
+find_package(Threads REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(fmt REQUIRED)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 QUIET CONFIG)
+if(NOT CLI11_FOUND)
+  find_path(CLI11_INCLUDE_DIR CLI/CLI.hpp REQUIRED)
+  add_library(CLI11::CLI11 INTERFACE IMPORTED)
+  target_include_directories(CLI11::CLI11 INTERFACE ${CLI11_INCLUDE_DIR})
+endif()
+
+# TBB must be found before OpenVDB, whose find-module looks for it too.
+find_package(TBB REQUIRED)
+
+# Debian ships OpenVDB with a find-module only, in its own folder.
+list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
+find_package(OpenVDB REQUIRED)
+
+find_package(embree 3 REQUIRED)
+
+# OpenImageIO: Debian's exported config names /usr/include/opencv4 and the command-line tools (iconvert...),
+# which need not be installed, so the library is found by hand instead.
+find_path(OIIO_INCLUDE_DIR OpenImageIO/imageio.h REQUIRED)
+find_library(OIIO_LIBRARY OpenImageIO REQUIRED)
+find_library(OIIO_UTIL_LIBRARY OpenImageIO_Util REQUIRED)
+add_library(OpenImageIO::OpenImageIO INTERFACE IMPORTED)
+target_include_directories(OpenImageIO::OpenImageIO INTERFACE ${OIIO_INCLUDE_DIR})
+target_link_libraries(OpenImageIO::OpenImageIO INTERFACE ${OIIO_LIBRARY} ${OIIO_UTIL_LIBRARY})
+
+# SUNDIALS 6: CVODE with the serial vector and the dense/band/Krylov solvers.
+find_package(SUNDIALS 6 REQUIRED CONFIG)
+
+# Clipper (polyclipping) through pkg-config.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)

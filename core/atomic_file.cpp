@@ -1,0 +1,43 @@
+#include "core/atomic_file.hpp"
+
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace beadtwin {
+
+AtomicPath::AtomicPath(std::filesystem::path target) : target_(std::move(target)) {
+  // Keep the extension last: image writers choose the format from it.
+  temp_ = target_.parent_path() /
+          (".tmp-" + std::to_string(::getpid()) + "-" + target_.stem().string() + target_.extension().string());
+}
+
+AtomicPath::~AtomicPath() {
+  if (!committed_) {
+    std::error_code ec;
+    std::filesystem::remove(temp_, ec);
+  }
+}
+
+void AtomicPath::commit() {
+  std::error_code ec;
+  std::filesystem::rename(temp_, target_, ec);
+  if (ec) throw std::runtime_error("cannot move " + temp_.string() + " to " + target_.string() + ": " + ec.message());
+  committed_ = true;
+}
+
+void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+  AtomicPath out(path);
+  {
+    std::ofstream f(out.temp(), std::ios::binary | std::ios::trunc);
+    if (!f) throw std::runtime_error("cannot write " + out.temp().string());
+    f.write(content.data(), static_cast<std::streamsize>(content.size()));
+    f.flush();
+    if (!f) throw std::runtime_error("error while writing " + out.temp().string());
+  }
+  out.commit();
+}
+
+}  // namespace beadtwin

@@ -1,0 +1,33 @@
+// Files written atomically (DESIGN §6): content goes to a temporary name beside the target and is renamed
+// into place only when complete, so an interrupted run never leaves a half-written output.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace beadtwin {
+
+// Writes `content` to `path` atomically. Throws std::runtime_error naming the path on failure.
+void write_file_atomic(const std::filesystem::path& path, std::string_view content);
+
+// For writers that need a file name (image libraries): write to temp(), then commit().
+// If commit() is never called the temporary file is removed.
+class AtomicPath {
+ public:
+  explicit AtomicPath(std::filesystem::path target);
+  ~AtomicPath();
+  AtomicPath(const AtomicPath&) = delete;
+  AtomicPath& operator=(const AtomicPath&) = delete;
+
+  const std::filesystem::path& temp() const { return temp_; }
+  const std::filesystem::path& target() const { return target_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temp_;
+  bool committed_ = false;
+};
+
+}  // namespace beadtwin

@@ -1,0 +1,45 @@
+// Named, timed pipeline stages (STYLE.md rule 3). One place prints progress and keeps per-stage timing,
+// so the runner reads like the pipeline and the report can say where the time went.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace beadtwin {
+
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+class Stages {
+ public:
+  // `log` receives one line per finished stage; pass an empty function to stay quiet.
+  explicit Stages(std::function<void(const std::string&)> log = {}) : log_(std::move(log)) {}
+
+  // Runs `work` as the stage `name`, timing it.
+  template <class F>
+  auto run(const std::string& name, F&& work) {
+    const auto t0 = std::chrono::steady_clock::now();
+    struct Finish {
+      Stages* self;
+      const std::string* name;
+      std::chrono::steady_clock::time_point t0;
+      ~Finish() { self->finish(*name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()); }
+    } finish{this, &name, t0};
+    return work();
+  }
+
+  const std::vector<StageTime>& times() const { return times_; }
+  double total_seconds() const;
+
+ private:
+  void finish(const std::string& name, double seconds);
+
+  std::function<void(const std::string&)> log_;
+  std::vector<StageTime> times_;
+};
+
+}  // namespace beadtwin

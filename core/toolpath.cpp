@@ -1,0 +1,174 @@
+#include "core/toolpath.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace beadtwin {
+
+std::string_view to_string(MoveKind kind) {
+  switch (kind) {
+    case MoveKind::kPrint: return "print";
+    case MoveKind::kTravel: return "travel";
+    case MoveKind::kDwell: return "dwell";
+  }
+  return "?";
+}
+
+std::string_view to_string(Feature feature) {
+  switch (feature) {
+    case Feature::kUnknown: return "unknown";
+    case Feature::kTravel: return "travel";
+    case Feature::kRaft: return "raft";
+    case Feature::kBoundary: return "boundary";
+    case Feature::kFill: return "fill";
+    case Feature::kLeadIn: return "lead-in";
+    case Feature::kLeadOut: return "lead-out";
+    case Feature::kCoast: return "coast";
+    case Feature::kStockOnTop: return "stock-on-top";
+    case Feature::kPrime: return "prime";
+    case Feature::kReverse: return "reverse";
+  }
+  return "?";
+}
+
+std::string_view to_string(ExtruderEvent event) {
+  switch (event) {
+    case ExtruderEvent::kNone: return "none";
+    case ExtruderEvent::kMeltOn: return "melt-on";
+    case ExtruderEvent::kMeltOff: return "melt-off";
+    case ExtruderEvent::kPrime: return "prime";
+    case ExtruderEvent::kCoast: return "coast";
+    case ExtruderEvent::kReverse: return "reverse";
+    case ExtruderEvent::kHeatOn: return "heat-on";
+    case ExtruderEvent::kHeatOff: return "heat-off";
+  }
+  return "?";
+}
+
+double Toolpath::commanded_volume_mm3() const {
+  double v = 0.0;
+  for (const Move& m : moves) v += m.volume_mm3;
+  return v;
+}
+
+double Toolpath::print_length_mm() const {
+  double l = 0.0;
+  for (const Move& m : moves)
+    if (m.kind == MoveKind::kPrint) l += m.length_mm();
+  return l;
+}
+
+double Toolpath::travel_length_mm() const {
+  double l = 0.0;
+  for (const Move& m : moves)
+    if (m.kind == MoveKind::kTravel) l += m.length_mm();
+  return l;
+}
+
+double Toolpath::total_time_s() const {
+  if (moves.empty()) return 0.0;
+  return moves.back().start_s + moves.back().duration_s;
+}
+
+void Toolpath::index_layers() {
+  for (auto& layer : layers) {
+    layer.first_move = layer.end_move = 0;
+    layer.start_s = layer.end_s = 0.0;
+  }
+  std::vector<bool> seen(layers.size(), false);
+  int current = -1;
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const int l = moves[i].layer;
+    if (l < 0) continue;
+    BT_CHECK_OP(static_cast<std::size_t>(l), <, layers.size());
+    ToolpathLayer& layer = layers[static_cast<std::size_t>(l)];
+    if (l != current) {
+      if (seen[static_cast<std::size_t>(l)])
+        throw InternalError("toolpath layer " + std::to_string(l) + " is not contiguous in the move list");
+      seen[static_cast<std::size_t>(l)] = true;
+      layer.first_move = i;
+      layer.start_s = moves[i].start_s;
+      current = l;
+    }
+    layer.end_move = i + 1;
+    layer.end_s = moves[i].start_s + moves[i].duration_s;
+  }
+}
+
+namespace {
+
+// Duration of a straight move of length L from speed v0 to v1 with cruise speed vc and acceleration a,
+// where v0 and v1 are reachable (the planner guarantees it).
+double trapezoid_time(double length, double v0, double vc, double v1, double a) {
+  const double d_acc = (vc * vc - v0 * v0) / (2 * a);
+  const double d_dec = (vc * vc - v1 * v1) / (2 * a);
+  if (d_acc + d_dec <= length) return (vc - v0) / a + (vc - v1) / a + (length - d_acc - d_dec) / vc;
+  // Triangle: peak speed where acceleration and deceleration meet.
+  const double vp = std::sqrt(std::max(0.0, (2 * a * length + v0 * v0 + v1 * v1) / 2));
+  return (vp - v0) / a + (vp - v1) / a;
+}
+
+}  // namespace
+
+void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
+  auto& moves = toolpath.moves;
+  const double a = limits.acceleration_mm_s2;
+  BT_CHECK(a > 0.0);
+  const std::size_t n = moves.size();
+  std::vector<double> cruise(n, 0.0), entry_max(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Move& m = moves[i];
+    const double cap = m.kind == MoveKind::kTravel ? limits.max_travel_mm_s : limits.max_feed_mm_s;
+    cruise[i] = m.kind == MoveKind::kDwell ? 0.0 : std::min(m.feed_mm_s > 0 ? m.feed_mm_s : cap, cap);
+  }
+  // Junction speed between consecutive motion moves (junction-deviation model).
+  for (std::size_t i = 1; i < n; ++i) {
+    const Move& p = moves[i - 1];
+    const Move& m = moves[i];
+    if (p.length_mm() <= 0 || m.length_mm() <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell) continue;
+    const Eigen::Vector3d u = (p.end - p.start).normalized();
+    const Eigen::Vector3d w = (m.end - m.start).normalized();
+    const double cos_theta = std::clamp(-u.dot(w), -1.0, 1.0);  // angle between reversed incoming and outgoing
+    double vj = std::min(cruise[i - 1], cruise[i]);
+    if (cos_theta > -0.999999) {
+      const double sin_half = std::sqrt(std::max(0.0, 0.5 * (1.0 - cos_theta)));
+      if (sin_half < 0.999999) {
+        const double r = limits.junction_deviation_mm * sin_half / (1.0 - sin_half);
+        vj = std::min(vj, std::sqrt(a * r));
+      }
+    }
+    entry_max[i] = vj;
+  }
+  // Backward then forward pass so every speed change is reachable within the move's length.
+  std::vector<double> entry = entry_max;
+  for (std::size_t i = n; i-- > 0;) {
+    const double len = moves[i].length_mm();
+    entry[i] = std::min(entry[i], std::sqrt(entry[i + 1] * entry[i + 1] + 2 * a * len));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double len = moves[i].length_mm();
+    entry[i + 1] = std::min(entry[i + 1], std::sqrt(entry[i] * entry[i] + 2 * a * len));
+  }
+  double t = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    Move& m = moves[i];
+    m.start_s = t;
+    if (m.kind == MoveKind::kDwell) {
+      t += m.duration_s;
+      continue;
+    }
+    const double len = m.length_mm();
+    if (len <= 0.0 || cruise[i] <= 0.0) {
+      m.duration_s = 0.0;
+      continue;
+    }
+    const double vc = std::max({cruise[i], entry[i], entry[i + 1]});
+    m.duration_s = trapezoid_time(len, entry[i], vc, entry[i + 1], a);
+    t += m.duration_s;
+  }
+  toolpath.index_layers();
+}
+
+}  // namespace beadtwin

@@ -10,8 +10,8 @@ namespace beadtwin {
 
 AtomicPath::AtomicPath(std::filesystem::path target) : target_(std::move(target)) {
   // Keep the extension last: image writers choose the format from it.
-  temp_ = target_.parent_path() /
-          (".tmp-" + std::to_string(::getpid()) + "-" + target_.stem().string() + target_.extension().string());
+  temp_ = target_.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target_.stem().string() +
+                                   target_.extension().string());
 }
 
 AtomicPath::~AtomicPath() {
@@ -24,7 +24,9 @@ AtomicPath::~AtomicPath() {
 void AtomicPath::commit() {
   std::error_code ec;
   std::filesystem::rename(temp_, target_, ec);
-  if (ec) throw std::runtime_error("cannot move " + temp_.string() + " to " + target_.string() + ": " + ec.message());
+  if (ec)
+    throw std::runtime_error("cannot move " + temp_.string() + " to " + target_.string() + ": " +
+                             ec.message());
   committed_ = true;
 }
 

@@ -1,13 +1,16 @@
 #include "core/error.hpp"
 
+#include <fmt/format.h>
+
 namespace beadtwin {
 
-std::string format_input_error(const SourceLocation& where, const std::string& key, const std::string& message) {
+std::string format_input_error(const SourceLocation& where, const std::string& key,
+                               const std::string& message) {
   std::string out;
   if (!where.file.empty()) out += where.file;
   if (where.line > 0) {
-    out += (out.empty() ? "line " : ":") + std::to_string(where.line);
-    if (where.column > 0) out += ":" + std::to_string(where.column);
+    out += fmt::format("{}{}", out.empty() ? "line " : ":", where.line);
+    if (where.column > 0) out += fmt::format(":{}", where.column);
   }
   if (!out.empty()) out += ": ";
   if (!key.empty()) out += key + ": ";

@@ -38,24 +38,25 @@ class InternalError : public std::logic_error {
 };
 
 // "file:line:column: key: message", leaving out what is unknown.
-std::string format_input_error(const SourceLocation& where, const std::string& key, const std::string& message);
+std::string format_input_error(const SourceLocation& where, const std::string& key,
+                               const std::string& message);
 
 }  // namespace beadtwin
 
 // Invariant checks that print both operands (STYLE.md rule 8). Always on: they guard cheap facts.
-#define BT_CHECK(cond)                                                                           \
-  do {                                                                                           \
-    if (!(cond))                                                                                 \
+#define BT_CHECK(cond)                                                                         \
+  do {                                                                                         \
+    if (!(cond))                                                                               \
       throw ::beadtwin::InternalError(std::string(__FILE__) + ":" + std::to_string(__LINE__) + \
-                                      ": check failed: " #cond);                                \
+                                      ": check failed: " #cond);                               \
   } while (0)
 
-#define BT_CHECK_OP(a, op, b)                                                                           \
-  do {                                                                                                  \
-    const auto bt_a_ = (a);                                                                             \
-    const auto bt_b_ = (b);                                                                             \
-    if (!(bt_a_ op bt_b_))                                                                              \
-      throw ::beadtwin::InternalError(std::string(__FILE__) + ":" + std::to_string(__LINE__) +        \
+#define BT_CHECK_OP(a, op, b)                                                                             \
+  do {                                                                                                    \
+    const auto bt_a_ = (a);                                                                               \
+    const auto bt_b_ = (b);                                                                               \
+    if (!(bt_a_ op bt_b_))                                                                                \
+      throw ::beadtwin::InternalError(std::string(__FILE__) + ":" + std::to_string(__LINE__) +            \
                                       ": check failed: " #a " " #op " " #b " (" + std::to_string(bt_a_) + \
-                                      " vs " + std::to_string(bt_b_) + ")");                           \
+                                      " vs " + std::to_string(bt_b_) + ")");                              \
   } while (0)

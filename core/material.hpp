@@ -15,24 +15,24 @@ struct Material {
   double conductivity_across_W_mK = 0.17;
   double conductivity_through_W_mK = 0.17;
   double emissivity = 0.85;
-  double deposition_temp_c = 200.0;   // temperature of the bead as it leaves the nozzle
+  double deposition_temp_c = 200.0;  // temperature of the bead as it leaves the nozzle
   double glass_transition_c = 110.0;
   // Fusion window (DESIGN §4.4).
   double support_limit_c = 120.0;     // substrate hotter than this at deposition: too hot (slump, squash-out)
   double healing_ref_temp_c = 200.0;  // T_ref of the reptation time
   double reptation_time_ref_s = 1.0;  // t_w at T_ref
   double healing_activation_J_mol = 150e3;  // E_a of the Arrhenius shift
-  double healing_min_temp_c = 110.0;  // below this the interface does not heal at all (glassy)
-  double required_healing = 0.9;      // degree of healing D_h below which the interface is too cold
+  double healing_min_temp_c = 110.0;        // below this the interface does not heal at all (glassy)
+  double required_healing = 0.9;            // degree of healing D_h below which the interface is too cold
   double price_per_kg = 0.0;
 };
 
 struct Environment {
   double ambient_c = 18.0;
   double bed_temp_c = 65.0;
-  bool bed_insulated = false;          // true: adiabatic table instead of one held at bed_temp_c
-  double convection_W_m2K = 7.0;       // natural convection on free faces
-  double bed_contact_W_m2K = 100.0;    // contact conductance between the first layer and the table
+  bool bed_insulated = false;        // true: adiabatic table instead of one held at bed_temp_c
+  double convection_W_m2K = 7.0;     // natural convection on free faces
+  double bed_contact_W_m2K = 100.0;  // contact conductance between the first layer and the table
 };
 
 }  // namespace beadtwin

@@ -27,7 +27,9 @@ class Stages {
       Stages* self;
       const std::string* name;
       std::chrono::steady_clock::time_point t0;
-      ~Finish() { self->finish(*name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()); }
+      ~Finish() {
+        self->finish(*name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
     } finish{this, &name, t0};
     return work();
   }

@@ -9,40 +9,62 @@ namespace beadtwin {
 
 std::string_view to_string(MoveKind kind) {
   switch (kind) {
-    case MoveKind::kPrint: return "print";
-    case MoveKind::kTravel: return "travel";
-    case MoveKind::kDwell: return "dwell";
+    case MoveKind::kPrint:
+      return "print";
+    case MoveKind::kTravel:
+      return "travel";
+    case MoveKind::kDwell:
+      return "dwell";
   }
   return "?";
 }
 
 std::string_view to_string(Feature feature) {
   switch (feature) {
-    case Feature::kUnknown: return "unknown";
-    case Feature::kTravel: return "travel";
-    case Feature::kRaft: return "raft";
-    case Feature::kBoundary: return "boundary";
-    case Feature::kFill: return "fill";
-    case Feature::kLeadIn: return "lead-in";
-    case Feature::kLeadOut: return "lead-out";
-    case Feature::kCoast: return "coast";
-    case Feature::kStockOnTop: return "stock-on-top";
-    case Feature::kPrime: return "prime";
-    case Feature::kReverse: return "reverse";
+    case Feature::kUnknown:
+      return "unknown";
+    case Feature::kTravel:
+      return "travel";
+    case Feature::kRaft:
+      return "raft";
+    case Feature::kBoundary:
+      return "boundary";
+    case Feature::kFill:
+      return "fill";
+    case Feature::kLeadIn:
+      return "lead-in";
+    case Feature::kLeadOut:
+      return "lead-out";
+    case Feature::kCoast:
+      return "coast";
+    case Feature::kStockOnTop:
+      return "stock-on-top";
+    case Feature::kPrime:
+      return "prime";
+    case Feature::kReverse:
+      return "reverse";
   }
   return "?";
 }
 
 std::string_view to_string(ExtruderEvent event) {
   switch (event) {
-    case ExtruderEvent::kNone: return "none";
-    case ExtruderEvent::kMeltOn: return "melt-on";
-    case ExtruderEvent::kMeltOff: return "melt-off";
-    case ExtruderEvent::kPrime: return "prime";
-    case ExtruderEvent::kCoast: return "coast";
-    case ExtruderEvent::kReverse: return "reverse";
-    case ExtruderEvent::kHeatOn: return "heat-on";
-    case ExtruderEvent::kHeatOff: return "heat-off";
+    case ExtruderEvent::kNone:
+      return "none";
+    case ExtruderEvent::kMeltOn:
+      return "melt-on";
+    case ExtruderEvent::kMeltOff:
+      return "melt-off";
+    case ExtruderEvent::kPrime:
+      return "prime";
+    case ExtruderEvent::kCoast:
+      return "coast";
+    case ExtruderEvent::kReverse:
+      return "reverse";
+    case ExtruderEvent::kHeatOn:
+      return "heat-on";
+    case ExtruderEvent::kHeatOff:
+      return "heat-off";
   }
   return "?";
 }
@@ -127,10 +149,12 @@ void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
   for (std::size_t i = 1; i < n; ++i) {
     const Move& p = moves[i - 1];
     const Move& m = moves[i];
-    if (p.length_mm() <= 0 || m.length_mm() <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell) continue;
+    if (p.length_mm() <= 0 || m.length_mm() <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell)
+      continue;
     const Eigen::Vector3d u = (p.end - p.start).normalized();
     const Eigen::Vector3d w = (m.end - m.start).normalized();
-    const double cos_theta = std::clamp(-u.dot(w), -1.0, 1.0);  // angle between reversed incoming and outgoing
+    const double cos_theta =
+        std::clamp(-u.dot(w), -1.0, 1.0);  // angle between reversed incoming and outgoing
     double vj = std::min(cruise[i - 1], cruise[i]);
     if (cos_theta > -0.999999) {
       const double sin_half = std::sqrt(std::max(0.0, 0.5 * (1.0 - cos_theta)));

@@ -26,7 +26,7 @@ enum class Feature : std::uint8_t {
   kUnknown,
   kTravel,
   kRaft,
-  kBoundary,    // boundary pass `pass` (0 = outermost)
+  kBoundary,  // boundary pass `pass` (0 = outermost)
   kFill,
   kLeadIn,
   kLeadOut,
@@ -37,7 +37,16 @@ enum class Feature : std::uint8_t {
 };
 
 // Extruder events are moves too, so nothing is lost between producer and consumer.
-enum class ExtruderEvent : std::uint8_t { kNone, kMeltOn, kMeltOff, kPrime, kCoast, kReverse, kHeatOn, kHeatOff };
+enum class ExtruderEvent : std::uint8_t {
+  kNone,
+  kMeltOn,
+  kMeltOff,
+  kPrime,
+  kCoast,
+  kReverse,
+  kHeatOn,
+  kHeatOff
+};
 
 std::string_view to_string(MoveKind kind);
 std::string_view to_string(Feature feature);
@@ -49,17 +58,17 @@ struct Move {
   MoveKind kind = MoveKind::kTravel;
   ExtruderEvent event = ExtruderEvent::kNone;
   Feature feature = Feature::kUnknown;
-  bool roller_down = false;     // compression roller (or tamper) engaged
-  double feed_mm_s = 0.0;       // commanded speed
-  double volume_mm3 = 0.0;      // material the move extrudes (0 for travel): the commanded volume
-  double bead_width_mm = 0.0;   // intended flattened width
-  double layer_height_mm = 0.0; // intended flattened height
-  double start_s = 0.0;         // absolute time the move starts (set by the motion model)
-  double duration_s = 0.0;      // set by the motion model (or given, for dwells)
-  int section = -1;             // index into Toolpath::sections; -1 when unknown
-  int layer = -1;               // index into Toolpath::layers; -1 when unknown
-  int pass = -1;                // boundary pass number, 0 = outermost; -1 otherwise
-  int source_line = 0;          // line in the G-code program it came from; 0 when generated
+  bool roller_down = false;      // compression roller (or tamper) engaged
+  double feed_mm_s = 0.0;        // commanded speed
+  double volume_mm3 = 0.0;       // material the move extrudes (0 for travel): the commanded volume
+  double bead_width_mm = 0.0;    // intended flattened width
+  double layer_height_mm = 0.0;  // intended flattened height
+  double start_s = 0.0;          // absolute time the move starts (set by the motion model)
+  double duration_s = 0.0;       // set by the motion model (or given, for dwells)
+  int section = -1;              // index into Toolpath::sections; -1 when unknown
+  int layer = -1;                // index into Toolpath::layers; -1 when unknown
+  int pass = -1;                 // boundary pass number, 0 = outermost; -1 otherwise
+  int source_line = 0;           // line in the G-code program it came from; 0 when generated
 
   double length_mm() const { return (end - start).norm(); }
   // Mean volumetric flow over the move, mm³/s (0 for an instantaneous move).
@@ -68,13 +77,16 @@ struct Move {
 };
 
 struct ToolpathLayer {
-  double z_mm = 0.0;        // top of the layer
-  double height_mm = 0.0;   // nominal layer height
+  double z_mm = 0.0;       // top of the layer
+  double height_mm = 0.0;  // nominal layer height
   int section = -1;
   std::size_t first_move = 0;  // [first_move, end_move) in Toolpath::moves
   std::size_t end_move = 0;
-  double start_s = 0.0;     // time of the layer's first deposit
-  double end_s = 0.0;       // time of the layer's last deposit
+  double start_s = 0.0;  // time of the layer's first deposit
+  double end_s = 0.0;    // time of the layer's last deposit
+  // The region the layer fills as the slicer saw it (0 when unknown, e.g. read from G-code).
+  double outline_area_mm2 = 0.0;
+  double outline_perimeter_mm = 0.0;
   double duration_s() const { return end_s - start_s; }
 };
 

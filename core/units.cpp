@@ -30,29 +30,72 @@ constexpr double kIn3Mm3 = 25.4 * 25.4 * 25.4;
 
 const std::vector<DimensionDef>& table() {
   static const std::vector<DimensionDef> t = {
-      {Dimension::kLength, "length", {{"mm", 1}, {"cm", 10}, {"m", 1000}, {"um", 1e-3}, {"in", 25.4}, {"ft", 304.8}}},
+      {Dimension::kLength,
+       "length",
+       {{"mm", 1}, {"cm", 10}, {"m", 1000}, {"um", 1e-3}, {"in", 25.4}, {"ft", 304.8}}},
       {Dimension::kTemperature,
        "temperature",
-       {{"C", 1}, {"degC", 1}, {"°C", 1}, {"K", 1, -kKelvinOffset}, {"F", 5.0 / 9.0, -32.0 * 5.0 / 9.0}, {"degF", 5.0 / 9.0, -32.0 * 5.0 / 9.0}}},
+       {{"C", 1},
+        {"degC", 1},
+        {"°C", 1},
+        {"K", 1, -kKelvinOffset},
+        {"F", 5.0 / 9.0, -32.0 * 5.0 / 9.0},
+        {"degF", 5.0 / 9.0, -32.0 * 5.0 / 9.0}}},
       {Dimension::kTime, "time", {{"s", 1}, {"ms", 1e-3}, {"min", 60}, {"h", 3600}}},
       {Dimension::kMass, "mass", {{"kg", 1}, {"g", 1e-3}, {"lb", kLbKg}, {"t", 1000}}},
       {Dimension::kSpeed,
        "speed",
-       {{"mm/s", 1}, {"mm/min", 1.0 / 60}, {"m/s", 1000}, {"m/min", 1000.0 / 60}, {"in/s", 25.4}, {"in/min", 25.4 / 60}, {"ipm", 25.4 / 60}}},
+       {{"mm/s", 1},
+        {"mm/min", 1.0 / 60},
+        {"m/s", 1000},
+        {"m/min", 1000.0 / 60},
+        {"in/s", 25.4},
+        {"in/min", 25.4 / 60},
+        {"ipm", 25.4 / 60}}},
       {Dimension::kVolumeFlow,
        "volumetric flow",
-       {{"mm3/s", 1}, {"mm3/min", 1.0 / 60}, {"cm3/s", 1000}, {"cm3/min", 1000.0 / 60}, {"cm3/h", 1000.0 / 3600}, {"l/h", 1e6 / 3600}, {"in3/s", kIn3Mm3}, {"in3/min", kIn3Mm3 / 60}}},
-      {Dimension::kMassFlow, "mass flow", {{"kg/s", 1}, {"kg/h", 1.0 / 3600}, {"g/s", 1e-3}, {"g/min", 1e-3 / 60}, {"lb/h", kLbKg / 3600}, {"lb/min", kLbKg / 60}}},
-      {Dimension::kVolume, "volume", {{"mm3", 1}, {"cm3", 1000}, {"l", 1e6}, {"in3", kIn3Mm3}, {"cm3/rev", 1000}, {"mm3/rev", 1}, {"in3/rev", kIn3Mm3}}},
+       {{"mm3/s", 1},
+        {"mm3/min", 1.0 / 60},
+        {"cm3/s", 1000},
+        {"cm3/min", 1000.0 / 60},
+        {"cm3/h", 1000.0 / 3600},
+        {"l/h", 1e6 / 3600},
+        {"in3/s", kIn3Mm3},
+        {"in3/min", kIn3Mm3 / 60}}},
+      {Dimension::kMassFlow,
+       "mass flow",
+       {{"kg/s", 1},
+        {"kg/h", 1.0 / 3600},
+        {"g/s", 1e-3},
+        {"g/min", 1e-3 / 60},
+        {"lb/h", kLbKg / 3600},
+        {"lb/min", kLbKg / 60}}},
+      {Dimension::kVolume,
+       "volume",
+       {{"mm3", 1},
+        {"cm3", 1000},
+        {"l", 1e6},
+        {"in3", kIn3Mm3},
+        {"cm3/rev", 1000},
+        {"mm3/rev", 1},
+        {"in3/rev", kIn3Mm3}}},
       {Dimension::kAngle, "angle", {{"deg", 1}, {"°", 1}, {"rad", 180.0 / kPi}}},
       {Dimension::kFraction, "fraction", {{"", 1}, {"%", 0.01}}},
       {Dimension::kDensity, "density", {{"kg/m3", 1}, {"g/cm3", 1000}, {"lb/in3", kLbKg / (kIn3Mm3 * 1e-9)}}},
-      {Dimension::kSpecificHeat, "specific heat", {{"J/kgK", 1}, {"J/(kg*K)", 1}, {"J/kg/K", 1}, {"kJ/kgK", 1000}, {"kJ/(kg*K)", 1000}}},
+      {Dimension::kSpecificHeat,
+       "specific heat",
+       {{"J/kgK", 1}, {"J/(kg*K)", 1}, {"J/kg/K", 1}, {"kJ/kgK", 1000}, {"kJ/(kg*K)", 1000}}},
       {Dimension::kConductivity, "thermal conductivity", {{"W/mK", 1}, {"W/(m*K)", 1}, {"W/m/K", 1}}},
-      {Dimension::kHeatTransferCoeff, "heat transfer coefficient", {{"W/m2K", 1}, {"W/(m2*K)", 1}, {"W/m2/K", 1}}},
-      {Dimension::kRotationalSpeed, "rotational speed", {{"rpm", 1}, {"rev/min", 1}, {"rev/s", 60}, {"1/min", 1}}},
+      {Dimension::kHeatTransferCoeff,
+       "heat transfer coefficient",
+       {{"W/m2K", 1}, {"W/(m2*K)", 1}, {"W/m2/K", 1}}},
+      {Dimension::kRotationalSpeed,
+       "rotational speed",
+       {{"rpm", 1}, {"rev/min", 1}, {"rev/s", 60}, {"1/min", 1}}},
       {Dimension::kMolarEnergy, "molar energy", {{"J/mol", 1}, {"kJ/mol", 1000}}},
-      {Dimension::kAcceleration, "acceleration", {{"mm/s2", 1}, {"m/s2", 1000}, {"in/s2", 25.4}, {"g0", 9806.65}}},
+      {Dimension::kAcceleration,
+       "acceleration",
+       {{"mm/s2", 1}, {"m/s2", 1000}, {"in/s2", 25.4}, {"g0", 9806.65}}},
       {Dimension::kDimensionless, "number", {{"", 1}}},
   };
   return t;
@@ -99,7 +142,8 @@ const UnitDef* find_unit(const DimensionDef& d, std::string_view unit) {
     if (u.name.size() != n.size()) continue;
     bool same = true;
     for (std::size_t i = 0; i < n.size() && same; ++i)
-      same = std::tolower(static_cast<unsigned char>(n[i])) == std::tolower(static_cast<unsigned char>(u.name[i]));
+      same = std::tolower(static_cast<unsigned char>(n[i])) ==
+             std::tolower(static_cast<unsigned char>(u.name[i]));
     if (same) return &u;
   }
   return nullptr;
@@ -113,8 +157,12 @@ std::string_view trim(std::string_view s) {
 
 }  // namespace
 
-std::string_view dimension_name(Dimension dim) { return def(dim).name; }
-std::string_view internal_unit(Dimension dim) { return def(dim).units.front().name; }
+std::string_view dimension_name(Dimension dim) {
+  return def(dim).name;
+}
+std::string_view internal_unit(Dimension dim) {
+  return def(dim).units.front().name;
+}
 
 std::string accepted_units(Dimension dim) {
   std::string out;
@@ -130,7 +178,8 @@ double to_internal(double value, std::string_view unit, Dimension dim) {
   const DimensionDef& d = def(dim);
   const UnitDef* u = find_unit(d, unit);
   if (!u)
-    throw QuantityError(fmt::format("unknown unit '{}' for a {}; expected one of: {}", unit, d.name, accepted_units(dim)));
+    throw QuantityError(
+        fmt::format("unknown unit '{}' for a {}; expected one of: {}", unit, d.name, accepted_units(dim)));
   return value * u->scale + u->offset;
 }
 
@@ -138,7 +187,8 @@ double from_internal(double value, std::string_view unit, Dimension dim) {
   const DimensionDef& d = def(dim);
   const UnitDef* u = find_unit(d, unit);
   if (!u)
-    throw QuantityError(fmt::format("unknown unit '{}' for a {}; expected one of: {}", unit, d.name, accepted_units(dim)));
+    throw QuantityError(
+        fmt::format("unknown unit '{}' for a {}; expected one of: {}", unit, d.name, accepted_units(dim)));
   return (value - u->offset) / u->scale;
 }
 
@@ -151,10 +201,12 @@ double parse_quantity(std::string_view text, Dimension dim, std::string_view def
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(first, last, value);
   if (ec != std::errc() || ptr == first)
-    throw QuantityError(fmt::format("expected a {} such as '{}' but found '{}'", dimension_name(dim),
-                                    dim == Dimension::kDimensionless ? std::string("3")
-                                                                     : fmt::format("10 {}", accepted_units(dim).substr(0, accepted_units(dim).find(','))),
-                                    s));
+    throw QuantityError(
+        fmt::format("expected a {} such as '{}' but found '{}'", dimension_name(dim),
+                    dim == Dimension::kDimensionless
+                        ? std::string("3")
+                        : fmt::format("10 {}", accepted_units(dim).substr(0, accepted_units(dim).find(','))),
+                    s));
   if (!std::isfinite(value)) throw QuantityError(fmt::format("'{}' is not a finite number", s));
   const std::string_view unit = trim(std::string_view(ptr, static_cast<std::size_t>(last - ptr)));
   if (unit.empty()) {

@@ -13,24 +13,24 @@
 namespace beadtwin {
 
 enum class Dimension {
-  kLength,               // mm
-  kTemperature,          // °C (absolute)
-  kTime,                 // s
-  kMass,                 // kg
-  kSpeed,                // mm/s
-  kVolumeFlow,           // mm³/s
-  kMassFlow,             // kg/s
-  kVolume,               // mm³
-  kAngle,                // degrees
-  kFraction,             // 1 (so "10 %" is 0.1)
-  kDensity,              // kg/m³
-  kSpecificHeat,         // J/(kg·K)
-  kConductivity,         // W/(m·K)
-  kHeatTransferCoeff,    // W/(m²·K)
-  kRotationalSpeed,      // rev/min
-  kMolarEnergy,          // J/mol
-  kAcceleration,         // mm/s²
-  kDimensionless,        // plain number, no unit allowed
+  kLength,             // mm
+  kTemperature,        // °C (absolute)
+  kTime,               // s
+  kMass,               // kg
+  kSpeed,              // mm/s
+  kVolumeFlow,         // mm³/s
+  kMassFlow,           // kg/s
+  kVolume,             // mm³
+  kAngle,              // degrees
+  kFraction,           // 1 (so "10 %" is 0.1)
+  kDensity,            // kg/m³
+  kSpecificHeat,       // J/(kg·K)
+  kConductivity,       // W/(m·K)
+  kHeatTransferCoeff,  // W/(m²·K)
+  kRotationalSpeed,    // rev/min
+  kMolarEnergy,        // J/mol
+  kAcceleration,       // mm/s²
+  kDimensionless,      // plain number, no unit allowed
 };
 
 // Human name of a dimension ("length", "temperature"...).

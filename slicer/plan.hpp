@@ -1,0 +1,51 @@
+// Sectioned path planning (the Thermwood patent's sectioned slicing, first cut): the part is divided into
+// sections by Z range, each with its own layer height, bead, speed, boundary passes and fill; each section
+// is sliced into planar layers; each layer gets its boundary passes (offsets of the outline) and, where
+// asked, a zigzag fill whose angle turns from layer to layer; the layers of all sections are merged by Z
+// into one Toolpath.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/toolpath.hpp"
+#include "slicer/mesh.hpp"
+
+namespace beadtwin::slicer {
+
+struct BoundaryParams {
+  int passes = 1;           // beads laid along each contour, outermost first (patent (49))
+  double overlap = 0.10;    // overlap between neighbouring passes, fraction of the bead width
+  bool inside_out = false;  // lay the innermost pass first (patent (49))
+};
+
+struct FillParams {
+  bool enabled = false;
+  double angle_deg = 45.0;       // fill direction of the section's first layer (patent (63))
+  double angle_step_deg = 90.0;  // change in fill angle from one layer to the next (patent (63))
+  double overlap = 0.10;         // overlap between fill passes, and between fill and boundary, fraction of w
+};
+
+struct SectionParams {
+  std::string name;
+  double z_min_mm = 0.0;  // bottom of the section's first layer
+  double z_max_mm = 0.0;  // top of the section's last layer
+  double layer_height_mm = 5.08;
+  double bead_width_mm = 21.08;
+  double print_speed_mm_s = 100.0;
+  double travel_speed_mm_s = 300.0;
+  BoundaryParams boundary;
+  FillParams fill;
+};
+
+struct PlanStats {
+  int empty_layers = 0;  // layers whose slice was empty (nothing to print there)
+  int open_chains = 0;   // slice loops that did not close (mesh holes), summed over layers
+};
+
+// Plans every section and merges them into one Toolpath (times from `motion`). Sections must not overlap in
+// Z (checked by the scenario loader). Throws InputError on parameters the planner cannot use.
+Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
+                       const MotionLimits& motion, PlanStats* stats = nullptr);
+
+}  // namespace beadtwin::slicer

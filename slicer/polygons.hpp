@@ -1,0 +1,29 @@
+// Planar polygons for slicing and path planning. Coordinates in mm. Outer contours run counter-clockwise
+// and holes clockwise, as the slicer produces them; offsetting and clipping go through Clipper.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace beadtwin::slicer {
+
+using Polygon = std::vector<Eigen::Vector2d>;  // closed: the last point connects to the first
+using Polygons = std::vector<Polygon>;
+using Polyline = std::vector<Eigen::Vector2d>;  // open
+
+// Signed area sum (holes count negative), mm².
+double area_mm2(const Polygons& polygons);
+// Total length of all contours, mm.
+double perimeter_mm(const Polygons& polygons);
+// Offsets all contours by `delta_mm` (negative shrinks the region), with round joins.
+Polygons offset(const Polygons& polygons, double delta_mm);
+// Cleans up a soup of possibly overlapping or inconsistently oriented loops into a proper region
+// (non-zero winding of each loop taken in its own orientation, then union).
+Polygons union_nonzero(const Polygons& loops);
+// Parts of `lines` inside `region`.
+std::vector<Polyline> clip_lines(const std::vector<Polyline>& lines, const Polygons& region);
+// Point-in-region test (holes excluded).
+bool contains(const Polygons& region, const Eigen::Vector2d& p);
+
+}  // namespace beadtwin::slicer

@@ -1,0 +1,192 @@
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/bead.hpp"
+#include "core/error.hpp"
+#include "slicer/gcode_writer.hpp"
+#include "slicer/mesh.hpp"
+#include "slicer/plan.hpp"
+#include "slicer/polygons.hpp"
+#include "slicer/slice.hpp"
+
+namespace beadtwin::slicer {
+namespace {
+
+std::filesystem::path temp_file(const std::string& name) {
+  return std::filesystem::temp_directory_path() / name;
+}
+
+SectionParams section(double z0, double z1, double h, double w, int passes, bool fill) {
+  SectionParams s;
+  s.name = "s";
+  s.z_min_mm = z0;
+  s.z_max_mm = z1;
+  s.layer_height_mm = h;
+  s.bead_width_mm = w;
+  s.print_speed_mm_s = 50;
+  s.travel_speed_mm_s = 200;
+  s.boundary.passes = passes;
+  s.fill.enabled = fill;
+  return s;
+}
+
+TEST(Mesh, BoxIsClosedWithTheRightVolume) {
+  const TriangleMesh box = make_box({100, 50, 20});
+  EXPECT_NEAR(box.volume_mm3(), 100.0 * 50 * 20, 1e-6);
+  const TriangleMesh open = make_open_box({100, 80, 50}, 10, 5);
+  EXPECT_NEAR(open.volume_mm3(), 100.0 * 80 * 50 - 80.0 * 60 * 45, 1e-6);
+}
+
+TEST(Mesh, BinaryAndAsciiStlRoundTrip) {
+  const TriangleMesh box = make_box({10, 20, 30}, {1, 2, 3});
+  write_stl(box, temp_file("bt_box.stl"));
+  const TriangleMesh back = read_stl(temp_file("bt_box.stl"));
+  EXPECT_EQ(back.triangles.size(), box.triangles.size());
+  EXPECT_EQ(back.vertices.size(), 8u);  // welded
+  EXPECT_NEAR(back.volume_mm3(), 6000.0, 1e-3);
+  // ASCII, in inches.
+  std::ofstream(temp_file("bt_tri.stl"))
+      << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+         "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+  const TriangleMesh tri = read_stl(temp_file("bt_tri.stl"), 25.4);
+  ASSERT_EQ(tri.triangles.size(), 1u);
+  EXPECT_DOUBLE_EQ(tri.max_corner().x(), 25.4);
+}
+
+TEST(Mesh, BadStlNamesFileAndLine) {
+  std::ofstream(temp_file("bt_bad.stl")) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nendloop\n";
+  try {
+    (void)read_stl(temp_file("bt_bad.stl"));
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().line, 4) << e.what();
+    EXPECT_NE(std::string(e.what()).find("bt_bad.stl"), std::string::npos);
+  }
+  std::ofstream(temp_file("bt_short.stl"), std::ios::binary) << std::string(90, 'x');
+  EXPECT_THROW((void)read_stl(temp_file("bt_short.stl")), InputError);
+  EXPECT_THROW((void)read_stl(temp_file("bt_missing_file.stl")), InputError);
+}
+
+TEST(Slice, BoxSliceIsItsFootprint) {
+  const TriangleMesh box = make_box({100, 50, 20}, {10, 0, 0});
+  const Polygons p = slice_mesh(box, 5.0);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_NEAR(area_mm2(p), 5000.0, 1e-6);  // positive: counter-clockwise outer contour
+  EXPECT_TRUE(slice_mesh(box, 25.0).empty());
+  // Exactly at a vertex plane, vertices count as above it: the top face's plane still cuts the sides once,
+  // the bottom face's plane has nothing below it.
+  EXPECT_NEAR(area_mm2(slice_mesh(box, 20.0)), 5000.0, 1e-6);
+  EXPECT_TRUE(slice_mesh(box, 0.0).empty());
+}
+
+TEST(Slice, OpenBoxHasAHoleAboveTheFloor) {
+  const TriangleMesh m = make_open_box({100, 80, 50}, 10, 5);
+  EXPECT_NEAR(area_mm2(slice_mesh(m, 2.5)), 8000.0, 1e-6);
+  const Polygons ring = slice_mesh(m, 20.0);
+  EXPECT_EQ(ring.size(), 2u);
+  EXPECT_NEAR(area_mm2(ring), 8000.0 - 80.0 * 60.0, 1e-6);
+}
+
+TEST(Plan, CubeIsSlicedIntoTheExpectedLayers) {
+  // A 100 mm cube at 5 mm layers: 20 layers with tops at 5, 10, ... 100 mm.
+  const TriangleMesh cube = make_box({100, 100, 100});
+  const Toolpath tp = plan_toolpath(cube, {section(0, 100, 5, 20, 1, false)}, {});
+  ASSERT_EQ(tp.layers.size(), 20u);
+  for (std::size_t i = 0; i < tp.layers.size(); ++i)
+    EXPECT_NEAR(tp.layers[i].z_mm, 5.0 * static_cast<double>(i + 1), 1e-9);
+}
+
+TEST(Plan, TwoSectionsWithTheirOwnParameters) {
+  const TriangleMesh m = make_open_box({400, 300, 60}, 100, 10);
+  std::vector<SectionParams> secs = {section(0, 10, 5, 20, 2, true), section(10, 60, 5, 20, 3, false)};
+  secs[0].name = "floor";
+  secs[1].name = "walls";
+  PlanStats stats;
+  const Toolpath tp = plan_toolpath(m, secs, {}, &stats);
+  ASSERT_EQ(tp.layers.size(), 12u);
+  EXPECT_EQ(tp.layers[0].section, 0);
+  EXPECT_EQ(tp.layers[2].section, 1);
+  EXPECT_EQ(stats.open_chains, 0);
+  int max_pass_floor = -1, max_pass_walls = -1, fill_moves = 0;
+  for (const Move& mv : tp.moves) {
+    if (mv.feature == Feature::kBoundary)
+      (mv.section == 0 ? max_pass_floor : max_pass_walls) =
+          std::max(mv.section == 0 ? max_pass_floor : max_pass_walls, mv.pass);
+    if (mv.feature == Feature::kFill) {
+      ++fill_moves;
+      EXPECT_EQ(mv.section, 0);
+    }
+  }
+  EXPECT_EQ(max_pass_floor, 1);  // passes 0 and 1
+  EXPECT_EQ(max_pass_walls, 2);  // passes 0, 1 and 2 fit on both contours of a 100 mm wall
+  EXPECT_GT(fill_moves, 10);
+}
+
+TEST(Plan, BoundaryPassesSitAtTheirOffsets) {
+  // Pass k of a square runs at w/2 + k * pitch inside the outline.
+  const double w = 20, overlap = 0.1, pitch = w * (1 - overlap);
+  SectionParams s = section(0, 5, 5, w, 3, false);
+  s.boundary.overlap = overlap;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 5}), {s}, {});
+  double min_x[3] = {1e9, 1e9, 1e9};
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kBoundary) min_x[m.pass] = std::min(min_x[m.pass], m.end.x());
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(min_x[k], w / 2 + k * pitch, 1e-3) << "pass " << k;
+}
+
+TEST(Plan, FillCoversTheInsideAndTurnsEachLayer) {
+  const double w = 20, h = 5;
+  SectionParams s = section(0, 10, h, w, 1, true);
+  s.fill.angle_deg = 0;
+  s.fill.angle_step_deg = 90;
+  const Toolpath tp = plan_toolpath(make_box({300, 200, 10}), {s}, {});
+  ASSERT_EQ(tp.layers.size(), 2u);
+  // Commanded volume of a layer is close to the footprint times the layer height.
+  for (std::size_t l = 0; l < 2; ++l) {
+    double v = 0;
+    for (std::size_t i = tp.layers[l].first_move; i < tp.layers[l].end_move; ++i) v += tp.moves[i].volume_mm3;
+    EXPECT_NEAR(v / (300.0 * 200 * h), 1.0, 0.12) << "layer " << l;
+  }
+  // Fill direction: mostly along x on layer 0, along y on layer 1.
+  double along[2][2] = {{0, 0}, {0, 0}};
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kFill) {
+      along[m.layer][0] += std::abs(m.end.x() - m.start.x());
+      along[m.layer][1] += std::abs(m.end.y() - m.start.y());
+    }
+  EXPECT_GT(along[0][0], 5 * along[0][1]);
+  EXPECT_GT(along[1][1], 5 * along[1][0]);
+}
+
+TEST(Plan, VolumeFollowsTheStadiumSection) {
+  SectionParams s = section(0, 5, 5, 20, 1, false);
+  const Toolpath tp = plan_toolpath(make_box({200, 100, 5}), {s}, {});
+  EXPECT_NEAR(tp.commanded_volume_mm3(), tp.print_length_mm() * bead_area_mm2(20, 5), 1e-6);
+  EXPECT_GT(tp.total_time_s(), tp.print_length_mm() / 50);
+}
+
+TEST(Plan, BadParametersAreInputErrors) {
+  EXPECT_THROW((void)plan_toolpath(make_box({10, 10, 10}), {section(0, 10, 5, 4, 1, false)}, {}), InputError);
+  EXPECT_THROW((void)plan_toolpath(make_box({10, 10, 10}), {section(0, 10, 0, 4, 1, false)}, {}), InputError);
+}
+
+TEST(Gcode, ProgramNamesLayersSectionsAndFeatures) {
+  SectionParams s = section(0, 10, 5, 20, 2, true);
+  s.name = "base";
+  const Toolpath tp = plan_toolpath(make_box({200, 100, 10}), {s}, {});
+  GcodeDialect d;
+  d.inches = true;
+  const std::string g = write_gcode(tp, d, {"T", "sc", "v", "m", "x"});
+  EXPECT_NE(g.find("G20"), std::string::npos);
+  EXPECT_NE(g.find("(LAYER 1 SECTION base Z 0.394"), std::string::npos) << g.substr(0, 600);
+  EXPECT_NE(g.find("(BOUNDARY PASS 2)"), std::string::npos);
+  EXPECT_NE(g.find("(fill)"), std::string::npos);
+  EXPECT_NE(g.find("M23"), std::string::npos);
+  EXPECT_NE(g.find("M30"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

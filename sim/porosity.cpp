@@ -1,0 +1,110 @@
+#include "sim/porosity.hpp"
+
+#include <vector>
+
+#include <openvdb/tree/LeafManager.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.hpp"
+
+namespace beadtwin::sim {
+
+namespace {
+
+constexpr float kSolidFill = 0.5f;
+const openvdb::Coord kPlanSteps[] = {openvdb::Coord(1, 0, 0), openvdb::Coord(0, 1, 0)};
+
+using FillAccessor = openvdb::FloatGrid::ConstAccessor;
+using Leaves = openvdb::tree::LeafManager<const openvdb::FloatTree>;
+
+bool solid(const FillAccessor& fill, const openvdb::Coord& ijk) {
+  return fill.getValue(ijk) >= kSolidFill;
+}
+
+// From solid voxel `from`, walks along `step` over non-solid voxels; if another solid voxel closes the run
+// within `max_gap` voxels, appends the run's voxels to `out`. Every gap is found once, from its lower end.
+void append_gap(const FillAccessor& fill, const openvdb::Coord& from, const openvdb::Coord& step, int max_gap,
+                std::vector<openvdb::Coord>& out) {
+  openvdb::Coord at = from + step;
+  if (solid(fill, at)) return;
+  for (int length = 1; length <= max_gap; ++length, at += step) {
+    if (!solid(fill, at + step)) continue;
+    for (openvdb::Coord v = from + step; v != at + step; v += step) out.push_back(v);
+    return;
+  }
+}
+
+// Runs `per_leaf(leaf, accessor) -> double` over all leaves in parallel; sums in leaf order, so the result
+// never depends on the number of threads.
+template <class F>
+double sum_over_leaves(const openvdb::FloatGrid& fill, const Leaves& leaves, F per_leaf) {
+  std::vector<double> partial(leaves.leafCount(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      const FillAccessor accessor = fill.getConstAccessor();
+                      for (std::size_t n = range.begin(); n != range.end(); ++n)
+                        partial[n] = per_leaf(n, leaves.leaf(n), accessor);
+                    });
+  double total = 0.0;
+  for (const double p : partial) total += p;
+  return total;
+}
+
+}  // namespace
+
+Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels) {
+  BT_CHECK_OP(max_gap_voxels, >=, 1);
+  const Leaves leaves(fill.tree());
+  Porosity result;
+
+  // Material, and the enclosed gaps each leaf's solid voxels open.
+  std::vector<std::vector<openvdb::Coord>> gaps(leaves.leafCount());
+  result.material_voxels = sum_over_leaves(
+      fill, leaves,
+      [&](std::size_t n, const openvdb::FloatTree::LeafNodeType& leaf, const FillAccessor& accessor) {
+        double material = 0.0;
+        for (auto it = leaf.cbeginValueOn(); it; ++it) {
+          material += *it;
+          if (*it < kSolidFill) continue;
+          for (const openvdb::Coord& step : kPlanSteps)
+            append_gap(accessor, it.getCoord(), step, max_gap_voxels, gaps[n]);
+        }
+        return material;
+      });
+
+  // A gap closed along both x and y is one void: the mask holds each voxel once.
+  openvdb::MaskGrid enclosed;
+  {
+    auto mask = enclosed.getAccessor();
+    for (const auto& leaf_gaps : gaps)
+      for (const openvdb::Coord& v : leaf_gaps) mask.setValueOn(v);
+  }
+  {
+    const FillAccessor accessor = fill.getConstAccessor();
+    for (auto it = enclosed.cbeginValueOn(); it; ++it)
+      result.void_voxels += 1.0 - accessor.getValue(it.getCoord());
+  }
+
+  // Solid voxels not quite full, inside the envelope in plan.
+  result.void_voxels += sum_over_leaves(
+      fill, leaves,
+      [&enclosed](std::size_t, const openvdb::FloatTree::LeafNodeType& leaf, const FillAccessor& accessor) {
+        const auto mask = enclosed.getConstAccessor();
+        const auto in_envelope = [&](const openvdb::Coord& ijk) {
+          return solid(accessor, ijk) || mask.isValueOn(ijk);
+        };
+        double void_voxels = 0.0;
+        for (auto it = leaf.cbeginValueOn(); it; ++it) {
+          if (*it < kSolidFill || *it >= 1.0f) continue;
+          const openvdb::Coord c = it.getCoord();
+          if (in_envelope(c.offsetBy(1, 0, 0)) && in_envelope(c.offsetBy(-1, 0, 0)) &&
+              in_envelope(c.offsetBy(0, 1, 0)) && in_envelope(c.offsetBy(0, -1, 0)))
+            void_voxels += 1.0 - *it;
+        }
+        return void_voxels;
+      });
+  return result;
+}
+
+}  // namespace beadtwin::sim

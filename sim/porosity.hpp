@@ -1,0 +1,33 @@
+// Porosity of a deposit: the void fraction inside the printed envelope (DESIGN §4.2), first cut.
+//
+// The envelope is found slab by slab (one voxel layer of constant z), in plan:
+//  - a voxel at least half full is solid;
+//  - a run of less-than-half-full voxels along x or along y, bounded by solid voxels at both ends and at
+//    most `max_gap_voxels` long, is an enclosed gap: all of its empty volume is void. Wider openings are
+//    taken as intended open space (the inside of a hollow wall, the gap between two parts), not porosity;
+//    the caller passes one bead width;
+//  - a solid voxel that is not quite full is void for its empty part when all four of its in-plane
+//    neighbours are in the envelope (solid or enclosed gap); at the envelope's edge its empty part is the
+//    outside air next to the bead's rounded flank.
+// porosity = void / (material + void). Limits of this first cut: enclosure is judged in plan only (a gap
+// open at the top or bottom of its slab still counts), and the under-filled top of an exposed slab whose
+// top does not fall on a voxel boundary counts as void.
+#pragma once
+
+#include <openvdb/openvdb.h>
+
+namespace beadtwin::sim {
+
+struct Porosity {
+  double material_voxels = 0.0;  // total fill, in voxel volumes
+  double void_voxels = 0.0;      // empty volume inside the envelope, in voxel volumes
+  double fraction() const {
+    const double envelope = material_voxels + void_voxels;
+    return envelope > 0.0 ? void_voxels / envelope : 0.0;
+  }
+};
+
+// Deterministic whatever the number of threads. Precondition: max_gap_voxels >= 1.
+Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels);
+
+}  // namespace beadtwin::sim

@@ -1,0 +1,91 @@
+#include "sim/sweep_plan.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+
+namespace beadtwin::sim {
+
+namespace {
+
+constexpr double kJoinToleranceMm = 1e-3;  // how close two moves' end and start must be to continue a bead
+constexpr double kPuddleLengthMm = 1e-6;   // plan length below which a move is a puddle
+// Sharpest turn still joined (170°): beyond it the bisector cut would run far along both beads.
+const double kMinJoinCos = std::cos(170.0 / 180.0 * kPi);
+
+BeadSweep sweep_of(const Move& move, bool round_free_ends) {
+  BeadSweep s;
+  s.start_xy = move.start.head<2>();
+  s.end_xy = move.end.head<2>();
+  s.start_top_mm = move.start.z();
+  s.end_top_mm = move.end.z();
+  const Eigen::Vector2d axis = s.end_xy - s.start_xy;
+  if (axis.norm() <= kPuddleLengthMm) {
+    s.start_xy = s.end_xy;
+    s.start_top_mm = s.end_top_mm;
+    s.profile = puddle_profile(move.volume_mm3, move.layer_height_mm);
+    return s;
+  }
+  s.profile = moving_bead_profile(move.volume_mm3 / move.length_mm(), move.layer_height_mm);
+  if (!round_free_ends) s.start_cut = s.end_cut = axis.normalized();
+  return s;
+}
+
+Eigen::Vector2d direction(const BeadSweep& s) {
+  return (s.end_xy - s.start_xy).normalized();
+}
+
+// The bisector normal if `second` continues `first`, nothing otherwise.
+std::optional<Eigen::Vector2d> joint(const BeadSweep& first, const BeadSweep& second) {
+  if (first.is_puddle() || second.is_puddle()) return std::nullopt;
+  if ((first.end_xy - second.start_xy).norm() > kJoinToleranceMm) return std::nullopt;
+  if (std::abs(first.end_top_mm - second.start_top_mm) > kJoinToleranceMm) return std::nullopt;
+  const Eigen::Vector2d u = direction(first);
+  const Eigen::Vector2d v = direction(second);
+  if (u.dot(v) < kMinJoinCos) return std::nullopt;
+  return Eigen::Vector2d((u + v).normalized());
+}
+
+void join(BeadSweep& first, BeadSweep& second, const Eigen::Vector2d& bisector) {
+  first.end_cut = bisector;
+  second.start_cut = bisector;
+}
+
+}  // namespace
+
+std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, bool round_free_ends) {
+  std::vector<PlannedSweep> out;
+  std::size_t chain_first = 0;  // index into `out` of the current continuous bead's first move
+  bool moved_dry = false;       // a move with length but without material since the last depositing move
+  const auto close_chain = [&out, &chain_first] {
+    if (out.size() < chain_first + 2) return;
+    BeadSweep& last = out.back().sweep;
+    BeadSweep& first = out[chain_first].sweep;
+    if (const auto bisector = joint(last, first)) join(last, first, *bisector);
+  };
+  for (std::size_t i = 0; i < toolpath.moves.size(); ++i) {
+    const Move& move = toolpath.moves[i];
+    if (!move.deposits()) {
+      if (move.length_mm() > 0.0) moved_dry = true;
+      continue;
+    }
+    BT_CHECK_OP(move.layer_height_mm, >, 0.0);
+    PlannedSweep planned{i, sweep_of(move, round_free_ends)};
+    std::optional<Eigen::Vector2d> bisector;
+    if (!out.empty() && !moved_dry) bisector = joint(out.back().sweep, planned.sweep);
+    if (bisector) {
+      join(out.back().sweep, planned.sweep, *bisector);
+    } else {
+      close_chain();
+      chain_first = out.size();
+    }
+    out.push_back(planned);
+    moved_dry = false;
+  }
+  close_chain();
+  return out;
+}
+
+}  // namespace beadtwin::sim

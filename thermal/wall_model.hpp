@@ -1,0 +1,116 @@
+// The 1-D stacked-layer wall as an ODE system (internal to the thermal library; see thermal.hpp for the
+// model). Everything here is SI: m, m², J, W, K for differences; temperatures in °C, converted to K where a
+// formula needs absolute temperature (radiation, Arrhenius).
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "core/material.hpp"
+#include "thermal/cvode.hpp"
+#include "thermal/thermal.hpp"
+
+namespace beadtwin::thermal {
+
+// Non-isothermal reptation (Yang & Pitchumani 2002): rate 1/t_w(T) of the healing integral
+// ∫ dt / t_w(T(t)), with t_w(T) = t_ref · exp(E_a/R (1/T − 1/T_ref)); zero below the healing threshold.
+class Reptation {
+ public:
+  explicit Reptation(const Material& material);
+  double rate_per_s(double temp_c) const;
+  // d(rate)/dT, 1/(s·K); zero below the threshold (the step at the threshold has no derivative).
+  double rate_derivative(double temp_c) const;
+
+ private:
+  double min_temp_c_;
+  double ref_time_s_;
+  double activation_temp_k_;  // E_a / R
+  double inv_ref_temp_k_;     // 1 / T_ref
+};
+
+// State layout: one block of (n + 2) entries per layer i, so that every coupling stays within a narrow
+// band (upper bandwidth 3, lower max(3, n)):
+//   [ H_i | T_i,0 (bottom) ... T_i,n-1 (top) | Q_i ]
+// T in °C; H_i = ∫ dt / t_w(T_int) of the interface under layer i (unused for layer 0); Q_i = energy lost
+// through layer i's boundaries since its birth, J. Entries of layers not yet born stay constant.
+//
+// Why the healing integrals are CVODE states rather than a quadrature of the sampled history: the
+// integrand 1/t_w(T) changes by ~10 % per kelvin (E_a/(R T²)), so D_h is only as good as the interface
+// temperature at every instant. As states they are advanced by the same BDF formula under the same local
+// error test as the temperatures (with weights of their own, see error_weights), and the jump of the rate
+// at the healing threshold is met by CVODE's step control instead of being smeared between samples. The
+// energy lost is a state for the same reason: the balance in − lost − stored then checks the flux
+// bookkeeping (BDF keeps this linear invariant up to the Newton tolerance), not a post-processing rule.
+class WallModel final : public OdeSystem {
+ public:
+  WallModel(std::span<const LayerInput> layers, const Material& material, const Environment& env,
+            int nodes_per_layer);
+
+  std::size_t size() const { return layers_.size() * block_; }
+  std::size_t upper_bandwidth() const { return 3; }
+  std::size_t lower_bandwidth() const { return n_ > 3 ? n_ : 3; }
+  std::size_t temp_index(std::size_t layer, std::size_t node) const { return layer * block_ + 1 + node; }
+  std::size_t healing_index(std::size_t layer) const { return layer * block_; }
+  std::size_t loss_index(std::size_t layer) const { return layer * block_ + 1 + n_; }
+
+  std::vector<double> initial_state() const;
+  // Error control (see error_weights): relative tolerance, absolute tolerance on temperatures (K) and on
+  // the healing integral H (dimensionless).
+  void set_tolerances(double rel_tol, double abs_tol_k, double healing_abs_tol);
+
+  // Births layer `layer` (the next one in order) in state y: its nodes at the deposition temperature.
+  void birth(std::size_t layer, std::span<double> y);
+  std::size_t born_count() const { return born_; }
+
+  double layer_mean_temp_c(std::size_t layer, std::span<const double> y) const;
+  // Top node of the layer under `layer` (layer >= 1).
+  double substrate_temp_c(std::size_t layer, std::span<const double> y) const;
+  // Interface temperature under `layer` (layer >= 1): linear between the two adjacent node centres (the
+  // mean of the two when the layers are equally thick).
+  double interface_temp_c(std::size_t layer, std::span<const double> y) const;
+
+  // Energies relative to ambient over the born layers, J.
+  double energy_in_J() const;
+  double energy_stored_J(std::span<const double> y) const;
+  double energy_lost_J(std::span<const double> y) const;
+
+  void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
+  void jacobian(double t, std::span<const double> y, BandJacobian& jacobian) override;
+  void error_weights(std::span<const double> y, std::span<double> weights) override;
+
+ private:
+  struct Layer {
+    double area_m2 = 0;
+    double node_capacity_J_K = 0;      // ρ c_p A h/n
+    double inner_conductance_W_K = 0;  // between two nodes of this layer: k A / (h/n)
+    double below_conductance_W_K = 0;  // to the layer below: k min(A) / (h_below/2n + h/2n)
+    double below_weight = 0;           // weight of the lower node in the interface temperature
+    double side_area_node_m2 = 0;      // perimeter · h/n
+  };
+  // Boundary loss of one node at temperature temp_c through `area_m2` of free surface plus the bed
+  // conductance (0 except under layer 0), W; and its derivative with respect to the temperature, W/K.
+  double loss_W(double temp_c, double area_m2, double bed_conductance) const;
+  double loss_derivative_W_K(double temp_c, double area_m2, double bed_conductance) const;
+  // Free surface of node j of layer i in the current stack: sides, plus the uncovered top for top nodes.
+  double free_area_m2(std::size_t layer, std::size_t node) const;
+  double bed_conductance_W_K(std::size_t layer, std::size_t node) const;
+
+  std::vector<Layer> layers_;
+  std::size_t n_;
+  std::size_t block_;
+  std::size_t born_ = 0;
+  Reptation reptation_;
+  double deposition_temp_c_;
+  double ambient_c_;
+  double ambient_k4_;
+  double bed_temp_c_;
+  double bed_conductance_W_K_;  // h_bed · A_0, or 0 on an insulated table
+  double convection_W_m2K_;
+  double emissivity_sigma_;  // ε σ
+  double rel_tol_ = 1e-6;
+  double abs_tol_k_ = 1e-4;
+  double healing_abs_tol_ = 1e-8;
+};
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,110 @@
+// Embree 3, wrapped once (STYLE.md rule 9): RAII handles for a device, a scene and a geometry.
+//
+// The Device installs an error callback when it is created. Embree calls it on the thread whose call
+// failed; the callback records the error and the wrapper function that made the call throws it, as an
+// InternalError naming the call (an Embree error here is a bug of ours, an unsupported CPU or a lack of
+// memory, never the user's input). Throwing from inside the callback itself would unwind through Embree's
+// frames, which its C API does not promise to survive, hence record-then-throw.
+//
+// Ray queries (intersect, occluded) are not checked: Embree validates their arguments only in its debug
+// builds, so they stay inline and cheap. They are thread-safe once the scene is committed.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include <embree3/rtcore.h>
+
+namespace beadtwin::render::embree {
+
+// Errors reported by the callback, shared by the device and everything made from it, so the callback's
+// target lives as long as any handle that can trigger it.
+struct ErrorSlot;
+
+class Device {
+ public:
+  // `config` is Embree's device configuration string ("" for the defaults; "verbose=1" etc.).
+  explicit Device(const char* config = "");
+  ~Device();
+  Device(Device&& other) noexcept;
+  Device& operator=(Device&& other) noexcept;
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  RTCDevice get() const { return device_; }
+  // Throws the error recorded since the last check, naming `call`; does nothing if there is none.
+  void check(std::string_view call) const;
+  const std::shared_ptr<ErrorSlot>& errors() const { return errors_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  std::shared_ptr<ErrorSlot> errors_;
+};
+
+class Geometry {
+ public:
+  Geometry(const Device& device, RTCGeometryType type);
+  ~Geometry();
+  Geometry(Geometry&& other) noexcept;
+  Geometry& operator=(Geometry&& other) noexcept;
+  Geometry(const Geometry&) = delete;
+  Geometry& operator=(const Geometry&) = delete;
+
+  // A buffer of `count` items of type T, owned by Embree (and padded as Embree needs), bound to `type`
+  // slot `slot` in `format`. Fill it before commit().
+  template <class T>
+  std::span<T> new_buffer(RTCBufferType type, unsigned slot, RTCFormat format, std::size_t count) {
+    return {static_cast<T*>(new_buffer_bytes(type, slot, format, sizeof(T), count)), count};
+  }
+  void commit();
+
+  RTCGeometry get() const { return geometry_; }
+
+ private:
+  void* new_buffer_bytes(RTCBufferType type, unsigned slot, RTCFormat format, std::size_t stride,
+                         std::size_t count);
+
+  RTCGeometry geometry_ = nullptr;
+  std::shared_ptr<ErrorSlot> errors_;
+};
+
+class Scene {
+ public:
+  explicit Scene(const Device& device);
+  ~Scene();
+  Scene(Scene&& other) noexcept;
+  Scene& operator=(Scene&& other) noexcept;
+  Scene(const Scene&) = delete;
+  Scene& operator=(const Scene&) = delete;
+
+  void set_flags(RTCSceneFlags flags);
+  void set_build_quality(RTCBuildQuality quality);
+  // Attaches a committed geometry (the scene keeps its own reference) and returns its id.
+  unsigned attach(const Geometry& geometry);
+  // Builds the acceleration structure (in parallel, on the caller's TBB arena).
+  void commit();
+
+  RTCScene get() const { return scene_; }
+
+  // Closest hit along `rayhit.ray`; rayhit.hit.geomID stays RTC_INVALID_GEOMETRY_ID on a miss.
+  void intersect(RTCRayHit& rayhit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(scene_, &context, &rayhit);
+  }
+  // Whether anything lies along `ray` between tnear and tfar.
+  bool occluded(RTCRay& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1(scene_, &context, &ray);
+    return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+  }
+
+ private:
+  RTCScene scene_ = nullptr;
+  std::shared_ptr<ErrorSlot> errors_;
+};
+
+}  // namespace beadtwin::render::embree

@@ -1,0 +1,112 @@
+#include "render/image.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+
+namespace beadtwin::render {
+
+Image::Image(int w, int h, Rgb fill) : width(w), height(h) {
+  BT_CHECK_OP(w, >=, 0);
+  BT_CHECK_OP(h, >=, 0);
+  pixels.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 3);
+  for (std::size_t i = 0; i < pixels.size(); i += 3) {
+    pixels[i] = fill.r;
+    pixels[i + 1] = fill.g;
+    pixels[i + 2] = fill.b;
+  }
+}
+
+Rgb Image::at(int x, int y) const {
+  BT_CHECK(x >= 0 && x < width && y >= 0 && y < height);
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + x) * 3;
+  return {pixels[i], pixels[i + 1], pixels[i + 2]};
+}
+
+void Image::set(int x, int y, Rgb colour) {
+  BT_CHECK(x >= 0 && x < width && y >= 0 && y < height);
+  const std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + x) * 3;
+  pixels[i] = colour.r;
+  pixels[i + 1] = colour.g;
+  pixels[i + 2] = colour.b;
+}
+
+float srgb_to_linear(float encoded) {
+  const float c = std::clamp(encoded, 0.0f, 1.0f);
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float linear) {
+  const float c = std::clamp(linear, 0.0f, 1.0f);
+  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+std::uint8_t to_byte(float value) {
+  return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0f, 1.0f) * 255.0f));
+}
+
+[[noreturn]] void fail(const std::string& what, const std::filesystem::path& path, const std::string& why) {
+  throw std::runtime_error(what + " " + path.string() + (why.empty() ? std::string() : ": " + why));
+}
+
+}  // namespace
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  if (image.width <= 0 || image.height <= 0)
+    throw InputError("cannot write " + path.string() + ": the image is empty (" +
+                     std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels)");
+  BT_CHECK_OP(image.pixels.size(), ==, static_cast<std::size_t>(image.width) * image.height * 3);
+
+  std::vector<std::uint8_t> bytes(image.pixels.size());
+  std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
+
+  AtomicPath out(path);
+  const std::string temp = out.temp().string();
+  // The temporary name keeps the extension, but the format must be PNG whatever the target is called.
+  auto writer = OIIO::ImageOutput::create("png");
+  if (!writer) fail("cannot write PNG", path, OIIO::geterror());
+  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
+  if (!writer->open(temp, spec)) fail("cannot write PNG", path, writer->geterror());
+  if (!writer->write_image(OIIO::TypeDesc::UINT8, bytes.data())) {
+    const std::string why = writer->geterror();
+    writer->close();
+    fail("error while writing PNG", path, why);
+  }
+  if (!writer->close()) fail("error while writing PNG", path, writer->geterror());
+  out.commit();
+}
+
+Image read_image(const std::filesystem::path& path) {
+  auto reader = OIIO::ImageInput::open(path.string());
+  if (!reader) fail("cannot read image", path, OIIO::geterror());
+  const OIIO::ImageSpec& spec = reader->spec();
+  const int channels = spec.nchannels;
+  if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
+    fail("cannot read image", path, "it has no pixels");
+
+  std::vector<float> raw(static_cast<std::size_t>(spec.width) * spec.height * channels);
+  if (!reader->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
+    fail("cannot read image", path, reader->geterror());
+  reader->close();
+
+  Image image(spec.width, spec.height);
+  const std::size_t count = static_cast<std::size_t>(spec.width) * spec.height;
+  for (std::size_t i = 0; i < count; ++i) {
+    const float* src = &raw[i * channels];
+    for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = src[channels >= 3 ? c : 0];
+  }
+  return image;
+}
+
+}  // namespace beadtwin::render

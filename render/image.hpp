@@ -1,0 +1,49 @@
+// Images of the render stage and their files.
+//
+// An Image holds display-encoded sRGB (what a screen shows and a PNG stores), 0..1 per channel, three
+// channels interleaved, row 0 at the top. Shading happens in linear light; srgb_to_linear and
+// linear_to_srgb convert at the two ends. Files go through OpenImageIO and are written atomically
+// (DESIGN §6), so an interrupted run never leaves half an image behind.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+namespace beadtwin::render {
+
+// A display sRGB colour, 0..1 per channel.
+struct Rgb {
+  float r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb&, const Rgb&) = default;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> pixels;  // display sRGB, RGB interleaved, row 0 at the top; width * height * 3 values
+
+  Image() = default;
+  // A width x height image filled with `fill`. Preconditions: width, height >= 0.
+  Image(int w, int h, Rgb fill = {});
+
+  // Pixel (x, y), x to the right, y down from the top row. Throws InternalError outside the image.
+  Rgb at(int x, int y) const;
+  void set(int x, int y, Rgb colour);
+
+  friend bool operator==(const Image&, const Image&) = default;
+};
+
+// The sRGB transfer function (IEC 61966-2-1) and its inverse, for one channel in 0..1.
+float srgb_to_linear(float encoded);
+float linear_to_srgb(float linear);
+
+// Writes `image` as an 8-bit sRGB PNG through OpenImageIO: to a temporary file beside `path`, renamed into
+// place when complete. Throws InputError for an empty image and std::runtime_error naming the path when the
+// file cannot be written.
+void write_png(const Image& image, const std::filesystem::path& path);
+
+// Reads any image OpenImageIO knows (PNG, EXR, ...) into display values 0..1: grey is copied to the three
+// channels, alpha and further channels are dropped, 8- and 16-bit values are scaled to 0..1 and nothing is
+// colour converted. For tests and reference-image comparison. Throws std::runtime_error naming the path.
+Image read_image(const std::filesystem::path& path);
+
+}  // namespace beadtwin::render

@@ -1,0 +1,103 @@
+#include "render/surface.hpp"
+
+#include <limits>
+#include <string>
+
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include "core/error.hpp"
+
+namespace beadtwin::render {
+
+namespace {
+
+Eigen::Vector3f to_eigen(const openvdb::Vec3s& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+// Two triangles per quad, cut along the shorter diagonal: on a bent quad that follows the surface better.
+void add_quad(const openvdb::Vec4I& q, const std::vector<Eigen::Vector3f>& points,
+              std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  const float d02 = (points[q[0]] - points[q[2]]).squaredNorm();
+  const float d13 = (points[q[1]] - points[q[3]]).squaredNorm();
+  if (d02 <= d13) {
+    triangles.push_back({q[0], q[1], q[2]});
+    triangles.push_back({q[0], q[2], q[3]});
+  } else {
+    triangles.push_back({q[0], q[1], q[3]});
+    triangles.push_back({q[1], q[2], q[3]});
+  }
+}
+
+void compute_normals(SurfaceMesh& mesh) {
+  mesh.normals.assign(mesh.points.size(), Eigen::Vector3f::Zero());
+  for (const auto& t : mesh.triangles) {
+    // Unnormalised cross product: its length is twice the area, so big faces weigh more.
+    const Eigen::Vector3f n =
+        (mesh.points[t[1]] - mesh.points[t[0]]).cross(mesh.points[t[2]] - mesh.points[t[0]]);
+    for (const std::uint32_t i : t) mesh.normals[i] += n;
+  }
+  for (auto& n : mesh.normals) {
+    const float length = n.norm();
+    n = length > 0.0f ? Eigen::Vector3f(n / length) : Eigen::Vector3f::UnitZ();
+  }
+}
+
+}  // namespace
+
+SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue) {
+  const openvdb::Index64 active = fill.activeVoxelCount();
+  if (active == 0) throw InputError("nothing was deposited: the fill grid has no active voxels");
+
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  openvdb::tools::volumeToMesh(fill, points, triangles, quads, isovalue, /*adaptivity=*/0.0);
+
+  SurfaceMesh mesh;
+  mesh.points.reserve(points.size());
+  for (const auto& p : points) mesh.points.push_back(to_eigen(p));
+  mesh.triangles.reserve(triangles.size() + 2 * quads.size());
+  for (const auto& t : triangles) mesh.triangles.push_back({t[0], t[1], t[2]});
+  for (const auto& q : quads) add_quad(q, mesh.points, mesh.triangles);
+  for (const auto& p : mesh.points) mesh.bounds.extend(p);
+
+  if (mesh.triangles.empty() || mesh.bounds.isEmpty() || (mesh.bounds.sizes().array() <= 0.0f).any())
+    throw InputError("nothing was deposited: the fill grid's " + std::to_string(active) +
+                     " active voxels have no surface at fill fraction " + std::to_string(isovalue) +
+                     " (is every voxel less than " + std::to_string(isovalue) + " full?)");
+  compute_normals(mesh);
+  return mesh;
+}
+
+LayerProbe::LayerProbe(const openvdb::Int32Grid& layer)
+    : accessor_(layer.getConstAccessor()),
+      transform_(layer.transform()),
+      half_voxel_mm_(0.5 * layer.voxelSize()[0]) {}
+
+int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
+  const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm_ * inward.cast<double>();
+  const openvdb::Vec3d index = transform_.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
+  const openvdb::Coord centre = openvdb::Coord::round(index);
+
+  int value = -1;
+  if (accessor_.probeValue(centre, value) && value >= 0) return value;
+
+  // The step landed in a void or outside (thin features, corners): take the nearest voxel with material.
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::max();
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const openvdb::Coord c = centre.offsetBy(dx, dy, dz);
+        if (!accessor_.probeValue(c, value) || value < 0) continue;
+        const double distance = (c.asVec3d() - index).lengthSqr();
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = value;
+        }
+      }
+  return best;
+}
+
+}  // namespace beadtwin::render

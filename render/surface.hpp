@@ -1,0 +1,43 @@
+// The deposit's surface as the renderer sees it: the fill-fraction isosurface as a triangle mesh (the part
+// as printed, bead ridges and all), and the toolpath layer of the material under any point of it.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace beadtwin::render {
+
+struct SurfaceMesh {
+  std::vector<Eigen::Vector3f> points;   // world (machine frame), mm
+  std::vector<Eigen::Vector3f> normals;  // per point, unit, area-weighted average of the faces around it;
+                                         // consistently oriented, but callers face them to the viewer
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  Eigen::AlignedBox3f bounds;  // of the points
+};
+
+// The isosurface of `fill` at `isovalue` (fill fraction 0..1), in world coordinates through the grid's
+// transform; quads are split along their shorter diagonal. Throws InputError("nothing was deposited: ...")
+// when the grid has no active voxels or no surface at `isovalue`.
+SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue = 0.5);
+
+// Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes).
+class LayerProbe {
+ public:
+  explicit LayerProbe(const openvdb::Int32Grid& layer);
+
+  // The layer index of the voxel half a voxel inside `point` (world, mm) along `inward` (unit): that
+  // voxel if it holds material, else the nearest voxel with material in its 3x3x3 neighbourhood, else -1.
+  int layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
+
+ private:
+  openvdb::Int32Grid::ConstAccessor accessor_;
+  const openvdb::math::Transform& transform_;
+  double half_voxel_mm_;
+};
+
+}  // namespace beadtwin::render

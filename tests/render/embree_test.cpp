@@ -1,0 +1,86 @@
+#include "render/embree.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace beadtwin::render::embree {
+namespace {
+
+// One triangle in the plane z = 5 covering (0,0)-(10,0)-(0,10).
+Scene triangle_scene(const Device& device) {
+  Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto v = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3);
+  v[0] = {0, 0, 5};
+  v[1] = {10, 0, 5};
+  v[2] = {0, 10, 5};
+  auto t = geometry.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 1);
+  t[0] = {0, 1, 2};
+  geometry.commit();
+  Scene scene(device);
+  scene.attach(geometry);
+  scene.commit();
+  return scene;  // the scene holds its own reference to the geometry and the device
+}
+
+RTCRayHit down_from(float x, float y) {
+  RTCRayHit rh{};
+  rh.ray.org_x = x;
+  rh.ray.org_y = y;
+  rh.ray.org_z = 20;
+  rh.ray.dir_z = -1;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+TEST(Embree, IntersectsAndOccludes) {
+  const Device device;
+  const Scene scene = triangle_scene(device);
+  RTCRayHit hit = down_from(2, 2);
+  scene.intersect(hit);
+  ASSERT_NE(hit.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+  EXPECT_NEAR(hit.ray.tfar, 15.0f, 1e-5f);
+  RTCRayHit miss = down_from(8, 8);
+  scene.intersect(miss);
+  EXPECT_EQ(miss.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+  RTCRayHit blocked = down_from(2, 2), open = down_from(8, 8);
+  EXPECT_TRUE(scene.occluded(blocked.ray));
+  EXPECT_FALSE(scene.occluded(open.ray));
+}
+
+TEST(Embree, ErrorsBecomeExceptionsNamingTheCall) {
+  const Device device;
+  Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  try {
+    // Triangle meshes have one index buffer, slot 0.
+    geometry.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 7, RTC_FORMAT_UINT3, 1);
+    FAIL() << "Embree accepted index buffer slot 7";
+  } catch (const InternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("rtcSetNewGeometryBuffer"), std::string::npos) << e.what();
+  }
+  // The error was consumed: the next good call does not throw it again.
+  EXPECT_NO_THROW(device.check("nothing"));
+  EXPECT_NO_THROW(triangle_scene(device));
+}
+
+TEST(Embree, HandlesMoveAndOutliveEachOther) {
+  Scene scene = [] {
+    Device device;  // released before the scene: Embree keeps it alive, and so does the error slot
+    Device moved = std::move(device);
+    return triangle_scene(moved);
+  }();
+  Scene other = std::move(scene);
+  RTCRayHit hit = down_from(1, 1);
+  other.intersect(hit);
+  EXPECT_NE(hit.hit.geomID, RTC_INVALID_GEOMETRY_ID);
+}
+
+}  // namespace
+}  // namespace beadtwin::render::embree

@@ -1,1 +1,125 @@
-int main() { return 0; }
+// beadtwin: the command-line program (DESIGN §5). A thin main: parse the command line, call the scenario
+// engine, print errors, map outcomes to exit codes:
+//   0 ran and every gate passed · 1 ran and a gate failed · 2 bad input or usage · 3 internal error.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <unistd.h>
+#include <CLI/CLI.hpp>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "scenarios/run.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace {
+
+constexpr int kExitPass = 0;
+constexpr int kExitGateFailed = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitInternal = 3;
+
+beadtwin::scenarios::Scenario load(const std::string& path) {
+  return path.empty() ? beadtwin::scenarios::load_default_scenario()
+                      : beadtwin::scenarios::load_scenario(path);
+}
+
+int cmd_run(const std::string& scenario_path, const std::string& out_dir,
+            const std::vector<std::string>& variants, bool quiet) {
+  const auto scenario = load(scenario_path);
+  beadtwin::scenarios::RunOptions options;
+  options.out_dir = out_dir;
+  options.variants = variants;
+  if (!quiet) {
+    options.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    std::fprintf(stderr, "beadtwin %s: scenario %s (%s), %zu variant(s)\n", BEADTWIN_VERSION,
+                 scenario.name.c_str(), scenario.file.c_str(), scenario.variants.size());
+  }
+  const auto result = beadtwin::scenarios::run_scenario(scenario, options);
+  for (const auto& v : result.variants)
+    for (const auto& g : v.gates)
+      if (!g.passed) std::fprintf(stderr, "gate failed in %s: %s\n", v.name.c_str(), g.message.c_str());
+  const std::filesystem::path dir = std::filesystem::absolute(out_dir);
+  std::printf("%s in %.1f s\n", result.passed ? "PASSED" : "FAILED", result.wall_time_s);
+  std::printf("report: %s\n", (dir / "report.html").c_str());
+  for (const auto& v : result.variants)
+    for (const auto& img : v.images) std::printf("image:  %s\n", (dir / img).c_str());
+  return result.passed ? kExitPass : kExitGateFailed;
+}
+
+int cmd_slice(const std::string& scenario_path, const std::string& variant, const std::string& out) {
+  const auto scenario = load(scenario_path);
+  const std::string program = beadtwin::scenarios::slice_program(scenario, variant);
+  if (out == "-") {
+    std::fwrite(program.data(), 1, program.size(), stdout);
+  } else {
+    beadtwin::write_file_atomic(out, program);
+    std::printf("program: %s\n", std::filesystem::absolute(out).c_str());
+  }
+  return kExitPass;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "beadtwin — process simulator and digital twin for large-format additive manufacturing.\n"
+      "Slices a part into sections, deposits the toolpath into a voxel model, simulates layer cooling\n"
+      "and interlayer fusion, renders the predicted part and writes reports with a pass/fail exit code.\n\n"
+      "Exit codes: 0 ran and every gate passed, 1 a gate failed, 2 bad input or usage, 3 internal error."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("beadtwin ") + BEADTWIN_VERSION);
+
+  std::string scenario_path, out_dir = "beadtwin-out", variant, program_out;
+  std::vector<std::string> variants;
+  bool quiet = false;
+
+  CLI::App* run =
+      app.add_subcommand("run", "Run the whole pipeline on a scenario and write reports, images, programs.");
+  run->add_option("scenario", scenario_path,
+                  "Scenario YAML file (default: the built-in LSAM open-box scenario)");
+  run->add_option("-o,--out", out_dir,
+                  "Output directory (report.json, report.html, junit.xml, summary.md, per-variant files)")
+      ->capture_default_str();
+  run->add_option("--variant", variants, "Run only this variant (repeat for several)");
+  run->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
+
+  CLI::App* slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
+  slice->add_option("scenario", scenario_path, "Scenario YAML file (default: the built-in scenario)");
+  slice->add_option("--variant", variant, "Variant to slice (default: the first)");
+  slice->add_option("-o,--out", program_out, "Print program file to write, or - for standard output")
+      ->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    (void)app.exit(e);
+    return kExitBadInput;
+  }
+
+  try {
+    if (*run) return cmd_run(scenario_path, out_dir, variants, quiet);
+    if (*slice) return cmd_slice(scenario_path, variant, program_out);
+  } catch (const beadtwin::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const beadtwin::InternalError& e) {
+    std::fprintf(stderr, "internal error (a bug in beadtwin, please report it): %s\n", e.what());
+    return kExitInternal;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    return kExitInternal;
+  }
+  return kExitBadInput;
+}

@@ -1,0 +1,13 @@
+// Files shipped with beadtwin and embedded in the binary at build time: the default scenario and the
+// machine and material library (scenarios/*.yaml, scenarios/machines/*.yaml, scenarios/materials/*.yaml).
+#pragma once
+
+#include <map>
+#include <string>
+
+namespace beadtwin::scenarios {
+
+// Keyed by path relative to scenarios/ ("default.yaml", "machines/lsam-ph15.yaml").
+const std::map<std::string, std::string>& shipped_files();
+
+}  // namespace beadtwin::scenarios

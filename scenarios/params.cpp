@@ -1,0 +1,142 @@
+#include "scenarios/params.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+using D = Dimension;
+using T = ParamType;
+
+// Section parameters. Keys follow the patent's parameter list, paragraphs (41)-(63).
+constexpr ParamSpec kSection[] = {
+    {"name", T::kString, D::kDimensionless, "", 0, 0, false,
+     "name of the section, used in reports and variant paths", "patent (12)"},
+    {"z", T::kQuantity, D::kLength, "", -kInf, kInf, false,
+     "Z limits [lower, upper] of the section; 'part' for the whole part", "patent (41) Z limits"},
+    {"layer_height", T::kQuantity, D::kLength, "0.2 in", 0, 100, true,
+     "layer height (bead thickness after the roller)", "patent (45), (48)"},
+    {"bead_width", T::kQuantity, D::kLength, "0.83 in", 0, 500, true, "bead width after the roller",
+     "patent (48), (54)"},
+    {"speed", T::kQuantity, D::kSpeed, "", 0, kInf, true,
+     "print speed; when absent, matched to the extruder output: v = Q / A", "DESIGN 4.1"},
+    {"travel_speed", T::kQuantity, D::kSpeed, "", 0, kInf, true,
+     "speed of moves without material; when absent, the machine's max travel speed", "patent (51)"},
+    {"boundary.passes", T::kInteger, D::kDimensionless, "1", 0, 50, false,
+     "number of boundary beads along each contour", "patent (49)-(50), FIG. 6"},
+    {"boundary.overlap", T::kQuantity, D::kFraction, "10 %", 0, 0.5, false,
+     "overlap between neighbouring boundary passes, fraction of the bead width", "patent (50)"},
+    {"boundary.inside_out", T::kBool, D::kDimensionless, "false", 0, 0, false,
+     "lay the innermost boundary pass first", "patent (49)"},
+    {"fill.angle", T::kQuantity, D::kAngle, "45 deg", -360, 360, false,
+     "fill direction of the section's first layer", "patent (63) starting fill angle"},
+    {"fill.angle_step", T::kQuantity, D::kAngle, "90 deg", -360, 360, false,
+     "change in fill angle from one layer to the next", "patent (63) change in angle per layer"},
+    {"fill.overlap", T::kQuantity, D::kFraction, "10 %", 0, 0.5, false,
+     "overlap between fill passes and with the boundary, fraction of the bead width", "patent (63)"},
+};
+
+constexpr ParamSpec kMachine[] = {
+    {"name", T::kString, D::kDimensionless, "", 0, 0, false, "machine name", ""},
+    {"description", T::kString, D::kDimensionless, "-", 0, 0, false, "what the machine is", ""},
+    {"kind", T::kString, D::kDimensionless, "roller-gantry", 0, 0, false,
+     "roller-gantry, tamper-gantry, robot or desktop", "patent (33)"},
+    {"max_feed", T::kQuantity, D::kSpeed, "20 in/s", 0, kInf, true, "highest print speed the gantry runs",
+     "estimate"},
+    {"max_travel", T::kQuantity, D::kSpeed, "40 in/s", 0, kInf, true,
+     "highest speed of moves without material", "estimate"},
+    {"acceleration", T::kQuantity, D::kAcceleration, "40 in/s2", 0, kInf, true,
+     "gantry acceleration for the motion model", "estimate"},
+    {"junction_deviation", T::kQuantity, D::kLength, "0.02 in", 0, kInf, true,
+     "corner deviation the controller allows; sets cornering speed", "estimate"},
+    {"extruder.output", T::kQuantity, D::kMassFlow, "150 lb/h", 0, kInf, true,
+     "nominal extruder output, which sets the print speed where a section gives none",
+     "Thermwood PH15 print head"},
+    {"extruder.max_output", T::kQuantity, D::kMassFlow, "200 lb/h", 0, kInf, true,
+     "most the extruder can deliver", "estimate"},
+    {"environment.ambient", T::kQuantity, D::kTemperature, "18 C", -50, 100, false, "ambient air temperature",
+     "Compton et al. 2017"},
+    {"environment.bed_temp", T::kQuantity, D::kTemperature, "65 C", -50, 300, false, "table temperature",
+     "Compton et al. 2017"},
+    {"environment.bed_insulated", T::kBool, D::kDimensionless, "false", 0, 0, false,
+     "table is an insulator (no heat flows into it)", ""},
+    {"environment.convection", T::kQuantity, D::kHeatTransferCoeff, "7 W/m2K", 0, 1000, false,
+     "natural convection coefficient on free faces", "Compton et al. 2017"},
+    {"environment.bed_contact", T::kQuantity, D::kHeatTransferCoeff, "100 W/m2K", 0, 1e5, false,
+     "contact conductance between the first layer and the table", "estimate"},
+    {"gcode.units", T::kString, D::kDimensionless, "in", 0, 0, false, "units of the print program: in or mm",
+     ""},
+    {"gcode.melt_on", T::kString, D::kDimensionless, "M23", 0, 0, false, "code that starts the extruder",
+     "seed 002, Fanuc macro programs"},
+    {"gcode.melt_off", T::kString, D::kDimensionless, "M24", 0, 0, false, "code that stops the extruder",
+     "seed 002, Fanuc macro programs"},
+};
+
+constexpr ParamSpec kMaterial[] = {
+    {"name", T::kString, D::kDimensionless, "", 0, 0, false, "material name", ""},
+    {"description", T::kString, D::kDimensionless, "-", 0, 0, false, "what the material is", ""},
+    {"density", T::kQuantity, D::kDensity, "", 0, 1e5, true, "density of the printed material", ""},
+    {"specific_heat", T::kQuantity, D::kSpecificHeat, "", 0, 1e5, true, "specific heat capacity", ""},
+    {"conductivity.along", T::kQuantity, D::kConductivity, "", 0, 1e3, true,
+     "thermal conductivity along the bead", ""},
+    {"conductivity.across", T::kQuantity, D::kConductivity, "", 0, 1e3, true,
+     "thermal conductivity across the bead, in the layer plane", ""},
+    {"conductivity.through", T::kQuantity, D::kConductivity, "", 0, 1e3, true,
+     "thermal conductivity through the layer thickness", ""},
+    {"emissivity", T::kQuantity, D::kFraction, "", 0, 1, false, "surface emissivity for radiation", ""},
+    {"deposition_temp", T::kQuantity, D::kTemperature, "", 0, 600, true,
+     "temperature of the bead leaving the nozzle", ""},
+    {"glass_transition", T::kQuantity, D::kTemperature, "", -100, 500, false,
+     "glass transition temperature T_g", ""},
+    {"fusion.support_limit", T::kQuantity, D::kTemperature, "", -100, 600, false,
+     "substrate hotter than this when the next layer lands: too hot (slump)", "DESIGN 4.4"},
+    {"fusion.healing_ref_temp", T::kQuantity, D::kTemperature, "", -100, 600, false,
+     "reference temperature T_ref of the reptation time", "Yang & Pitchumani 2002"},
+    {"fusion.reptation_time", T::kQuantity, D::kTime, "", 0, 1e9, true,
+     "reptation (welding) time t_w at T_ref", "Yang & Pitchumani 2002"},
+    {"fusion.activation_energy", T::kQuantity, D::kMolarEnergy, "", 0, 1e7, true,
+     "activation energy E_a of the reptation time's Arrhenius shift", "Yang & Pitchumani 2002"},
+    {"fusion.min_healing_temp", T::kQuantity, D::kTemperature, "", -100, 600, false,
+     "below this an interface does not heal", ""},
+    {"fusion.required_healing", T::kQuantity, D::kFraction, "", 0, 1, true,
+     "degree of healing D_h an interface needs; less is too cold", ""},
+    {"price", T::kQuantity, D::kDimensionless, "0", 0, kInf, false, "price per kg, in the user's currency",
+     ""},
+};
+
+constexpr ParamSpec kOutput[] = {
+    {"voxel_size", T::kQuantity, D::kLength, "0", 0, 1000, false,
+     "voxel edge of the deposit model; 0 picks half the smallest layer height", "DESIGN 4.2"},
+    {"image_width", T::kInteger, D::kDimensionless, "1280", 16, 8192, false,
+     "width of rendered images, pixels", ""},
+    {"image_height", T::kInteger, D::kDimensionless, "800", 16, 8192, false,
+     "height of rendered images, pixels", ""},
+};
+
+constexpr ParamSpec kThermal[] = {
+    {"nodes_per_layer", T::kInteger, D::kDimensionless, "2", 1, 20, false,
+     "thermal nodes through each layer's thickness", ""},
+    {"cooldown", T::kQuantity, D::kTime, "10 min", 0, 1e7, false,
+     "time simulated after the last layer (interfaces keep healing)", ""},
+    {"rel_tol", T::kQuantity, D::kDimensionless, "1e-6", 0, 0.1, true, "CVODE relative tolerance", ""},
+    {"abs_tol", T::kQuantity, D::kDimensionless, "1e-4", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
+};
+
+}  // namespace
+
+std::span<const ParamSpec> section_params() {
+  return kSection;
+}
+std::span<const ParamSpec> machine_params() {
+  return kMachine;
+}
+std::span<const ParamSpec> material_params() {
+  return kMaterial;
+}
+std::span<const ParamSpec> output_params() {
+  return kOutput;
+}
+std::span<const ParamSpec> thermal_params() {
+  return kThermal;
+}
+
+}  // namespace beadtwin::scenarios

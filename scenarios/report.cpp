@@ -1,0 +1,360 @@
+#include "scenarios/report.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+using nlohmann::json;
+
+json number_or_null(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+json optional_json(const std::optional<double>& v) {
+  return v ? number_or_null(*v) : json(nullptr);
+}
+json stats_json(const Stats3& s) {
+  return {{"min", number_or_null(s.min)}, {"mean", number_or_null(s.mean)}, {"max", number_or_null(s.max)}};
+}
+
+json parameters_json(const Variant& v) {
+  json sections = json::array();
+  for (const auto& s : v.sections) {
+    sections.push_back({{"name", s.name},
+                        {"z_mm", {s.z_min_mm, s.z_max_mm}},
+                        {"layer_height_mm", s.layer_height_mm},
+                        {"bead_width_mm", s.bead_width_mm},
+                        {"speed_mm_s", s.print_speed_mm_s},
+                        {"travel_speed_mm_s", s.travel_speed_mm_s},
+                        {"boundary",
+                         {{"passes", s.boundary.passes},
+                          {"overlap", s.boundary.overlap},
+                          {"inside_out", s.boundary.inside_out}}},
+                        {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},
+                                                       {"angle_step_deg", s.fill.angle_step_deg},
+                                                       {"overlap", s.fill.overlap}}
+                                                : json("none")}});
+  }
+  return {{"machine", v.machine.name}, {"material", v.material.name},
+          {"part", v.part.describe()}, {"voxel_size_mm", v.output.voxel_size_mm},
+          {"overrides", v.overrides},  {"sections", sections}};
+}
+
+json variant_json(const VariantResult& r) {
+  const Metrics& m = r.metrics;
+  json gates = json::array();
+  for (const auto& g : r.gates)
+    gates.push_back({{"name", g.name},
+                     {"expr", g.expr},
+                     {"value", optional_json(g.value)},
+                     {"passed", g.passed},
+                     {"message", g.message}});
+  json layers = json::array();
+  for (const auto& l : r.layers)
+    layers.push_back({{"index", l.index},
+                      {"z_mm", l.z_mm},
+                      {"section", l.section},
+                      {"start_s", l.start_s},
+                      {"duration_s", l.duration_s},
+                      {"substrate_temp_c", stats_json(l.substrate_temp_c)},
+                      {"substrate_at_start_c", number_or_null(l.substrate_at_start_c)},
+                      {"healing_min", number_or_null(l.healing)},
+                      {"too_hot", l.too_hot ? 1 : 0},
+                      {"too_cold", l.too_cold ? 1 : 0},
+                      {"verdict", l.verdict}});
+  json stages = json::object();
+  for (const auto& s : r.stage_times) stages[s.name] = s.seconds;
+  return {{"name", r.name},
+          {"passed", r.passed},
+          {"gates", gates},
+          {"metrics",
+           {{"layers", m.layers},
+            {"print_time_s", m.print_time_s},
+            {"print_length_mm", m.print_length_mm},
+            {"travel_length_mm", m.travel_length_mm},
+            {"commanded_volume_mm3", m.commanded_volume_mm3},
+            {"deposited_volume_mm3", m.deposited_volume_mm3},
+            {"mass_kg", m.mass_kg},
+            {"material_cost", m.material_cost},
+            {"porosity", m.porosity},
+            {"min_stock_mm", optional_json(m.min_stock_mm)},
+            {"undercut_fraction", optional_json(m.undercut_fraction)},
+            {"interfaces",
+             {{"count", m.interfaces},
+              {"too_hot_fraction", m.too_hot_fraction},
+              {"too_cold_fraction", m.too_cold_fraction},
+              {"min_healing", number_or_null(m.min_healing)},
+              {"mean_healing", number_or_null(m.mean_healing)}}},
+            {"layer_time_s", stats_json(m.layer_time_s)},
+            {"deposit",
+             {{"voxel_size_mm", m.voxel_size_mm},
+              {"voxels", m.voxels},
+              {"swept_volume_mm3", m.swept_volume_mm3},
+              {"redistributed_volume_mm3", m.redistributed_volume_mm3}}},
+            {"thermal",
+             {{"energy_balance_rel_error", m.thermal_energy_error}, {"cvode_steps", m.thermal_steps}}}}},
+          {"layers", layers},
+          {"images", r.images},
+          {"program", r.program},
+          {"deposit", r.deposit_file},
+          {"stage_seconds", stages},
+          {"parameters", r.variant ? parameters_json(*r.variant) : json(nullptr)}};
+}
+
+std::string esc(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string fmt_opt(const std::optional<double>& v, const char* spec = "{:.4g}") {
+  return v ? fmt::format(fmt::runtime(spec), *v) : std::string("not measured");
+}
+
+std::string hms(double s) {
+  const long t = std::lround(s);
+  return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+}
+
+// Substrate temperature at deposition per layer against the fusion window, as an inline SVG.
+std::string substrate_plot(const VariantResult& r) {
+  if (r.layers.empty() || !r.variant) return {};
+  const double support = r.variant->material.support_limit_c;
+  const double w = 760, h = 260, l = 56, rm = 16, t = 16, b = 40;
+  double tmax = support + 20, tmin = r.variant->machine.environment.ambient_c;
+  for (const auto& row : r.layers) {
+    if (std::isfinite(row.substrate_temp_c.max)) tmax = std::max(tmax, row.substrate_temp_c.max + 5);
+    if (std::isfinite(row.substrate_temp_c.min)) tmin = std::min(tmin, row.substrate_temp_c.min - 5);
+  }
+  const double n = static_cast<double>(r.layers.size());
+  auto x = [&](double i) { return l + (w - l - rm) * (n > 1 ? i / (n - 1) : 0.5); };
+  auto y = [&](double temp) { return t + (h - t - b) * (1 - (temp - tmin) / (tmax - tmin)); };
+  std::string svg = fmt::format(
+      R"svg(<svg viewBox="0 0 {} {}" width="{}" height="{}" role="img" aria-label="substrate temperature per layer">)svg",
+      w, h, w, h);
+  svg += fmt::format(R"svg(<rect x="{}" y="{}" width="{}" height="{}" fill="#fbe3e0"/>)svg", l, t, w - l - rm,
+                     std::max(0.0, y(support) - t));
+  svg +=
+      fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="#d9483b" stroke-dasharray="4 3"/>)svg",
+                  l, w - rm, y(support), y(support));
+  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11" fill="#b33">support limit {:.0f} °C</text>)svg",
+                     w - rm - 130, y(support) - 4, support);
+  for (int k = 0; k <= 4; ++k) {
+    const double temp = tmin + (tmax - tmin) * k / 4.0;
+    svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11" text-anchor="end">{:.0f}</text>)svg", l - 6,
+                       y(temp) + 4, temp);
+    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="#ddd"/>)svg", l, w - rm, y(temp),
+                       y(temp));
+  }
+  std::string band, line;
+  for (std::size_t i = 0; i < r.layers.size(); ++i) {
+    const auto& row = r.layers[i];
+    if (!std::isfinite(row.substrate_at_start_c)) continue;
+    line += fmt::format("{}{:.1f},{:.1f}", line.empty() ? "M" : " L", x(static_cast<double>(i)),
+                        y(row.substrate_at_start_c));
+    const char* colour = row.too_hot           ? "#d9483b"
+                         : row.too_cold        ? "#3a73c9"
+                         : row.verdict == "ok" ? "#5dae6b"
+                                               : "#9aa3ad";
+    band += fmt::format(
+        R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="{}"><title>layer {}: {:.1f} °C, {}</title></circle>)svg",
+        x(static_cast<double>(i)), y(row.substrate_at_start_c), colour, row.index, row.substrate_at_start_c,
+        row.verdict);
+  }
+  svg += fmt::format(R"svg(<path d="{}" fill="none" stroke="#333" stroke-width="1.5"/>)svg", line) + band;
+  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle">layer</text>)svg",
+                     (l + w - rm) / 2, h - 8);
+  svg += fmt::format(
+      R"svg(<text x="14" y="{}" font-size="12" transform="rotate(-90 14 {})" text-anchor="middle">substrate °C at deposition</text>)svg",
+      (t + h - b) / 2, (t + h - b) / 2);
+  svg += "</svg>";
+  return svg;
+}
+
+}  // namespace
+
+std::string report_json(const RunResult& result) {
+  json j;
+  j["tool"] = "beadtwin";
+  j["version"] = BEADTWIN_VERSION;
+  j["scenario"] = result.scenario ? result.scenario->name : "";
+  j["scenario_file"] = result.scenario ? result.scenario->file : "";
+  j["passed"] = result.passed;
+  j["wall_time_s"] = result.wall_time_s;
+  j["variants"] = json::array();
+  for (const auto& v : result.variants) j["variants"].push_back(variant_json(v));
+  return j.dump(2) + "\n";
+}
+
+std::string report_html(const RunResult& result) {
+  const std::string name = result.scenario ? result.scenario->name : "";
+  std::string h;
+  h += "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
+  h += fmt::format("<title>beadtwin — {}</title>", esc(name));
+  h += R"(<style>
+body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1100px;color:#222;padding:0 1em}
+h1{margin-bottom:.2em} .verdict{display:inline-block;padding:.2em .7em;border-radius:4px;color:#fff;font-weight:600}
+.pass{background:#2e8b57}.fail{background:#c0392b} table{border-collapse:collapse;margin:1em 0;font-size:13px}
+td,th{border:1px solid #ddd;padding:3px 8px;text-align:right} th{background:#f4f5f7} td.l,th.l{text-align:left}
+tr.hot td{background:#fde2df} tr.cold td{background:#dfe8f8} img{max-width:100%;border:1px solid #ddd}
+.legend span{display:inline-block;width:12px;height:12px;margin:0 4px 0 12px;vertical-align:middle}
+details{margin:1em 0} .muted{color:#777}
+</style></head><body>
+)";
+  h += fmt::format("<h1>{}</h1><p class=\"muted\">{}</p>", esc(name),
+                   esc(result.scenario ? result.scenario->description : ""));
+  h += fmt::format("<p><span class=\"verdict {}\">{}</span> beadtwin {} · {} variant(s) · {:.1f} s</p>",
+                   result.passed ? "pass" : "fail", result.passed ? "PASSED" : "FAILED", BEADTWIN_VERSION,
+                   result.variants.size(), result.wall_time_s);
+  h += "<h2>Variants</h2><table><tr><th class=l>variant</th><th>verdict</th><th>layers</th><th>print "
+       "time</th><th>mass kg</th>"
+       "<th>porosity</th><th>too hot</th><th>too cold</th><th>min healing</th><th>layer time s "
+       "(min/mean/max)</th></tr>";
+  for (const auto& v : result.variants) {
+    const Metrics& m = v.metrics;
+    h += fmt::format(
+        "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.2f} %</td><td>{:.1f} "
+        "%</td>"
+        "<td>{:.1f} %</td><td>{:.3f}</td><td>{:.0f} / {:.0f} / {:.0f}</td></tr>",
+        esc(v.name), v.passed ? "pass" : "<b>fail</b>", m.layers, hms(m.print_time_s), m.mass_kg,
+        100 * m.porosity, 100 * m.too_hot_fraction, 100 * m.too_cold_fraction, m.min_healing,
+        m.layer_time_s.min, m.layer_time_s.mean, m.layer_time_s.max);
+  }
+  h += "</table>";
+  for (const auto& v : result.variants) {
+    h += fmt::format("<h2>Variant {}</h2>", esc(v.name));
+    h += "<h3>Gates</h3><table><tr><th class=l>gate</th><th>value</th><th>result</th></tr>";
+    for (const auto& g : v.gates)
+      h += fmt::format("<tr><td class=l><code>{}</code></td><td>{}</td><td>{}</td></tr>", esc(g.expr),
+                       fmt_opt(g.value), g.passed ? "pass" : "<b>fail</b>");
+    h += "</table>";
+    h += "<h3>The part, coloured by fusion verdict</h3><p class=legend>"
+         "<span style=\"background:#5dae6b\"></span>fuses "
+         "<span style=\"background:#d9483b\"></span>too hot (substrate above the support limit) "
+         "<span style=\"background:#3a73c9\"></span>too cold (interface does not heal) "
+         "<span style=\"background:#9aa3ad\"></span>first layer (on the table)</p>";
+    for (const auto& img : v.images)
+      h += fmt::format("<p><img src=\"{}\" alt=\"{} {}\"></p>", esc(img), esc(v.name), esc(img));
+    h += "<h3>Substrate temperature when each layer lands</h3>" + substrate_plot(v);
+    const Metrics& m = v.metrics;
+    h += "<h3>Metrics</h3><table>";
+    auto row = [&h](std::string_view k, const std::string& val) {
+      h += fmt::format("<tr><td class=l>{}</td><td>{}</td></tr>", k, val);
+    };
+    row("print time", hms(m.print_time_s));
+    row("print length", fmt::format("{:.1f} m", m.print_length_mm / 1000));
+    row("travel length", fmt::format("{:.1f} m", m.travel_length_mm / 1000));
+    row("commanded volume", fmt::format("{:.0f} cm³", m.commanded_volume_mm3 / 1000));
+    row("deposited volume", fmt::format("{:.0f} cm³", m.deposited_volume_mm3 / 1000));
+    row("swept bead volume (before conservation)", fmt::format("{:.0f} cm³", m.swept_volume_mm3 / 1000));
+    row("mass", fmt::format("{:.2f} kg", m.mass_kg));
+    row("material cost", fmt::format("{:.2f}", m.material_cost));
+    row("porosity", fmt::format("{:.2f} %", 100 * m.porosity));
+    row("min stock", fmt_opt(m.min_stock_mm));
+    row("voxels", fmt::format("{} at {:.2f} mm", m.voxels, m.voxel_size_mm));
+    row("thermal energy balance error", fmt::format("{:.1e}", m.thermal_energy_error));
+    h += "</table>";
+    h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a> · deposit: <a href=\"{1}\">{1}</a></p>",
+                     esc(v.program), esc(v.deposit_file));
+    h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
+         "class=l>section</th><th>start s</th>"
+         "<th>duration s</th><th>substrate °C at start</th><th>substrate °C "
+         "min/mean/max</th><th>healing</th><th class=l>verdict</th></tr>";
+    for (const auto& l : v.layers) {
+      h += fmt::format(
+          "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td "
+          "class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td><td>{:.1f}</td>"
+          "<td>{:.1f} / {:.1f} / {:.1f}</td><td>{}</td><td class=l>{}</td></tr>",
+          l.too_hot    ? "hot"
+          : l.too_cold ? "cold"
+                       : "",
+          l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, l.substrate_at_start_c,
+          l.substrate_temp_c.min, l.substrate_temp_c.mean, l.substrate_temp_c.max,
+          std::isfinite(l.healing) ? fmt::format("{:.3f}", l.healing) : "–", l.verdict);
+    }
+    h += "</table></details>";
+    h += "<details><summary>Time per stage</summary><table>";
+    for (const auto& s : v.stage_times) row(s.name, fmt::format("{:.2f} s", s.seconds));
+    h += "</table></details>";
+  }
+  h += "</body></html>\n";
+  return h;
+}
+
+std::string junit_xml(const RunResult& result) {
+  int tests = 0, failures = 0;
+  for (const auto& v : result.variants)
+    for (const auto& g : v.gates) ++tests, failures += g.passed ? 0 : 1;
+  const std::string name = result.scenario ? result.scenario->name : "beadtwin";
+  std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
+  x += fmt::format("<testsuites name=\"beadtwin\" tests=\"{}\" failures=\"{}\">\n", tests, failures);
+  for (const auto& v : result.variants) {
+    int vf = 0;
+    for (const auto& g : v.gates) vf += g.passed ? 0 : 1;
+    x += fmt::format("  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n", esc(name),
+                     esc(v.name), v.gates.size(), vf);
+    for (const auto& g : v.gates) {
+      x += fmt::format("    <testcase classname=\"{}.{}\" name=\"{}\"", esc(name), esc(v.name), esc(g.expr));
+      if (g.passed) {
+        x += "/>\n";
+      } else {
+        x += fmt::format(">\n      <failure message=\"{}\"/>\n    </testcase>\n", esc(g.message));
+      }
+    }
+    x += "  </testsuite>\n";
+  }
+  x += "</testsuites>\n";
+  return x;
+}
+
+std::string summary_md(const RunResult& result) {
+  std::string s = fmt::format("## beadtwin: {} — {}\n\n", result.scenario ? result.scenario->name : "",
+                              result.passed ? "passed" : "**failed**");
+  s += "| variant | verdict | print time | mass kg | porosity | too hot | too cold | min healing |\n";
+  s += "|---|---|---|---|---|---|---|---|\n";
+  for (const auto& v : result.variants) {
+    const Metrics& m = v.metrics;
+    s += fmt::format("| {} | {} | {} | {:.1f} | {:.2f} % | {:.1f} % | {:.1f} % | {:.3f} |\n", v.name,
+                     v.passed ? "pass" : "**fail**", hms(m.print_time_s), m.mass_kg, 100 * m.porosity,
+                     100 * m.too_hot_fraction, 100 * m.too_cold_fraction, m.min_healing);
+  }
+  for (const auto& v : result.variants)
+    for (const auto& g : v.gates)
+      if (!g.passed) s += fmt::format("\n- `{}` failed in {}: {}", g.expr, v.name, g.message);
+  s += "\n";
+  return s;
+}
+
+void write_reports(const RunResult& result, const std::filesystem::path& dir) {
+  write_file_atomic(dir / "report.json", report_json(result));
+  write_file_atomic(dir / "report.html", report_html(result));
+  write_file_atomic(dir / "junit.xml", junit_xml(result));
+  write_file_atomic(dir / "summary.md", summary_md(result));
+}
+
+}  // namespace beadtwin::scenarios

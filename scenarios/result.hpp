@@ -1,0 +1,80 @@
+// What a run produces for each variant: metrics (DESIGN §6), the per-layer table, gate results, and the
+// files written. The report writers read only these types.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/stages.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace beadtwin::scenarios {
+
+struct Stats3 {
+  double min = 0, mean = 0, max = 0;
+};
+
+struct Metrics {
+  int layers = 0;
+  double print_time_s = 0, print_length_mm = 0, travel_length_mm = 0;
+  double commanded_volume_mm3 = 0, deposited_volume_mm3 = 0, mass_kg = 0, material_cost = 0;
+  double porosity = 0;
+  std::optional<double> min_stock_mm;       // needs the part-versus-CAD comparison (not measured yet)
+  std::optional<double> undercut_fraction;  // likewise
+  int interfaces = 0;
+  double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
+  Stats3 layer_time_s;
+  // Diagnostics beyond DESIGN §6.
+  double swept_volume_mm3 = 0, redistributed_volume_mm3 = 0;
+  std::size_t voxels = 0;
+  double voxel_size_mm = 0;
+  double thermal_energy_error = 0;
+  long thermal_steps = 0;
+
+  // The value of a gate metric by its dotted name; nullopt when not measured. Throws InternalError on a
+  // name not in gate_metrics().
+  std::optional<double> get(const std::string& name) const;
+};
+
+struct LayerRow {
+  int index = 0;
+  double z_mm = 0;
+  std::string section;
+  double start_s = 0, duration_s = 0;
+  Stats3 substrate_temp_c;
+  double substrate_at_start_c = 0;
+  double healing = 0;  // NaN for layer 0 (no interface below it)
+  bool too_hot = false, too_cold = false;
+  std::string verdict;
+};
+
+struct GateResult {
+  std::string name;  // the expression as written
+  std::string expr;
+  std::optional<double> value;
+  bool passed = false;
+  std::string message;  // why it failed, when it did
+};
+
+struct VariantResult {
+  std::string name;
+  const Variant* variant = nullptr;
+  Metrics metrics;
+  std::vector<LayerRow> layers;
+  std::vector<GateResult> gates;
+  std::vector<std::string> images;  // relative to the output directory
+  std::string program;              // relative path of the print program
+  std::string deposit_file;         // relative path of the .vdb
+  std::vector<StageTime> stage_times;
+  bool passed = true;
+};
+
+struct RunResult {
+  const Scenario* scenario = nullptr;
+  std::vector<VariantResult> variants;
+  bool passed = true;
+  double wall_time_s = 0;
+};
+
+}  // namespace beadtwin::scenarios

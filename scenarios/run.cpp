@@ -1,0 +1,321 @@
+#include "scenarios/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+#include <openvdb/io/File.h>
+
+#include "core/atomic_file.hpp"
+#include "render/image.hpp"
+#include "render/render.hpp"
+#include "scenarios/report.hpp"
+#include "sim/deposit.hpp"
+#include "slicer/mesh.hpp"
+#include "slicer/plan.hpp"
+#include "thermal/thermal.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+slicer::TriangleMesh build_part(const PartSpec& part) {
+  switch (part.kind) {
+    case PartSpec::Kind::kMesh:
+      return slicer::read_stl(part.mesh, part.mesh_scale);
+    case PartSpec::Kind::kBox:
+      return slicer::make_box(part.size, part.origin);
+    case PartSpec::Kind::kOpenBox:
+      return slicer::make_open_box(part.size, part.wall_mm, part.floor_mm, part.origin);
+  }
+  throw InternalError("unknown part kind");
+}
+
+Toolpath slice_variant(const Variant& v) {
+  const slicer::TriangleMesh mesh = build_part(v.part);
+  Toolpath tp = slicer::plan_toolpath(mesh, v.sections, v.machine.motion);
+  if (tp.layers.empty())
+    throw InputError({}, "sections",
+                     fmt::format("variant '{}': no section's Z range meets the part ({}), nothing to print",
+                                 v.name, v.part.describe()));
+  return tp;
+}
+
+std::vector<thermal::LayerInput> thermal_inputs(const Toolpath& tp) {
+  std::vector<thermal::LayerInput> in;
+  in.reserve(tp.layers.size());
+  for (const ToolpathLayer& l : tp.layers) {
+    thermal::LayerInput li;
+    li.z_top_mm = l.z_mm;
+    li.height_mm = l.height_mm;
+    li.start_s = l.start_s;
+    li.end_s = std::max(l.end_s, l.start_s);
+    double volume = 0.0;
+    for (std::size_t i = l.first_move; i < l.end_move; ++i) volume += tp.moves[i].volume_mm3;
+    li.area_mm2 = l.outline_area_mm2 > 0 ? l.outline_area_mm2 : volume / l.height_mm;
+    li.perimeter_mm = l.outline_perimeter_mm;
+    in.push_back(li);
+  }
+  return in;
+}
+
+render::Rgb verdict_colour(thermal::Verdict v) {
+  switch (v) {
+    case thermal::Verdict::kOk:
+      return {0.36f, 0.68f, 0.42f};
+    case thermal::Verdict::kTooHot:
+      return {0.85f, 0.28f, 0.23f};
+    case thermal::Verdict::kTooCold:
+      return {0.23f, 0.45f, 0.79f};
+    case thermal::Verdict::kNoInterface:
+      return {0.60f, 0.64f, 0.68f};
+  }
+  return {0.5f, 0.5f, 0.5f};
+}
+
+void write_vdb(const sim::Deposit& d, const std::filesystem::path& path) {
+  AtomicPath out(path);
+  openvdb::GridPtrVec grids;
+  d.fill->setName("fill");
+  d.time->setName("time_s");
+  d.layer->setName("layer");
+  grids.push_back(d.fill);
+  grids.push_back(d.time);
+  grids.push_back(d.layer);
+  openvdb::io::File file(out.temp().string());
+  file.write(grids);
+  file.close();
+  out.commit();
+}
+
+Stats3 stats_of(const std::vector<double>& values) {
+  Stats3 s;
+  if (values.empty()) return s;
+  s.min = *std::min_element(values.begin(), values.end());
+  s.max = *std::max_element(values.begin(), values.end());
+  double sum = 0;
+  for (double v : values) sum += v;
+  s.mean = sum / static_cast<double>(values.size());
+  return s;
+}
+
+Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
+                const thermal::ThermalResult& th) {
+  Metrics m;
+  m.layers = static_cast<int>(tp.layers.size());
+  m.print_time_s = tp.total_time_s();
+  m.print_length_mm = tp.print_length_mm();
+  m.travel_length_mm = tp.travel_length_mm();
+  m.commanded_volume_mm3 = tp.commanded_volume_mm3();
+  m.deposited_volume_mm3 = d.deposited_volume_mm3;
+  m.mass_kg = d.deposited_volume_mm3 * 1e-9 * v.material.density_kg_m3;
+  m.material_cost = m.mass_kg * v.material.price_per_kg;
+  m.porosity = d.porosity;
+  m.swept_volume_mm3 = d.swept_volume_mm3;
+  m.redistributed_volume_mm3 = d.redistributed_volume_mm3;
+  m.voxels = d.active_voxels;
+  m.voxel_size_mm = d.voxel_size_mm;
+  m.thermal_energy_error = th.energy_balance_rel_error;
+  m.thermal_steps = th.steps;
+  std::vector<double> durations, healing;
+  int hot = 0, cold = 0;
+  for (std::size_t i = 0; i < tp.layers.size(); ++i) {
+    durations.push_back(tp.layers[i].duration_s());
+    const thermal::LayerResult& r = th.layers[i];
+    if (r.verdict == thermal::Verdict::kNoInterface) continue;
+    ++m.interfaces;
+    healing.push_back(r.healing);
+    hot += r.verdict == thermal::Verdict::kTooHot;
+    cold += r.verdict == thermal::Verdict::kTooCold;
+  }
+  m.layer_time_s = stats_of(durations);
+  if (m.interfaces > 0) {
+    m.too_hot_fraction = static_cast<double>(hot) / m.interfaces;
+    m.too_cold_fraction = static_cast<double>(cold) / m.interfaces;
+    const Stats3 h = stats_of(healing);
+    m.min_healing = h.min;
+    m.mean_healing = h.mean;
+  }
+  return m;
+}
+
+std::vector<LayerRow> layer_rows(const Toolpath& tp, const thermal::ThermalResult& th) {
+  std::vector<LayerRow> rows;
+  for (std::size_t i = 0; i < tp.layers.size(); ++i) {
+    const ToolpathLayer& l = tp.layers[i];
+    const thermal::LayerResult& r = th.layers[i];
+    LayerRow row;
+    row.index = static_cast<int>(i);
+    row.z_mm = l.z_mm;
+    row.section = l.section >= 0 ? tp.sections[static_cast<std::size_t>(l.section)] : "";
+    row.start_s = l.start_s;
+    row.duration_s = l.duration_s();
+    row.substrate_temp_c = {r.substrate_min_c, r.substrate_mean_c, r.substrate_max_c};
+    row.substrate_at_start_c = r.substrate_at_start_c;
+    row.healing = r.healing;
+    row.too_hot = r.verdict == thermal::Verdict::kTooHot;
+    row.too_cold = r.verdict == thermal::Verdict::kTooCold;
+    row.verdict = std::string(thermal::to_string(r.verdict));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+bool compare(double value, GateOp op, double threshold) {
+  switch (op) {
+    case GateOp::kLess:
+      return value < threshold;
+    case GateOp::kLessEqual:
+      return value <= threshold;
+    case GateOp::kGreater:
+      return value > threshold;
+    case GateOp::kGreaterEqual:
+      return value >= threshold;
+    case GateOp::kEqual:
+      return value == threshold;
+    case GateOp::kNotEqual:
+      return value != threshold;
+  }
+  return false;
+}
+
+VariantResult run_variant(const Scenario& sc, const Variant& v, const std::filesystem::path& out_dir,
+                          const std::function<void(const std::string&)>& log) {
+  VariantResult res;
+  res.name = v.name;
+  res.variant = &v;
+  const std::filesystem::path dir = out_dir / v.name;
+  std::filesystem::create_directories(dir);
+  Stages stages(log ? std::function<void(const std::string&)>(
+                          [&](const std::string& line) { log(fmt::format("[{}] {}", v.name, line)); })
+                    : std::function<void(const std::string&)>());
+
+  const Toolpath tp = stages.run("slice", [&] { return slice_variant(v); });
+  stages.run("program", [&] {
+    slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
+    write_file_atomic(dir / "program.nc", slicer::write_gcode(tp, v.machine.dialect, header));
+  });
+  res.program = (std::filesystem::path(v.name) / "program.nc").string();
+  const sim::Deposit deposit = stages.run("deposit", [&] {
+    sim::DepositOptions o;
+    o.voxel_size_mm = v.output.voxel_size_mm;
+    return sim::deposit(tp, o);
+  });
+  const thermal::ThermalResult th = stages.run("thermal", [&] {
+    thermal::Options o;
+    o.nodes_per_layer = v.thermal.nodes_per_layer;
+    o.cooldown_s = v.thermal.cooldown_s;
+    o.rel_tol = v.thermal.rel_tol;
+    o.abs_tol_k = v.thermal.abs_tol_k;
+    const auto inputs = thermal_inputs(tp);
+    return thermal::solve_thermal(inputs, v.material, v.machine.environment, o);
+  });
+  stages.run("render", [&] {
+    render::RenderOptions o;
+    o.width = v.output.image_width;
+    o.height = v.output.image_height;
+    const auto colour = [&](int layer) {
+      if (layer < 0 || static_cast<std::size_t>(layer) >= th.layers.size())
+        return render::Rgb{0.5f, 0.5f, 0.5f};
+      return verdict_colour(th.layers[static_cast<std::size_t>(layer)].verdict);
+    };
+    for (const auto& [view, file] : {std::pair{render::View::kIsometric, "fusion.png"},
+                                     std::pair{render::View::kTop, "fusion-top.png"}}) {
+      o.view = view;
+      render::write_png(render::render_deposit(deposit, colour, o), dir / file);
+      res.images.push_back((std::filesystem::path(v.name) / file).string());
+    }
+  });
+  stages.run("vdb", [&] { write_vdb(deposit, dir / "deposit.vdb"); });
+  res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
+  res.metrics = measure(v, tp, deposit, th);
+  res.layers = layer_rows(tp, th);
+  res.gates = evaluate_gates(sc.gates, res.metrics);
+  res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });
+  res.stage_times = stages.times();
+  return res;
+}
+
+}  // namespace
+
+std::optional<double> Metrics::get(const std::string& name) const {
+  if (name == "layers") return layers;
+  if (name == "print_time_s") return print_time_s;
+  if (name == "print_length_mm") return print_length_mm;
+  if (name == "travel_length_mm") return travel_length_mm;
+  if (name == "commanded_volume_mm3") return commanded_volume_mm3;
+  if (name == "deposited_volume_mm3") return deposited_volume_mm3;
+  if (name == "mass_kg") return mass_kg;
+  if (name == "porosity") return porosity;
+  if (name == "min_stock_mm") return min_stock_mm;
+  if (name == "undercut_fraction") return undercut_fraction;
+  if (name == "interfaces.count") return interfaces;
+  if (name == "interfaces.too_hot_fraction") return too_hot_fraction;
+  if (name == "interfaces.too_cold_fraction") return too_cold_fraction;
+  if (name == "interfaces.min_healing") return min_healing;
+  if (name == "interfaces.mean_healing") return mean_healing;
+  if (name == "layer_time_s.min") return layer_time_s.min;
+  if (name == "layer_time_s.mean") return layer_time_s.mean;
+  if (name == "layer_time_s.max") return layer_time_s.max;
+  throw InternalError("unknown metric " + name);
+}
+
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics) {
+  std::vector<GateResult> out;
+  for (const Gate& g : gates) {
+    GateResult r;
+    r.name = g.expr;
+    r.expr = g.expr;
+    r.value = metrics.get(g.metric);
+    if (!r.value) {
+      r.passed = false;
+      r.message = fmt::format("{} is not measured for this run", g.metric);
+    } else {
+      r.passed = compare(*r.value, g.op, g.threshold);
+      if (!r.passed) r.message = fmt::format("{} = {:.6g}, required {}", g.metric, *r.value, g.expr);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string slice_program(const Scenario& sc, const std::string& variant_name) {
+  for (const Variant& v : sc.variants) {
+    if (!variant_name.empty() && v.name != variant_name) continue;
+    const Toolpath tp = slice_variant(v);
+    return slicer::write_gcode(tp, v.machine.dialect,
+                               {v.name, sc.name, v.name, v.machine.name, v.material.name});
+  }
+  throw InputError({}, "--variant",
+                   fmt::format("scenario '{}' has no variant named '{}'", sc.name, variant_name));
+}
+
+RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const auto& name : options.variants) {
+    if (std::none_of(sc.variants.begin(), sc.variants.end(),
+                     [&](const Variant& v) { return v.name == name; })) {
+      std::string names;
+      for (const auto& v : sc.variants) names += (names.empty() ? "" : ", ") + v.name;
+      throw InputError(
+          {}, "--variant",
+          fmt::format("scenario '{}' has no variant named '{}'; it has: {}", sc.name, name, names));
+    }
+  }
+  std::filesystem::create_directories(options.out_dir);
+  RunResult result;
+  result.scenario = &sc;
+  for (const Variant& v : sc.variants) {
+    if (!options.variants.empty() &&
+        std::find(options.variants.begin(), options.variants.end(), v.name) == options.variants.end())
+      continue;
+    result.variants.push_back(run_variant(sc, v, options.out_dir, options.log));
+    result.passed = result.passed && result.variants.back().passed;
+  }
+  result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_reports(result, options.out_dir);
+  return result;
+}
+
+}  // namespace beadtwin::scenarios

@@ -1,0 +1,30 @@
+// The runner: the whole pipeline for every variant of a scenario (DESIGN §1), reading like the pipeline —
+// part → slice → program → deposit → thermal → render → metrics and gates — then the reports.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "scenarios/result.hpp"
+
+namespace beadtwin::scenarios {
+
+struct RunOptions {
+  std::filesystem::path out_dir = "beadtwin-out";
+  std::vector<std::string> variants;  // only these (all when empty); unknown names are an InputError
+  std::function<void(const std::string&)> log;  // progress lines; empty to stay quiet
+};
+
+// Runs the scenario and writes every output into options.out_dir. Throws InputError for bad input
+// found late (for example an STL that cannot be read) before writing any report.
+RunResult run_scenario(const Scenario& scenario, const RunOptions& options);
+
+// Slices one variant and returns its print program (for `beadtwin slice`).
+std::string slice_program(const Scenario& scenario, const std::string& variant_name);
+
+// Evaluates gates against metrics.
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics);
+
+}  // namespace beadtwin::scenarios

@@ -1,0 +1,585 @@
+#include "scenarios/scenario.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/bead.hpp"
+#include "scenarios/embedded.hpp"
+#include "scenarios/params.hpp"
+#include "scenarios/yaml_reader.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+constexpr std::string_view kBuiltIn = "<built-in>";
+
+const ParamSpec& spec(std::span<const ParamSpec> table, std::string_view key) {
+  for (const auto& s : table)
+    if (s.key == key) return s;
+  throw InternalError(fmt::format("no parameter '{}' declared", key));
+}
+
+std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
+                           const std::string& key) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw InputError(from, key, fmt::format("cannot open '{}'", path.string()));
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A machine or material file: found beside the scenario, or among the shipped ones.
+struct LibraryFile {
+  std::string text;
+  std::string file;  // for messages
+};
+
+LibraryFile find_library_file(const std::string& kind, const std::string& name,
+                              const std::filesystem::path& scenario_dir, const SourceLocation& from) {
+  if (name.empty() || name.find_first_of("/\\") != std::string::npos || name.starts_with("."))
+    throw InputError(
+        from, kind,
+        fmt::format("'{}' is not a {} name (use a name such as the file name without .yaml)", name, kind));
+  const std::string rel = fmt::format("{}s/{}.yaml", kind, name);
+  if (!scenario_dir.empty()) {
+    const std::filesystem::path local = scenario_dir / rel;
+    if (std::filesystem::exists(local)) return {read_text_file(local, from, kind), local.string()};
+  }
+  const auto& shipped = shipped_files();
+  const auto it = shipped.find(rel);
+  if (it != shipped.end()) return {it->second, std::string(kBuiltIn) + "/" + rel};
+  std::string names;
+  const std::string prefix = kind + "s/";
+  for (const auto& [path, text] : shipped)
+    if (path.starts_with(prefix))
+      names += (names.empty() ? "" : ", ") + path.substr(prefix.size(), path.size() - prefix.size() - 5);
+  throw InputError(
+      from, kind,
+      fmt::format("no {} named '{}' (looked for {} beside the scenario and among the shipped ones: {})", kind,
+                  name, rel, names));
+}
+
+// The blocks of a scenario after variant overrides, each with the file it came from.
+struct Tree {
+  YAML::Node root;
+  std::shared_ptr<YamlSource> scenario_src;
+  YAML::Node machine;
+  std::shared_ptr<YamlSource> machine_src;
+  YAML::Node material;
+  std::shared_ptr<YamlSource> material_src;
+  std::map<std::string, SourceLocation> overridden;
+};
+
+std::shared_ptr<YamlSource> library_source(YAML::Node& node, const std::string& file) {
+  auto src = std::make_shared<YamlSource>();
+  src->file = file;
+  if (node.IsMap() && node["units"]) {
+    src->default_units = read_units_block(node["units"], file);
+    node.remove("units");
+  }
+  return src;
+}
+
+// machine: NAME | {inline map}
+YAML::Node resolve_library(const YAML::Node& root, const std::string& kind,
+                           const std::shared_ptr<YamlSource>& scenario_src, const std::filesystem::path& dir,
+                           std::shared_ptr<YamlSource>& src_out) {
+  const YAML::Node ref = root[kind];
+  const SourceLocation at = location_of(ref.IsDefined() ? ref : root, scenario_src->file);
+  if (!ref.IsDefined() || ref.IsNull())
+    throw InputError(at, kind, fmt::format("required key is missing (the {} to use)", kind));
+  if (ref.IsMap()) {
+    src_out = scenario_src;
+    return YAML::Clone(ref);
+  }
+  if (!ref.IsScalar())
+    throw InputError(at, kind, fmt::format("expected the name of a {} file or an inline map", kind));
+  const LibraryFile lib = find_library_file(kind, ref.Scalar(), dir, at);
+  YAML::Node node = parse_yaml(lib.text, lib.file);
+  if (!node.IsMap())
+    throw InputError({lib.file, 1, 1}, {}, fmt::format("a {} file must be a map of keys and values", kind));
+  src_out = library_source(node, lib.file);
+  return node;
+}
+
+Machine read_machine(BlockReader& r) {
+  const auto t = machine_params();
+  Machine m;
+  m.name = r.string(spec(t, "name"));
+  m.description = r.string(spec(t, "description"));
+  m.kind = r.string(spec(t, "kind"));
+  static const std::string_view kinds[] = {"roller-gantry", "tamper-gantry", "robot", "desktop"};
+  if (std::find(std::begin(kinds), std::end(kinds), m.kind) == std::end(kinds))
+    r.fail(r.take("kind"), "kind",
+           fmt::format("unknown machine kind '{}'; expected roller-gantry, tamper-gantry, robot or desktop",
+                       m.kind));
+  m.motion.max_feed_mm_s = r.quantity(spec(t, "max_feed"));
+  m.motion.max_travel_mm_s = r.quantity(spec(t, "max_travel"));
+  m.motion.acceleration_mm_s2 = r.quantity(spec(t, "acceleration"));
+  m.motion.junction_deviation_mm = r.quantity(spec(t, "junction_deviation"));
+  m.extruder_output_kg_s = r.quantity(spec(t, "extruder.output"));
+  m.extruder_max_output_kg_s = r.quantity(spec(t, "extruder.max_output"));
+  if (m.extruder_output_kg_s > m.extruder_max_output_kg_s)
+    r.fail(r.take("extruder.output"), "extruder.output",
+           "nominal output is above the extruder's maximum output");
+  m.environment.ambient_c = r.quantity(spec(t, "environment.ambient"));
+  m.environment.bed_temp_c = r.quantity(spec(t, "environment.bed_temp"));
+  m.environment.bed_insulated = r.boolean(spec(t, "environment.bed_insulated"));
+  m.environment.convection_W_m2K = r.quantity(spec(t, "environment.convection"));
+  m.environment.bed_contact_W_m2K = r.quantity(spec(t, "environment.bed_contact"));
+  const std::string units = r.string(spec(t, "gcode.units"));
+  if (units != "in" && units != "mm")
+    r.fail(r.take("gcode.units"), "gcode.units", fmt::format("expected in or mm but found '{}'", units));
+  m.dialect.inches = units == "in";
+  m.dialect.melt_on = r.string(spec(t, "gcode.melt_on"));
+  m.dialect.melt_off = r.string(spec(t, "gcode.melt_off"));
+  r.finish(t);
+  return m;
+}
+
+Material read_material(BlockReader& r) {
+  const auto t = material_params();
+  Material m;
+  m.name = r.string(spec(t, "name"));
+  (void)r.string(spec(t, "description"));
+  m.density_kg_m3 = r.quantity(spec(t, "density"));
+  m.specific_heat_J_kgK = r.quantity(spec(t, "specific_heat"));
+  m.conductivity_along_W_mK = r.quantity(spec(t, "conductivity.along"));
+  m.conductivity_across_W_mK = r.quantity(spec(t, "conductivity.across"));
+  m.conductivity_through_W_mK = r.quantity(spec(t, "conductivity.through"));
+  m.emissivity = r.quantity(spec(t, "emissivity"));
+  m.deposition_temp_c = r.quantity(spec(t, "deposition_temp"));
+  m.glass_transition_c = r.quantity(spec(t, "glass_transition"));
+  m.support_limit_c = r.quantity(spec(t, "fusion.support_limit"));
+  m.healing_ref_temp_c = r.quantity(spec(t, "fusion.healing_ref_temp"));
+  m.reptation_time_ref_s = r.quantity(spec(t, "fusion.reptation_time"));
+  m.healing_activation_J_mol = r.quantity(spec(t, "fusion.activation_energy"));
+  m.healing_min_temp_c = r.quantity(spec(t, "fusion.min_healing_temp"));
+  m.required_healing = r.quantity(spec(t, "fusion.required_healing"));
+  m.price_per_kg = r.quantity(spec(t, "price"));
+  // Sources of the values: free text kept with the file, read here so it is not an unknown key.
+  (void)r.take("sources");
+  static constexpr std::string_view kExtra[] = {"sources"};
+  r.finish(t, kExtra);
+  return m;
+}
+
+Eigen::Vector3d read_vector(BlockReader& r, const std::string& key, bool required) {
+  YAML::Node node = r.take(key);
+  if (!node.IsDefined()) {
+    if (required) r.fail(node, key, "required key is missing (three lengths [x, y, z])");
+    return Eigen::Vector3d::Zero();
+  }
+  if (!node.IsSequence() || node.size() != 3) r.fail(node, key, "expected three lengths [x, y, z]");
+  Eigen::Vector3d v;
+  for (std::size_t i = 0; i < 3; ++i)
+    v[static_cast<Eigen::Index>(i)] = r.parse(node[i], Dimension::kLength, key);
+  return v;
+}
+
+PartSpec read_part(BlockReader& r, const std::filesystem::path& dir) {
+  PartSpec p;
+  const ParamSpec kLen{"", ParamType::kQuantity, Dimension::kLength, "", 0, 1e5, true, "", ""};
+  auto length = [&](const std::string& key) {
+    YAML::Node node = r.take(key);
+    if (!node.IsDefined()) r.fail(node, key, "required key is missing (a length)");
+    const double v = r.parse(node, Dimension::kLength, key);
+    ParamSpec s = kLen;
+    s.key = key;
+    r.check_range(s, v, node);
+    return v;
+  };
+  const bool has_mesh = r.has("mesh"), has_box = r.has("box"), has_open = r.has("open_box");
+  if (has_mesh + has_box + has_open != 1)
+    r.fail(YAML::Node(), "", "expected exactly one of: mesh (an STL file), box, open_box");
+  if (has_mesh) {
+    p.kind = PartSpec::Kind::kMesh;
+    YAML::Node node = r.take("mesh");
+    if (!node.IsScalar()) r.fail(node, "mesh", "expected the path of an STL file");
+    p.mesh = dir / node.Scalar();
+    if (!std::filesystem::exists(p.mesh))
+      r.fail(node, "mesh", fmt::format("no such file: {}", p.mesh.string()));
+    YAML::Node units = r.take("mesh_units");
+    if (units.IsDefined()) {
+      try {
+        p.mesh_scale = to_internal(1.0, units.Scalar(), Dimension::kLength);
+      } catch (const QuantityError& e) {
+        r.fail(units, "mesh_units", e.what());
+      }
+    }
+  } else {
+    const std::string kind = has_box ? "box" : "open_box";
+    p.kind = has_box ? PartSpec::Kind::kBox : PartSpec::Kind::kOpenBox;
+    p.size = read_vector(r, kind + ".size", true);
+    for (int i = 0; i < 3; ++i)
+      if (!(p.size[i] > 0)) r.fail(r.take(kind + ".size"), kind + ".size", "every size must be positive");
+    p.origin = read_vector(r, kind + ".origin", false);
+    if (!has_box) {
+      p.wall_mm = length("open_box.wall");
+      p.floor_mm = length("open_box.floor");
+      if (2 * p.wall_mm >= std::min(p.size.x(), p.size.y()))
+        r.fail(r.take("open_box.wall"), "open_box.wall",
+               "walls meet in the middle: wall must be less than half the width");
+      if (p.floor_mm >= p.size.z())
+        r.fail(r.take("open_box.floor"), "open_box.floor", "floor must be thinner than the box is tall");
+    }
+  }
+  static constexpr std::string_view kKeys[] = {"mesh",          "mesh_units",    "box.size",
+                                               "box.origin",    "open_box.size", "open_box.origin",
+                                               "open_box.wall", "open_box.floor"};
+  r.finish({}, kKeys);
+  return p;
+}
+
+slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const Material& material,
+                                   double part_top) {
+  const auto t = section_params();
+  slicer::SectionParams s;
+  s.name = r.string(spec(t, "name"));
+  YAML::Node z = r.take("z");
+  if (!z.IsDefined()) r.fail(z, "z", "required key is missing (Z limits [lower, upper], or 'part')");
+  if (z.IsScalar() && z.Scalar() == "part") {
+    s.z_min_mm = 0.0;
+    s.z_max_mm = part_top;
+  } else {
+    if (!z.IsSequence() || z.size() != 2) r.fail(z, "z", "expected Z limits [lower, upper] or 'part'");
+    s.z_min_mm = r.parse(z[0], Dimension::kLength, "z");
+    s.z_max_mm = r.parse(z[1], Dimension::kLength, "z");
+    if (!(s.z_max_mm > s.z_min_mm))
+      r.fail(z, "z", fmt::format("upper limit {} mm is not above lower limit {} mm", s.z_max_mm, s.z_min_mm));
+  }
+  s.layer_height_mm = r.quantity(spec(t, "layer_height"));
+  s.bead_width_mm = r.quantity(spec(t, "bead_width"));
+  if (s.bead_width_mm < s.layer_height_mm)
+    r.fail(r.take("bead_width"), "bead_width",
+           fmt::format("bead width {} mm is less than the layer height {} mm", s.bead_width_mm,
+                       s.layer_height_mm));
+  const double area = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
+  const double nominal_flow_mm3_s = machine.extruder_output_kg_s / material.density_kg_m3 * 1e9;
+  s.print_speed_mm_s = r.optional_quantity(spec(t, "speed")).value_or(nominal_flow_mm3_s / area);
+  const double max_flow_mm3_s = machine.extruder_max_output_kg_s / material.density_kg_m3 * 1e9;
+  if (s.print_speed_mm_s * area > max_flow_mm3_s * (1 + 1e-9))
+    r.fail(r.take("speed"), "speed",
+           fmt::format("needs {:.0f} mm3/s of material but the extruder gives at most {:.0f} mm3/s",
+                       s.print_speed_mm_s * area, max_flow_mm3_s));
+  s.travel_speed_mm_s = r.optional_quantity(spec(t, "travel_speed")).value_or(machine.motion.max_travel_mm_s);
+  s.boundary.passes = r.integer(spec(t, "boundary.passes"));
+  s.boundary.overlap = r.quantity(spec(t, "boundary.overlap"));
+  s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));
+  // fill: none | {angle, angle_step, overlap}. The keys are read (with defaults) either way.
+  YAML::Node fill = r.take("fill");
+  const bool fill_off =
+      fill.IsDefined() && fill.IsScalar() && (fill.Scalar() == "none" || fill.Scalar() == "off");
+  if (fill.IsDefined() && !fill.IsMap() && !fill_off)
+    r.fail(fill, "fill", "expected 'none' or a map {angle, angle_step, overlap}");
+  s.fill.enabled = fill.IsDefined() && fill.IsMap();
+  BlockReader fr(fill.IsMap() ? fill : YAML::Node(YAML::NodeType::Map), r.full_key("fill"),
+                 std::make_shared<YamlSource>(r.source()));
+  auto sub = [](const ParamSpec& p) {
+    ParamSpec q = p;
+    q.key = p.key.substr(5);  // "fill.angle" is "angle" inside the fill block
+    return q;
+  };
+  static constexpr std::string_view kFillKeys[] = {"angle", "angle_step", "overlap"};
+  s.fill.angle_deg = fr.quantity(sub(spec(t, "fill.angle")));
+  s.fill.angle_step_deg = fr.quantity(sub(spec(t, "fill.angle_step")));
+  s.fill.overlap = fr.quantity(sub(spec(t, "fill.overlap")));
+  fr.finish({}, kFillKeys);
+  r.finish(t, std::array<std::string_view, 1>{"fill"});
+  return s;
+}
+
+// Applies one `set` entry (dotted path = value) of a variant to the tree.
+void apply_override(Tree& tree, const std::string& path, const YAML::Node& value, const SourceLocation& at) {
+  std::vector<std::string> parts;
+  {
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t dot = path.find('.', start);
+      parts.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+  }
+  const std::string& head = parts.front();
+  YAML::Node target;
+  std::size_t first = 1;
+  if (head == "machine")
+    target = tree.machine;
+  else if (head == "material")
+    target = tree.material;
+  else if (head == "sections") {
+    if (parts.size() < 3) throw InputError(at, path, "expected sections.<section name>.<key>");
+    YAML::Node sections = tree.root["sections"];
+    bool found = false;
+    for (std::size_t i = 0; sections.IsSequence() && i < sections.size() && !found; ++i) {
+      if (sections[i]["name"] && sections[i]["name"].Scalar() == parts[1]) {
+        target.reset(sections[i]);
+        found = true;
+      }
+    }
+    if (!found) throw InputError(at, path, fmt::format("no section named '{}'", parts[1]));
+    first = 2;
+  } else if (head == "part" || head == "output" || head == "thermal") {
+    if (!tree.root[head]) tree.root[head] = YAML::Node(YAML::NodeType::Map);
+    target.reset(tree.root[head]);
+  } else {
+    throw InputError(
+        at, path, "a variant can set keys under machine, material, part, output, thermal or sections.<name>");
+  }
+  if (parts.size() <= first) throw InputError(at, path, "expected a key below the block");
+  for (std::size_t i = first; i + 1 < parts.size(); ++i) {
+    if (!target[parts[i]] || !target[parts[i]].IsMap()) target[parts[i]] = YAML::Node(YAML::NodeType::Map);
+    YAML::Node next = target[parts[i]];
+    target.reset(next);
+  }
+  target[parts.back()] = value;  // the same node, so messages keep its line in the scenario
+  tree.overridden[path] = at;
+}
+
+double metric_check(const std::string& name) {
+  const auto& m = gate_metrics();
+  return std::find(m.begin(), m.end(), name) != m.end() ? 1.0 : 0.0;
+}
+
+Gate parse_gate(const YAML::Node& node, const std::string& file) {
+  const SourceLocation at = location_of(node, file);
+  if (!node.IsScalar()) throw InputError(at, "gates", "expected a gate such as 'porosity < 0.03'");
+  Gate g;
+  g.expr = node.Scalar();
+  g.where = at;
+  static const std::pair<std::string_view, GateOp> kOps[] = {
+      {"<=", GateOp::kLessEqual}, {">=", GateOp::kGreaterEqual}, {"==", GateOp::kEqual},
+      {"!=", GateOp::kNotEqual},  {"<", GateOp::kLess},          {">", GateOp::kGreater}};
+  std::size_t pos = std::string::npos, len = 0;
+  for (const auto& [text, op] : kOps) {
+    const std::size_t p = g.expr.find(text);
+    if (p != std::string::npos) {
+      pos = p;
+      len = text.size();
+      g.op = op;
+      break;
+    }
+  }
+  if (pos == std::string::npos)
+    throw InputError(at, "gates", fmt::format("'{}' has no comparison (<, <=, >, >=, ==, !=)", g.expr));
+  auto trim = [](std::string s) {
+    s.erase(0, s.find_first_not_of(" \t"));
+    s.erase(s.find_last_not_of(" \t") + 1);
+    return s;
+  };
+  g.metric = trim(g.expr.substr(0, pos));
+  const std::string rhs = trim(g.expr.substr(pos + len));
+  if (metric_check(g.metric) == 0.0) {
+    std::string names;
+    for (const auto& n : gate_metrics()) names += (names.empty() ? "" : ", ") + n;
+    throw InputError(at, "gates", fmt::format("unknown metric '{}'; expected one of: {}", g.metric, names));
+  }
+  try {
+    g.threshold = parse_quantity(rhs, Dimension::kFraction);
+  } catch (const QuantityError& e) {
+    throw InputError(at, "gates",
+                     fmt::format("'{}': the right-hand side must be a number: {}", g.expr, e.what()));
+  }
+  return g;
+}
+
+Variant build_variant(const Tree& tree, const std::string& name, const std::filesystem::path& dir) {
+  Variant v;
+  v.name = name;
+  BlockReader machine_r(tree.machine, "machine", tree.machine_src, &tree.overridden);
+  v.machine = read_machine(machine_r);
+  BlockReader material_r(tree.material, "material", tree.material_src, &tree.overridden);
+  v.material = read_material(material_r);
+  BlockReader part_r(tree.root["part"], "part", tree.scenario_src, &tree.overridden);
+  if (!tree.root["part"])
+    part_r.fail(tree.root, "part", "required key is missing (the part: mesh, box or open_box)");
+  v.part = read_part(part_r, dir);
+
+  BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
+  v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
+  v.output.image_width = out_r.integer(spec(output_params(), "image_width"));
+  v.output.image_height = out_r.integer(spec(output_params(), "image_height"));
+  out_r.finish(output_params());
+
+  BlockReader th_r(tree.root["thermal"], "thermal", tree.scenario_src, &tree.overridden);
+  v.thermal.nodes_per_layer = th_r.integer(spec(thermal_params(), "nodes_per_layer"));
+  v.thermal.cooldown_s = th_r.quantity(spec(thermal_params(), "cooldown"));
+  v.thermal.rel_tol = th_r.quantity(spec(thermal_params(), "rel_tol"));
+  v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));
+  th_r.finish(thermal_params());
+
+  const double part_top = v.part.kind == PartSpec::Kind::kMesh
+                              ? slicer::read_stl(v.part.mesh, v.part.mesh_scale).max_corner().z()
+                              : v.part.origin.z() + v.part.size.z();
+  const YAML::Node sections = tree.root["sections"];
+  if (!sections || !sections.IsSequence() || sections.size() == 0)
+    throw InputError(location_of(sections ? sections : tree.root, tree.scenario_src->file), "sections",
+                     "expected a list of sections, each with at least a name and z limits");
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const std::string prefix =
+        sections[i]["name"] ? "sections." + sections[i]["name"].Scalar() : fmt::format("sections[{}]", i);
+    BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
+    v.sections.push_back(read_section(sr, v.machine, v.material, part_top));
+    for (std::size_t j = 0; j + 1 < v.sections.size(); ++j) {
+      const auto& a = v.sections[j];
+      const auto& b = v.sections.back();
+      if (a.name == b.name)
+        sr.fail(sections[i]["name"], "name", fmt::format("a section named '{}' already exists", b.name));
+      if (b.z_min_mm < a.z_max_mm - 1e-9 && a.z_min_mm < b.z_max_mm - 1e-9)
+        sr.fail(sections[i]["z"], "z",
+                fmt::format("overlaps section '{}' in Z ({} to {} mm)", a.name, a.z_min_mm, a.z_max_mm));
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+std::string PartSpec::describe() const {
+  switch (kind) {
+    case Kind::kMesh:
+      return mesh.filename().string();
+    case Kind::kBox:
+      return fmt::format("box {:.0f} x {:.0f} x {:.0f} mm", size.x(), size.y(), size.z());
+    case Kind::kOpenBox:
+      return fmt::format("open-top box {:.0f} x {:.0f} x {:.0f} mm, wall {:.0f} mm, floor {:.0f} mm",
+                         size.x(), size.y(), size.z(), wall_mm, floor_mm);
+  }
+  return "?";
+}
+
+const std::vector<std::string>& gate_metrics() {
+  static const std::vector<std::string> names = {"layers",
+                                                 "print_time_s",
+                                                 "print_length_mm",
+                                                 "travel_length_mm",
+                                                 "commanded_volume_mm3",
+                                                 "deposited_volume_mm3",
+                                                 "mass_kg",
+                                                 "porosity",
+                                                 "min_stock_mm",
+                                                 "undercut_fraction",
+                                                 "interfaces.count",
+                                                 "interfaces.too_hot_fraction",
+                                                 "interfaces.too_cold_fraction",
+                                                 "interfaces.min_healing",
+                                                 "interfaces.mean_healing",
+                                                 "layer_time_s.min",
+                                                 "layer_time_s.mean",
+                                                 "layer_time_s.max"};
+  return names;
+}
+
+namespace {
+
+// Parses the scenario text and the machine and material it names. Called once per variant: each variant
+// gets its own tree to override, and a fresh parse (unlike YAML::Clone) keeps every node's line and column.
+Tree parse_tree(const std::string& text, const std::string& file, const std::filesystem::path& dir) {
+  Tree tree;
+  tree.root = parse_yaml(text, file);
+  if (!tree.root.IsMap())
+    throw InputError(
+        {file, 1, 1}, {},
+        "a scenario must be a map of keys and values (name, machine, material, part, sections...)");
+  tree.scenario_src = std::make_shared<YamlSource>();
+  tree.scenario_src->file = file;
+  tree.scenario_src->default_units = read_units_block(tree.root["units"], file);
+  tree.machine = resolve_library(tree.root, "machine", tree.scenario_src, dir, tree.machine_src);
+  tree.material = resolve_library(tree.root, "material", tree.scenario_src, dir, tree.material_src);
+  return tree;
+}
+
+}  // namespace
+
+Scenario load_scenario_text(const std::string& text, const std::string& file) {
+  const std::filesystem::path dir = file.empty() || file.starts_with(kBuiltIn)
+                                        ? std::filesystem::path()
+                                        : std::filesystem::path(file).parent_path();
+  const Tree base = parse_tree(text, file, dir);
+  const YAML::Node& root = base.root;
+
+  Scenario sc;
+  sc.file = file;
+  {
+    BlockReader top(root, "", base.scenario_src);
+    static const ParamSpec kName{
+        "name", ParamType::kString, Dimension::kDimensionless, "", 0, 0, false, "scenario name", ""};
+    static const ParamSpec kDesc{
+        "description", ParamType::kString, Dimension::kDimensionless, "-", 0, 0, false, "", ""};
+    sc.name = top.string(kName);
+    sc.description = top.string(kDesc);
+    static constexpr std::string_view kKeys[] = {"units",   "machine",  "material", "part", "output",
+                                                 "thermal", "sections", "variants", "gates"};
+    for (const auto k : kKeys) (void)top.take(k);
+    static const ParamSpec kTop[] = {kName, kDesc};
+    top.finish(kTop, kKeys);
+  }
+  if (const YAML::Node gates = root["gates"]) {
+    if (!gates.IsSequence())
+      throw InputError(location_of(gates, file), "gates",
+                       "expected a list of gates such as '- porosity < 0.03'");
+    for (const auto& g : gates) sc.gates.push_back(parse_gate(g, file));
+  }
+
+  // Variants: each its own tree with its overrides applied; no variants means one called "baseline".
+  std::vector<std::pair<std::string, YAML::Node>> variant_nodes;
+  if (const YAML::Node vars = root["variants"]) {
+    if (!vars.IsSequence() || vars.size() == 0)
+      throw InputError(location_of(vars, file), "variants",
+                       "expected a list of variants, each with a name and optionally set: {key: value}");
+    for (const auto& vn : vars) {
+      if (!vn.IsMap() || !vn["name"] || !vn["name"].IsScalar())
+        throw InputError(location_of(vn, file), "variants", "each variant needs a name");
+      for (auto it = vn.begin(); it != vn.end(); ++it)
+        if (it->first.Scalar() != "name" && it->first.Scalar() != "set")
+          throw InputError(location_of(it->first, file),
+                           "variants." + vn["name"].Scalar() + "." + it->first.Scalar(),
+                           "unknown key; expected name or set");
+      for (const auto& [n, _] : variant_nodes)
+        if (n == vn["name"].Scalar())
+          throw InputError(location_of(vn["name"], file), "variants",
+                           fmt::format("a variant named '{}' already exists", n));
+      variant_nodes.emplace_back(vn["name"].Scalar(), vn["set"]);
+    }
+  } else {
+    variant_nodes.emplace_back("baseline", YAML::Node());
+  }
+  for (const auto& [name, set] : variant_nodes) {
+    Tree tree = variant_nodes.size() == 1 ? base : parse_tree(text, file, dir);
+    std::map<std::string, std::string> overrides;
+    if (set.IsDefined() && !set.IsNull()) {
+      if (!set.IsMap())
+        throw InputError(location_of(set, file), "variants." + name + ".set",
+                         "expected a map {key.path: value}");
+      for (auto it = set.begin(); it != set.end(); ++it) {
+        const std::string path = it->first.Scalar();
+        apply_override(tree, path, it->second, location_of(it->second, file));
+        overrides[path] = it->second.IsScalar() ? it->second.Scalar() : YAML::Dump(it->second);
+      }
+    }
+    Variant v = build_variant(tree, name, dir);
+    v.overrides = std::move(overrides);
+    sc.variants.push_back(std::move(v));
+  }
+  return sc;
+}
+
+Scenario load_scenario(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError({path.string(), 0, 0}, {}, "no such scenario file");
+  return load_scenario_text(read_text_file(path, {path.string(), 0, 0}, {}), path.string());
+}
+
+Scenario load_default_scenario() {
+  const auto& files = shipped_files();
+  const auto it = files.find("default.yaml");
+  if (it == files.end()) throw InternalError("the default scenario is not embedded");
+  return load_scenario_text(it->second, std::string(kBuiltIn) + "/default.yaml");
+}
+
+}  // namespace beadtwin::scenarios

@@ -1,0 +1,111 @@
+// The whole pipeline on a small scenario: every stage runs for real and the reports hold the DESIGN §6 keys.
+#include "scenarios/run.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "scenarios/scenario.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+const std::string kSmall = R"(name: small-box
+units: {length: mm}
+machine: lsam-ph15
+material: cf-abs-20
+part:
+  open_box: {size: [240, 180, 30], wall: 40, floor: 10}
+output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100}
+sections:
+  - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
+  - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
+variants:
+  - name: fast
+  - name: slow
+    set: {sections.walls.speed: 10 mm/s, sections.floor.speed: 10 mm/s}
+gates:
+  - porosity < 0.5
+  - interfaces.too_hot_fraction <= 0.5
+)";
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+TEST(Run, SmallScenarioEndToEnd) {
+  const Scenario sc = load_scenario_text(kSmall, "small.yaml");
+  const auto out = std::filesystem::temp_directory_path() / "beadtwin_run_test";
+  std::filesystem::remove_all(out);
+  RunOptions o;
+  o.out_dir = out;
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), 2u);
+
+  const auto j = nlohmann::json::parse(read(out / "report.json"));
+  EXPECT_EQ(j["tool"], "beadtwin");
+  EXPECT_EQ(j["scenario"], "small-box");
+  EXPECT_EQ(j["passed"].get<bool>(), r.passed);
+  ASSERT_EQ(j["variants"].size(), 2u);
+  for (const auto& v : j["variants"]) {
+    const auto& m = v["metrics"];
+    for (const char* key :
+         {"layers", "print_time_s", "print_length_mm", "travel_length_mm", "commanded_volume_mm3",
+          "deposited_volume_mm3", "mass_kg", "porosity", "min_stock_mm", "undercut_fraction"})
+      EXPECT_TRUE(m.contains(key)) << key;
+    for (const char* key : {"count", "too_hot_fraction", "too_cold_fraction", "min_healing", "mean_healing"})
+      EXPECT_TRUE(m["interfaces"].contains(key)) << key;
+    for (const char* key : {"min", "mean", "max"}) EXPECT_TRUE(m["layer_time_s"].contains(key)) << key;
+    EXPECT_EQ(m["layers"], 6);
+    EXPECT_EQ(m["interfaces"]["count"], 5);
+    // Conservation: every commanded mm³ is in the voxel model.
+    EXPECT_NEAR(m["deposited_volume_mm3"].get<double>() / m["commanded_volume_mm3"].get<double>(), 1.0, 0.02);
+    ASSERT_EQ(v["layers"].size(), 6u);
+    for (const char* key : {"index", "z_mm", "section", "start_s", "duration_s", "substrate_temp_c",
+                            "healing_min", "too_hot", "too_cold"})
+      EXPECT_TRUE(v["layers"][0].contains(key)) << key;
+    EXPECT_EQ(v["layers"][0]["section"], "floor");
+    EXPECT_EQ(v["layers"][5]["section"], "walls");
+    EXPECT_EQ(v["gates"].size(), 2u);
+    ASSERT_EQ(v["images"].size(), 2u);  // isometric and top views
+    for (const auto& img : v["images"]) EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
+    EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
+    EXPECT_TRUE(std::filesystem::exists(out / v["deposit"].get<std::string>()));
+  }
+  // The slow variant prints the same part with longer layer times, so its substrate is colder.
+  const auto& fast = j["variants"][0];
+  const auto& slow = j["variants"][1];
+  EXPECT_GT(slow["metrics"]["layer_time_s"]["mean"].get<double>(),
+            3 * fast["metrics"]["layer_time_s"]["mean"].get<double>());
+  EXPECT_LT(slow["layers"][5]["substrate_at_start_c"].get<double>(),
+            fast["layers"][5]["substrate_at_start_c"].get<double>());
+
+  const std::string junit = read(out / "junit.xml");
+  EXPECT_NE(junit.find("<testsuites"), std::string::npos);
+  EXPECT_NE(junit.find("testcase classname=\"small-box.fast\" name=\"porosity &lt; 0.5\""), std::string::npos)
+      << junit;
+  EXPECT_NE(read(out / "report.html").find("<img src=\"fast/fusion.png\""), std::string::npos);
+  EXPECT_NE(read(out / "summary.md").find("| fast |"), std::string::npos);
+  // Nothing half-written is left behind.
+  for (const auto& e : std::filesystem::recursive_directory_iterator(out))
+    EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << e.path();
+}
+
+TEST(Run, UnknownVariantIsAnInputError) {
+  const Scenario sc = load_scenario_text(kSmall, "small.yaml");
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_test_bad";
+  o.variants = {"nope"};
+  EXPECT_THROW((void)run_scenario(sc, o), InputError);
+  EXPECT_THROW((void)slice_program(sc, "nope"), InputError);
+  EXPECT_NE(slice_program(sc, "slow").find("(LAYER 0 SECTION floor"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

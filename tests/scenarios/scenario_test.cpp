@@ -1,0 +1,163 @@
+#include "scenarios/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/units.hpp"
+#include "scenarios/run.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+// A small scenario; tests replace pieces of it to make it wrong in one place.
+const std::string kGood = R"(name: small
+units: {length: mm}
+machine: lsam-ph15
+material: cf-abs-20
+part:
+  open_box: {size: [200, 150, 40], wall: 40, floor: 10}
+sections:
+  - name: floor
+    z: [0, 10]
+    layer_height: 5
+    bead_width: 20
+    boundary: {passes: 2}
+    fill: {angle: 0 deg}
+  - name: walls
+    z: [10, 40]
+    layer_height: 5
+    bead_width: 20
+    boundary: {passes: 1}
+    fill: none
+variants:
+  - name: baseline
+  - name: thick
+    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}
+gates:
+  - porosity < 0.05
+)";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return s.replace(pos, from.size(), to);
+}
+
+InputError load_error(const std::string& text) {
+  try {
+    (void)load_scenario_text(text, "test.yaml");
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no InputError";
+  return InputError("none");
+}
+
+TEST(Scenario, DefaultScenarioIsEmbeddedAndValid) {
+  const Scenario sc = load_default_scenario();
+  EXPECT_EQ(sc.name, "lsam-open-box");
+  ASSERT_EQ(sc.variants.size(), 1u);
+  const Variant& v = sc.variants[0];
+  ASSERT_EQ(v.sections.size(), 2u);
+  EXPECT_EQ(v.sections[0].boundary.passes, 2);
+  EXPECT_EQ(v.sections[1].boundary.passes, 6);
+  EXPECT_NEAR(v.sections[0].bead_width_mm, 0.83 * 25.4, 1e-9);
+  EXPECT_NEAR(v.sections[0].layer_height_mm, 0.2 * 25.4, 1e-9);
+  EXPECT_TRUE(v.sections[0].fill.enabled);
+  EXPECT_FALSE(v.sections[1].fill.enabled);
+  EXPECT_EQ(v.machine.name, "lsam-ph15");
+  EXPECT_EQ(v.material.name, "cf-abs-20");
+  EXPECT_NEAR(v.material.density_kg_m3, 1140, 1e-9);
+  EXPECT_FALSE(sc.gates.empty());
+}
+
+TEST(Scenario, VariantsOverrideParameters) {
+  const Scenario sc = load_scenario_text(kGood, "test.yaml");
+  ASSERT_EQ(sc.variants.size(), 2u);
+  EXPECT_EQ(sc.variants[0].sections[1].boundary.passes, 1);
+  EXPECT_EQ(sc.variants[1].sections[1].boundary.passes, 2);
+  EXPECT_DOUBLE_EQ(sc.variants[0].machine.environment.bed_temp_c, 65);
+  EXPECT_DOUBLE_EQ(sc.variants[1].machine.environment.bed_temp_c, 90);
+  EXPECT_EQ(sc.variants[1].overrides.at("sections.walls.boundary.passes"), "2");
+  // Speed defaults to the extruder's nominal output through the bead: v = Q / A.
+  const Variant& v = sc.variants[0];
+  const double q = v.machine.extruder_output_kg_s / v.material.density_kg_m3 * 1e9;
+  EXPECT_NEAR(v.sections[0].print_speed_mm_s * (5 * 15 + kPi * 25 / 4), q, 1e-6);
+}
+
+TEST(Scenario, UnknownKeyNamesFileLineAndKey) {
+  const InputError e = load_error(replace(kGood, "boundary: {passes: 2}", "boundary: {pases: 2}"));
+  EXPECT_EQ(e.where().file, "test.yaml");
+  EXPECT_EQ(e.where().line, 12);
+  EXPECT_EQ(e.key(), "sections.floor.boundary.pases");
+  EXPECT_NE(std::string(e.what()).find("did you mean 'boundary.passes'"), std::string::npos) << e.what();
+  const InputError top = load_error(kGood + "colour: red\n");
+  EXPECT_EQ(top.where().line, 26);
+  EXPECT_EQ(top.key(), "colour");
+}
+
+TEST(Scenario, WrongUnitAndOutOfRange) {
+  const InputError unit =
+      load_error(replace(kGood, "layer_height: 5\n    bead_width: 20\n    boundary: {passes: 2}",
+                         "layer_height: 5 kg\n    bead_width: 20\n    boundary: {passes: 2}"));
+  EXPECT_EQ(unit.where().line, 10);
+  EXPECT_EQ(unit.key(), "sections.floor.layer_height");
+  EXPECT_NE(std::string(unit.what()).find("unknown unit 'kg' for a length"), std::string::npos)
+      << unit.what();
+  const InputError range =
+      load_error(replace(kGood, "boundary: {passes: 2}", "boundary: {passes: 2, overlap: 80 %}"));
+  EXPECT_EQ(range.key(), "sections.floor.boundary.overlap");
+  EXPECT_NE(std::string(range.what()).find("out of range"), std::string::npos) << range.what();
+  const InputError negative = load_error(replace(kGood, "boundary: {passes: 2}", "boundary: {passes: -1}"));
+  EXPECT_EQ(negative.key(), "sections.floor.boundary.passes");
+}
+
+TEST(Scenario, MissingRequiredKeysAndBadReferences) {
+  const InputError z = load_error(replace(kGood, "    z: [0, 10]\n", ""));
+  EXPECT_EQ(z.key(), "sections.floor.z");
+  EXPECT_NE(std::string(z.what()).find("required"), std::string::npos);
+  const InputError machine = load_error(replace(kGood, "machine: lsam-ph15", "machine: nope"));
+  EXPECT_EQ(machine.where().line, 3);
+  EXPECT_NE(std::string(machine.what()).find("lsam-ph15"), std::string::npos)
+      << "lists what exists: " << machine.what();
+  const InputError section = load_error(replace(kGood, "sections.walls.boundary", "sections.wall.boundary"));
+  EXPECT_NE(std::string(section.what()).find("no section named 'wall'"), std::string::npos);
+  EXPECT_EQ(section.where().line, 23);
+  const InputError overlap = load_error(replace(kGood, "z: [10, 40]", "z: [5, 40]"));
+  EXPECT_NE(std::string(overlap.what()).find("overlaps section 'floor'"), std::string::npos);
+  const InputError syntax = load_error("name: [unclosed\n");
+  EXPECT_EQ(syntax.where().line, 2);
+}
+
+TEST(Scenario, OverriddenValueErrorsPointAtTheVariant) {
+  const InputError e = load_error(
+      replace(kGood, "machine.environment.bed_temp: 90 C", "machine.environment.bed_temp: 90 furlongs"));
+  EXPECT_EQ(e.where().file, "test.yaml");
+  EXPECT_EQ(e.where().line, 23);
+  EXPECT_EQ(e.key(), "machine.environment.bed_temp");
+}
+
+TEST(Gates, ParseAndEvaluate) {
+  const InputError bad = load_error(replace(kGood, "porosity < 0.05", "prosity < 0.05"));
+  EXPECT_EQ(bad.where().line, 25);
+  EXPECT_NE(std::string(bad.what()).find("unknown metric 'prosity'"), std::string::npos);
+  EXPECT_THROW((void)load_scenario_text(replace(kGood, "porosity < 0.05", "porosity 0.05"), "t"), InputError);
+
+  Scenario sc = load_scenario_text(
+      replace(kGood, "  - porosity < 0.05\n",
+              "  - porosity < 0.05\n  - min_stock_mm >= 3\n  - interfaces.too_cold_fraction <= 10 %\n"),
+      "t");
+  Metrics m;
+  m.porosity = 0.01;
+  m.too_cold_fraction = 0.2;
+  const auto r = evaluate_gates(sc.gates, m);
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_TRUE(r[0].passed);
+  EXPECT_FALSE(r[1].passed);  // not measured: fails, and says so
+  EXPECT_NE(r[1].message.find("not measured"), std::string::npos);
+  EXPECT_FALSE(r[2].passed);
+  m.too_cold_fraction = 0.1;
+  EXPECT_TRUE(evaluate_gates(sc.gates, m)[2].passed);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

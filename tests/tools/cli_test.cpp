@@ -1,0 +1,104 @@
+// The beadtwin program as a user runs it: exit codes and messages (DESIGN §5).
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(BEADTWIN_BINARY) + " " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  std::size_t n = 0;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path write(const std::string& name, const std::string& text) {
+  const auto p = std::filesystem::temp_directory_path() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+TEST(Cli, HelpDocumentsTheCommands) {
+  const Result top = run("--help");
+  EXPECT_EQ(top.code, 0);
+  EXPECT_NE(top.output.find("run"), std::string::npos);
+  EXPECT_NE(top.output.find("Exit codes"), std::string::npos);
+  const Result sub = run("run --help");
+  EXPECT_EQ(sub.code, 0);
+  EXPECT_NE(sub.output.find("--variant"), std::string::npos);
+  EXPECT_NE(sub.output.find("--out"), std::string::npos);
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(run("").code, 2);
+  EXPECT_EQ(run("frobnicate").code, 2);
+  EXPECT_EQ(run("run --no-such-option").code, 2);
+}
+
+TEST(Cli, UnknownScenarioKeyExitsWithTwoAndNamesTheLine) {
+  const auto p =
+      write("bt_cli_unknown.yaml",
+            "name: x\nmachine: lsam-ph15\nmaterial: cf-abs-20\npart:\n  box: {size: [100, 100, 10]}\n"
+            "sections:\n  - {name: a, z: [0, 10], boundary: {passes: 1}}\nsurprise: 1\n");
+  const auto out = std::filesystem::temp_directory_path() / "bt_cli_unknown_out";
+  std::filesystem::remove_all(out);
+  const Result r = run("run " + p.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find(p.string() + ":8:1: surprise: unknown key"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "report.json")) << "no report for bad input";
+}
+
+TEST(Cli, MissingScenarioFileExitsWithTwo) {
+  const Result r = run("run /nonexistent/scenario.yaml -o /tmp/bt_cli_missing");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("no such scenario file"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RunPrintsTheReportAndGatesSetTheExitCode) {
+  const std::string base =
+      "name: tiny\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+      "part:\n  box: {size: [120, 80, 15]}\n"
+      "output: {voxel_size: 2.5 mm, image_width: 120, image_height: 80}\n"
+      "sections:\n  - {name: a, z: [0, 15], layer_height: 5, bead_width: 20, boundary: {passes: 1}, fill: "
+      "{angle: 0 deg}}\n";
+  const auto out = std::filesystem::temp_directory_path() / "bt_cli_run";
+  std::filesystem::remove_all(out);
+  const Result pass = run("run " + write("bt_cli_pass.yaml", base + "gates:\n  - layers == 3\n").string() +
+                          " -q -o " + out.string());
+  EXPECT_EQ(pass.code, 0) << pass.output;
+  EXPECT_NE(pass.output.find("report: " + (out / "report.html").string()), std::string::npos) << pass.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "report.json"));
+  const Result fail = run("run " + write("bt_cli_fail.yaml", base + "gates:\n  - layers > 3\n").string() +
+                          " -q -o " + out.string());
+  EXPECT_EQ(fail.code, 1) << fail.output;
+  EXPECT_NE(fail.output.find("FAILED"), std::string::npos);
+}
+
+TEST(Cli, SliceWritesTheProgram) {
+  const auto out = std::filesystem::temp_directory_path() / "bt_cli_slice.nc";
+  std::filesystem::remove(out);
+  const Result r = run("slice -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  std::ifstream f(out);
+  std::string first;
+  std::getline(f, first);
+  EXPECT_EQ(first, "%");
+}
+
+}  // namespace

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Quick start, second command: install what is missing, build (Release, warnings as errors) and run the
+# whole test suite under ctest.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${BEADTWIN_BUILD_DIR:-$root/build}"
+
+bash "$root/tools/setup.sh"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=ON -DBEADTWIN_WERROR=ON >/dev/null
+cmake --build "$build"
+cd "$build"
+ctest --output-on-failure -j "$(nproc)"

@@ -65,9 +65,9 @@ double perimeter_mm(const Polygons& polygons) {
 }
 
 Polygons offset(const Polygons& polygons, double delta_mm) {
-  // Arc tolerance of 5 µm keeps round joins smooth at LSAM scale without a flood of points.
+  // Miter limit 2: corners down to about 60 degrees stay sharp; the arc tolerance (5 µm) applies to curves.
   ClipperLib::ClipperOffset co(2.0, 0.005 * kScale);
-  co.AddPaths(to_paths(polygons), ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  co.AddPaths(to_paths(polygons), ClipperLib::jtMiter, ClipperLib::etClosedPolygon);
   ClipperLib::Paths out;
   co.Execute(out, delta_mm * kScale);
   return to_polygons(out);

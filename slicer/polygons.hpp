@@ -16,7 +16,9 @@ using Polyline = std::vector<Eigen::Vector2d>;  // open
 double area_mm2(const Polygons& polygons);
 // Total length of all contours, mm.
 double perimeter_mm(const Polygons& polygons);
-// Offsets all contours by `delta_mm` (negative shrinks the region), with round joins.
+// Offsets all contours by `delta_mm` (negative shrinks the region). Corners stay sharp (mitred up to twice
+// the offset distance, squared off beyond), so passes offset from a hole meet passes offset from the outline
+// at the corners instead of leaving a rounded void between them.
 Polygons offset(const Polygons& polygons, double delta_mm);
 // Cleans up a soup of possibly overlapping or inconsistently oriented loops into a proper region
 // (non-zero winding of each loop taken in its own orientation, then union).

@@ -7,7 +7,11 @@ build="${BEADTWIN_BUILD_DIR:-$root/build}"
 out="${BEADTWIN_OUT_DIR:-$root/beadtwin-out}"
 
 bash "$root/tools/setup.sh"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=OFF >/dev/null
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=OFF >"$build/configure.log" 2>&1 || {
+  cat "$build/configure.log"
+  exit 1
+}
 cmake --build "$build" --target beadtwin
 status=0
 "$build/tools/beadtwin" run -o "$out" || status=$?

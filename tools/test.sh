@@ -6,7 +6,11 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BEADTWIN_BUILD_DIR:-$root/build}"
 
 bash "$root/tools/setup.sh"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=ON -DBEADTWIN_WERROR=ON >/dev/null
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=ON -DBEADTWIN_WERROR=ON >"$build/configure.log" 2>&1 || {
+  cat "$build/configure.log"
+  exit 1
+}
 cmake --build "$build"
 cd "$build"
 ctest --output-on-failure -j "$(nproc)"

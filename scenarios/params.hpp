@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "core/units.hpp"
@@ -23,6 +24,7 @@ struct ParamSpec {
   bool min_exclusive = false;  // the value must be strictly above min
   std::string_view meaning;
   std::string_view source;  // patent paragraph, paper, or "estimate"
+  bool derived = false;     // absent means "derived from other parameters" (the meaning says how)
 };
 
 // The blocks of a scenario and of the machine and material files.
@@ -31,5 +33,12 @@ std::span<const ParamSpec> machine_params();
 std::span<const ParamSpec> material_params();
 std::span<const ParamSpec> output_params();
 std::span<const ParamSpec> thermal_params();
+
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+
+// Every parameter table as Markdown: what `beadtwin params` prints and docs/parameters.md holds.
+std::string params_markdown();
 
 }  // namespace beadtwin::scenarios

@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "scenarios/params.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 
@@ -64,6 +65,13 @@ int cmd_slice(const std::string& scenario_path, const std::string& variant, cons
   return kExitPass;
 }
 
+// The parameter tables, as Markdown (docs/parameters.md is this output).
+int cmd_params() {
+  const std::string text = beadtwin::scenarios::params_markdown();
+  std::fwrite(text.data(), 1, text.size(), stdout);
+  return kExitPass;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,6 +103,9 @@ int main(int argc, char** argv) {
   slice->add_option("-o,--out", program_out, "Print program file to write, or - for standard output")
       ->required();
 
+  CLI::App* params = app.add_subcommand(
+      "params", "List every scenario parameter (key, type, default, range, meaning, source) as Markdown.");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -111,6 +122,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return cmd_run(scenario_path, out_dir, variants, quiet);
     if (*slice) return cmd_slice(scenario_path, variant, program_out);
+    if (*params) return cmd_params();
   } catch (const beadtwin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;

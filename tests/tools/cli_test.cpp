@@ -102,3 +102,19 @@ TEST(Cli, SliceWritesTheProgram) {
 }
 
 }  // namespace
+
+namespace {
+
+// docs/parameters.md is generated from the parameter table; it must be what the program prints now.
+TEST(Cli, ParametersDocIsCurrent) {
+  const Result r = run("params");
+  ASSERT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("| `boundary.passes` | integer | `1` |"), std::string::npos)
+      << r.output.substr(0, 2000);
+  std::ifstream f(std::string(BEADTWIN_SOURCE_DIR) + "/docs/parameters.md");
+  ASSERT_TRUE(f) << "docs/parameters.md is missing";
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(doc, r.output) << "regenerate it: beadtwin params > docs/parameters.md";
+}
+
+}  // namespace

@@ -266,6 +266,15 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
            fmt::format("needs {:.0f} mm3/s of material but the extruder gives at most {:.0f} mm3/s",
                        s.print_speed_mm_s * area, max_flow_mm3_s));
   s.travel_speed_mm_s = r.optional_quantity(spec(t, "travel_speed")).value_or(machine.motion.max_travel_mm_s);
+  if (YAML::Node sp = r.take("start_point"); sp.IsDefined()) {
+    if (!sp.IsSequence() || sp.size() != 2) r.fail(sp, "start_point", "expected two lengths [x, y]");
+    s.start_point_mm = {r.parse(sp[0], Dimension::kLength, "start_point"),
+                        r.parse(sp[1], Dimension::kLength, "start_point")};
+  }
+  s.seam_offset_mm = r.quantity(spec(t, "seam_offset"));
+  s.boundary.reverse_alternate = r.boolean(spec(t, "boundary.reverse_alternate"));
+  s.boundary.lead_in_mm = r.quantity(spec(t, "boundary.lead_in"));
+  s.boundary.lead_out_mm = r.quantity(spec(t, "boundary.lead_out"));
   s.boundary.passes = r.integer(spec(t, "boundary.passes"));
   s.boundary.overlap = r.quantity(spec(t, "boundary.overlap"));
   s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));

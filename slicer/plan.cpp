@@ -91,14 +91,18 @@ class LayerBuilder {
     tp_.moves.push_back(m);
   }
 
-  // Prints along `points` (closed adds the segment back to the start), melt on before and off after.
-  void print(const std::vector<Eigen::Vector2d>& points, bool closed, Feature feature, int pass) {
-    if (points.size() < 2) return;
-    travel_to(points.front());
+  // A closed boundary pass with its lead-in (a straight approach along the first segment's line, ending at
+  // the start) and lead-out (a straight run-off along the last segment's direction), both printed.
+  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm) {
+    if (loop.size() < 2) return;
+    const Eigen::Vector2d first_dir = (loop[1] - loop[0]).normalized();
+    const Eigen::Vector2d last_dir = (loop[0] - loop.back()).normalized();
+    travel_to(loop.front() - lead_in_mm * first_dir);
     event(ExtruderEvent::kMeltOn);
-    const std::size_t n = points.size();
-    const std::size_t segments = closed ? n : n - 1;
-    for (std::size_t i = 0; i < segments; ++i) print_segment(points[(i + 1) % n], feature, pass);
+    if (lead_in_mm > 0) print_segment(loop.front(), Feature::kLeadIn, pass);
+    for (std::size_t i = 1; i <= loop.size(); ++i)
+      print_segment(loop[i % loop.size()], Feature::kBoundary, pass);
+    if (lead_out_mm > 0) print_segment(loop.front() + lead_out_mm * last_dir, Feature::kLeadOut, pass);
     event(ExtruderEvent::kMeltOff);
   }
 
@@ -138,19 +142,45 @@ class LayerBuilder {
   double area_ = 0.0;
 };
 
-// Rotates a closed contour so it starts at the vertex nearest `near` (the seam follows the head).
-Polygon start_near(Polygon poly, const Eigen::Vector2d& near) {
-  std::size_t best = 0;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < poly.size(); ++i) {
-    const double d = (poly[i] - near).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best = i;
-    }
+// Rotates a closed contour so it starts at the point nearest `near`, moved `advance_mm` further along the
+// contour in its own direction (the seam avoidance offset); the start becomes a vertex if it is not one.
+Polygon start_at(const Polygon& poly, const Eigen::Vector2d& near, double advance_mm) {
+  const std::size_t n = poly.size();
+  // Nearest point on the contour, as (segment, parameter).
+  std::size_t seg = 0;
+  double t_best = 0.0, d_best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d a = poly[i], d = poly[(i + 1) % n] - a;
+    const double len2 = d.squaredNorm();
+    const double t = len2 > 0 ? std::clamp((near - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+    const double dist = (a + t * d - near).squaredNorm();
+    if (dist < d_best) d_best = dist, seg = i, t_best = t;
   }
-  std::rotate(poly.begin(), poly.begin() + static_cast<std::ptrdiff_t>(best), poly.end());
-  return poly;
+  // Walk `advance_mm` along the contour (modulo its length).
+  const double perimeter = perimeter_mm({poly});
+  double left = perimeter > 0 ? std::fmod(std::max(0.0, advance_mm), perimeter) : 0.0;
+  double t = t_best;
+  for (std::size_t guard = 0; guard <= n; ++guard) {
+    const double len = (poly[(seg + 1) % n] - poly[seg]).norm();
+    const double room = (1.0 - t) * len;
+    if (left <= room || len == 0.0) {
+      if (len > 0) t += left / len;
+      break;
+    }
+    left -= room;
+    seg = (seg + 1) % n;
+    t = 0.0;
+  }
+  const Eigen::Vector2d start = poly[seg] + t * (poly[(seg + 1) % n] - poly[seg]);
+  Polygon out;
+  out.reserve(n + 1);
+  out.push_back(start);
+  for (std::size_t k = 1; k <= n; ++k) {
+    const Eigen::Vector2d& p = poly[(seg + k) % n];
+    if ((p - out.back()).squaredNorm() > 1e-12 && (k < n || (p - start).squaredNorm() > 1e-12))
+      out.push_back(p);
+  }
+  return out;
 }
 
 void plan_layer(const TriangleMesh& mesh, const SectionParams& s, int section, int layer_in_section,
@@ -184,10 +214,15 @@ void plan_layer(const TriangleMesh& mesh, const SectionParams& s, int section, i
     passes.push_back(std::move(loops));
   }
   const int laid = static_cast<int>(passes.size());
+  const bool reversed = s.boundary.reverse_alternate && layer_in_section % 2 == 1;
+  const double advance = layer_in_section * s.seam_offset_mm;
   for (int i = 0; i < laid; ++i) {
     const int k = s.boundary.inside_out ? laid - 1 - i : i;
-    for (const Polygon& loop : passes[static_cast<std::size_t>(k)])
-      b.print(start_near(loop, b.head()), true, Feature::kBoundary, k);
+    for (Polygon loop : passes[static_cast<std::size_t>(k)]) {
+      if (reversed) std::reverse(loop.begin(), loop.end());
+      b.print_pass(start_at(loop, s.start_point_mm, advance), k, s.boundary.lead_in_mm,
+                   s.boundary.lead_out_mm);
+    }
   }
 
   if (!s.fill.enabled) return;

@@ -14,9 +14,13 @@
 namespace beadtwin::slicer {
 
 struct BoundaryParams {
-  int passes = 1;           // beads laid along each contour, outermost first (patent (49))
-  double overlap = 0.10;    // overlap between neighbouring passes, fraction of the bead width
-  bool inside_out = false;  // lay the innermost pass first (patent (49))
+  int passes = 1;                  // beads laid along each contour, outermost first (patent (49))
+  double overlap = 0.10;           // overlap between neighbouring passes, fraction of the bead width
+  bool inside_out = false;         // lay the innermost pass first (patent (49))
+  bool reverse_alternate = false;  // run every other layer's passes the opposite way round (patent (49))
+  double lead_in_mm = 0.0;         // bead laid on a straight approach before each pass starts (patent (50))
+  double lead_out_mm =
+      0.0;  // bead laid on a straight run-off after each pass ends, tangent to it (patent (50))
 };
 
 struct FillParams {
@@ -34,6 +38,10 @@ struct SectionParams {
   double bead_width_mm = 21.08;
   double print_speed_mm_s = 100.0;
   double travel_speed_mm_s = 300.0;
+  // Closed passes start at the contour point nearest this point (patent (43) start point location)...
+  Eigen::Vector2d start_point_mm = Eigen::Vector2d::Zero();
+  // ...moved along the contour by this much more on every layer, so seams do not stack (patent (43)).
+  double seam_offset_mm = 0.0;
   BoundaryParams boundary;
   FillParams fill;
 };

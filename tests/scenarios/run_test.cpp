@@ -74,7 +74,8 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_EQ(v["layers"][5]["section"], "walls");
     EXPECT_EQ(v["gates"].size(), 2u);
     ASSERT_EQ(v["images"].size(), 2u);  // isometric and top views
-    for (const auto& img : v["images"]) EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
+    for (const auto& img : v["images"])
+      EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
     EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
     EXPECT_TRUE(std::filesystem::exists(out / v["deposit"].get<std::string>()));
   }

@@ -161,3 +161,29 @@ TEST(Gates, ParseAndEvaluate) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+TEST(Scenario, BoundaryStartAndSeamParameters) {
+  const std::string text =
+      replace(kGood, "    boundary: {passes: 1}\n",
+              "    boundary: {passes: 1, reverse_alternate: true, lead_in: 1 in, lead_out: 30}\n"
+              "    start_point: [100, 2 in]\n    seam_offset: 25\n");
+  const Scenario sc = load_scenario_text(text, "t.yaml");
+  const auto& walls = sc.variants[0].sections[1];
+  EXPECT_TRUE(walls.boundary.reverse_alternate);
+  EXPECT_DOUBLE_EQ(walls.boundary.lead_in_mm, 25.4);
+  EXPECT_DOUBLE_EQ(walls.boundary.lead_out_mm, 30);
+  EXPECT_DOUBLE_EQ(walls.start_point_mm.x(), 100);
+  EXPECT_DOUBLE_EQ(walls.start_point_mm.y(), 50.8);
+  EXPECT_DOUBLE_EQ(walls.seam_offset_mm, 25);
+  const auto& floor = sc.variants[0].sections[0];
+  EXPECT_FALSE(floor.boundary.reverse_alternate);
+  EXPECT_DOUBLE_EQ(floor.seam_offset_mm, 0);
+  const InputError e = load_error(replace(text, "start_point: [100, 2 in]", "start_point: [100]"));
+  EXPECT_EQ(e.key(), "sections.walls.start_point");
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

@@ -190,3 +190,99 @@ TEST(Gcode, ProgramNamesLayersSectionsAndFeatures) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// The start of each layer's outer pass on a 200 mm square (pass centreline: a 180 mm square starting at
+// (10, 10)), as arclength along the pass from its corner nearest the origin.
+std::vector<Eigen::Vector3d> pass_starts(const Toolpath& tp) {
+  std::vector<Eigen::Vector3d> starts;
+  int layer = -1;
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kBoundary && m.pass == 0 && m.layer != layer) {
+      layer = m.layer;
+      starts.push_back(m.start);
+    }
+  return starts;
+}
+
+TEST(Plan, SeamsAdvanceByTheSeamAvoidanceOffset) {
+  SectionParams s = section(0, 25, 5, 20, 1, false);
+  s.seam_offset_mm = 50;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 25}), {s}, {});
+  const auto starts = pass_starts(tp);
+  ASSERT_EQ(starts.size(), 5u);
+  // The pass runs counter-clockwise from (10, 10): +x first. Arclength 50 L along a 720 mm loop.
+  const Eigen::Vector2d expected[5] = {{10, 10}, {60, 10}, {110, 10}, {160, 10}, {190, 30}};
+  for (std::size_t l = 0; l < 5; ++l) {
+    EXPECT_NEAR(starts[l].x(), expected[l].x(), 1e-6) << "layer " << l;
+    EXPECT_NEAR(starts[l].y(), expected[l].y(), 1e-6) << "layer " << l;
+  }
+  // Without the offset every layer starts at the same place, nearest the start point.
+  s.seam_offset_mm = 0;
+  s.start_point_mm = {200, 120};
+  for (const auto& p : pass_starts(plan_toolpath(make_box({200, 200, 25}), {s}, {}))) {
+    EXPECT_NEAR(p.x(), 190, 1e-6);
+    EXPECT_NEAR(p.y(), 120, 1e-6);
+  }
+}
+
+// Signed area swept by the outer pass of each layer: positive counter-clockwise.
+std::vector<double> pass_orientation(const Toolpath& tp) {
+  std::vector<double> area(tp.layers.size(), 0.0);
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kBoundary && m.pass == 0)
+      area[static_cast<std::size_t>(m.layer)] += m.start.x() * m.end.y() - m.end.x() * m.start.y();
+  return area;
+}
+
+TEST(Plan, AlternatingLayersReverseDirection) {
+  SectionParams s = section(0, 20, 5, 20, 2, false);
+  const auto same = pass_orientation(plan_toolpath(make_box({200, 100, 20}), {s}, {}));
+  for (double a : same) EXPECT_GT(a, 0);
+  s.boundary.reverse_alternate = true;
+  const auto alt = pass_orientation(plan_toolpath(make_box({200, 100, 20}), {s}, {}));
+  ASSERT_EQ(alt.size(), 4u);
+  for (std::size_t l = 0; l < alt.size(); ++l) EXPECT_EQ(alt[l] > 0, l % 2 == 0) << "layer " << l;
+}
+
+TEST(Plan, InsideOutLaysTheInnermostPassFirst) {
+  SectionParams s = section(0, 5, 5, 20, 3, false);
+  s.boundary.inside_out = true;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 5}), {s}, {});
+  std::vector<int> order;
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kBoundary && (order.empty() || order.back() != m.pass)) order.push_back(m.pass);
+  EXPECT_EQ(order, (std::vector<int>{2, 1, 0}));
+}
+
+TEST(Plan, LeadInAndLeadOutHaveTheirLengths) {
+  SectionParams s = section(0, 10, 5, 20, 2, false);
+  s.boundary.lead_in_mm = 30;
+  s.boundary.lead_out_mm = 45;
+  const Toolpath tp = plan_toolpath(make_box({300, 200, 10}), {s}, {});
+  int lead_ins = 0, lead_outs = 0;
+  for (std::size_t i = 0; i < tp.moves.size(); ++i) {
+    const Move& m = tp.moves[i];
+    if (m.feature == Feature::kLeadIn) {
+      ++lead_ins;
+      EXPECT_NEAR(m.length_mm(), 30, 1e-6);
+      EXPECT_GT(m.volume_mm3, 0);
+      EXPECT_EQ(tp.moves[i + 1].feature, Feature::kBoundary);  // it leads into the pass
+      EXPECT_NEAR((tp.moves[i + 1].start - m.end).norm(), 0, 1e-9);
+    }
+    if (m.feature == Feature::kLeadOut) {
+      ++lead_outs;
+      EXPECT_NEAR(m.length_mm(), 45, 1e-6);
+      // Tangent to the pass's last segment.
+      const Move& last = tp.moves[i - 1];
+      EXPECT_NEAR((m.end - m.start).normalized().dot((last.end - last.start).normalized()), 1.0, 1e-9);
+    }
+  }
+  EXPECT_EQ(lead_ins, 4);  // two passes on each of two layers
+  EXPECT_EQ(lead_outs, 4);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -37,3 +37,9 @@ find_package(SUNDIALS 6 REQUIRED CONFIG)
 # Clipper (polyclipping) through pkg-config.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
+
+# assimp reads the part meshes (STL, OBJ, 3MF, AMF, PLY...). Debian's exported target also passes draco,
+# minizip, zlib and a static librt stub on to every consumer; libassimp.so records what it needs itself,
+# so those are dropped rather than linked into each program.
+find_package(assimp 5 CONFIG REQUIRED)
+set_target_properties(assimp::assimp PROPERTIES INTERFACE_LINK_LIBRARIES "")

@@ -1,18 +1,22 @@
 #include "slicer/mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <sstream>
+#include <set>
+#include <system_error>
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <fmt/format.h>
 #include <Eigen/Geometry>
+#include <assimp/Importer.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "slicer/mesh_repair.hpp"
 
 namespace beadtwin::slicer {
 
@@ -38,113 +42,185 @@ double TriangleMesh::volume_mm3() const {
 
 namespace {
 
-// Welds equal coordinates so triangles share vertices (STL stores each triangle's corners separately).
-class Welder {
+constexpr double kMaxPartSizeMm = 100'000.0;  // 100 m: anything larger is a units mistake
+
+// Names assimp's loaders give nodes and meshes when the file names none.
+bool is_placeholder_name(std::string_view name) {
+  return name.empty() || name.front() == '<' || name == "defaultobject";
+}
+
+Eigen::Affine3d to_eigen(const aiMatrix4x4& m) {
+  Eigen::Matrix4d e;
+  for (unsigned r = 0; r < 4; ++r)
+    for (unsigned c = 0; c < 4; ++c) e(r, c) = static_cast<double>(m[r][c]);
+  return Eigen::Affine3d(e);
+}
+
+// Gathers an assimp scene's triangles into one mesh with a body per node that holds meshes, node transforms
+// baked in and coordinates scaled to mm. Nothing is repaired here.
+class SceneReader {
  public:
-  explicit Welder(TriangleMesh& mesh) : mesh_(mesh) {}
-  int add(const Eigen::Vector3d& p) {
-    const std::array<double, 3> key{p.x(), p.y(), p.z()};
-    auto [it, inserted] = index_.try_emplace(key, static_cast<int>(mesh_.vertices.size()));
-    if (inserted) mesh_.vertices.push_back(p);
-    return it->second;
+  SceneReader(const aiScene& scene, std::string file, double scale)
+      : scene_(scene), file_(std::move(file)), scale_(scale) {}
+
+  void read_node(const aiNode& node, const Eigen::Affine3d& parent) {
+    const Eigen::Affine3d transform = parent * to_eigen(node.mTransformation);
+    const int body = static_cast<int>(mesh_.body_names.size());
+    const std::size_t first_triangle = mesh_.triangles.size();
+    std::string name = node.mName.C_Str();
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      const aiMesh& m = mesh(node.mMeshes[i]);
+      if (is_placeholder_name(name)) name = m.mName.C_Str();
+      read_mesh_faces(m, transform, body);
+    }
+    // A node whose meshes hold no triangles (only points and lines, or nothing) is no body.
+    if (mesh_.triangles.size() > first_triangle)
+      mesh_.body_names.push_back(is_placeholder_name(name) ? std::string() : name);
+    for (unsigned i = 0; i < node.mNumChildren; ++i) read_node(*node.mChildren[i], transform);
+  }
+
+  int ignored_primitives() const { return ignored_; }
+
+  // The gathered mesh, its unnamed bodies named after the file and every name made unique.
+  TriangleMesh take(const std::string& stem) {
+    std::set<std::string> seen;
+    for (std::size_t b = 0; b < mesh_.body_names.size(); ++b) {
+      std::string& name = mesh_.body_names[b];
+      if (name.empty()) name = mesh_.body_names.size() == 1 ? stem : fmt::format("{} {}", stem, b + 1);
+      const std::string base = name;
+      for (int k = 2; !seen.insert(name).second; ++k) name = fmt::format("{} #{}", base, k);
+    }
+    return std::move(mesh_);
   }
 
  private:
-  TriangleMesh& mesh_;
-  std::map<std::array<double, 3>, int> index_;
+  const aiMesh& mesh(unsigned index) const {
+    if (index >= scene_.mNumMeshes || !scene_.mMeshes[index])
+      throw InputError({file_, 0, 0}, {}, fmt::format("the file refers to mesh {} it does not hold", index));
+    return *scene_.mMeshes[index];
+  }
+
+  void read_mesh_faces(const aiMesh& m, const Eigen::Affine3d& transform, int body) {
+    const int base = static_cast<int>(mesh_.vertices.size());
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      const aiVector3D& p = m.mVertices[v];
+      mesh_.vertices.push_back(
+          transform *
+          Eigen::Vector3d(static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)) *
+          scale_);
+    }
+    used_.assign(m.mNumVertices, false);
+    for (unsigned f = 0; f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      if (face.mNumIndices != 3) {  // points and lines (polygons were triangulated)
+        ++ignored_;
+        continue;
+      }
+      std::array<int, 3> t{};
+      for (unsigned c = 0; c < 3; ++c) {
+        const unsigned v = face.mIndices[c];
+        if (v >= m.mNumVertices)
+          throw InputError(
+              {file_, 0, 0}, {},
+              fmt::format("a face of mesh '{}' refers to vertex {}, but the mesh has {} vertices",
+                          m.mName.C_Str(), v, m.mNumVertices));
+        if (!used_[v]) check_finite(m, v, mesh_.vertices[static_cast<std::size_t>(base) + v]);
+        used_[v] = true;
+        t[c] = base + static_cast<int>(v);
+      }
+      mesh_.triangles.push_back(t);
+      mesh_.body.push_back(body);
+    }
+  }
+
+  // Checks the coordinates as the file gives them (a transform would spread a NaN to all three) and as
+  // placed and scaled.
+  void check_finite(const aiMesh& m, unsigned v, const Eigen::Vector3d& placed) const {
+    const aiVector3D& p = m.mVertices[v];
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && placed.allFinite()) return;
+    const std::string where =
+        is_placeholder_name(m.mName.C_Str()) ? "" : fmt::format(" in mesh '{}'", m.mName.C_Str());
+    throw InputError({file_, 0, 0}, {},
+                     fmt::format("a vertex{} has a coordinate that is not a finite number: ({}, {}, {})",
+                                 where, p.x, p.y, p.z));
+  }
+
+  const aiScene& scene_;
+  std::string file_;
+  double scale_;
+  TriangleMesh mesh_;
+  std::vector<bool> used_;  // per vertex of the mesh being read: checked already
+  int ignored_ = 0;
 };
 
-void add_triangle(TriangleMesh& mesh, Welder& welder, const std::array<Eigen::Vector3d, 3>& corners,
-                  const std::string& file, int line) {
-  for (const auto& c : corners)
-    if (!c.allFinite())
-      throw InputError({file, line, 0}, {}, "triangle with a coordinate that is not a finite number");
-  const std::array<int, 3> t{welder.add(corners[0]), welder.add(corners[1]), welder.add(corners[2])};
-  if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return;  // degenerate: contributes nothing to a slice
-  mesh.triangles.push_back(t);
+// assimp's message, cut short: some quote the rest of the file.
+std::string assimp_message(const Assimp::Importer& importer) {
+  constexpr std::size_t kMaxChars = 200;
+  std::string message = importer.GetErrorString();
+  if (message.size() > kMaxChars) message = message.substr(0, kMaxChars) + "...";
+  return message;
 }
 
-TriangleMesh read_binary_stl(const std::string& bytes, const std::string& file, double scale) {
-  std::uint32_t count = 0;
-  std::memcpy(&count, bytes.data() + 80, 4);
-  const std::size_t expected = 84 + static_cast<std::size_t>(count) * 50;
-  if (bytes.size() < expected)
+// The file's triangles as assimp reads them, polygons triangulated, before any repair.
+TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, MeshReport& report) {
+  const std::string file = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError({file, 0, 0}, {},
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such mesh file");
+  if (std::filesystem::file_size(path, ec) == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
+  // Only triangulation: joining vertices, dropping degenerates and fixing normals are done (and counted) by
+  // repair_mesh, which assimp's own post-processing steps would do silently.
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(file, aiProcess_Triangulate);
+  if (!scene || !scene->mRootNode)
+    throw InputError({file, 0, 0}, {}, fmt::format("cannot read the mesh: {}", assimp_message(importer)));
+  SceneReader reader(*scene, file, unit_scale);
+  reader.read_node(*scene->mRootNode, Eigen::Affine3d::Identity());
+  report.ignored_primitives = reader.ignored_primitives();
+  return reader.take(path.stem().string());
+}
+
+void check_size(const TriangleMesh& mesh, const std::string& file) {
+  const Eigen::Vector3d size = mesh.max_corner() - mesh.min_corner();
+  if (size.maxCoeff() > kMaxPartSizeMm)
     throw InputError(
         {file, 0, 0}, {},
-        fmt::format("binary STL says it holds {} triangles ({} bytes) but the file has only {} bytes", count,
-                    expected, bytes.size()));
-  TriangleMesh mesh;
-  Welder welder(mesh);
-  mesh.triangles.reserve(count);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const char* rec = bytes.data() + 84 + static_cast<std::size_t>(i) * 50;
-    std::array<Eigen::Vector3d, 3> corners;
-    for (int c = 0; c < 3; ++c) {
-      float xyz[3];
-      std::memcpy(xyz, rec + 12 + c * 12, 12);
-      corners[static_cast<std::size_t>(c)] = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]) * scale;
-    }
-    add_triangle(mesh, welder, corners, file, 0);
-  }
-  return mesh;
-}
-
-TriangleMesh read_ascii_stl(const std::string& text, const std::string& file, double scale) {
-  TriangleMesh mesh;
-  Welder welder(mesh);
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  std::array<Eigen::Vector3d, 3> corners;
-  int corner = 0;
-  int facet_line = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    std::istringstream words(line);
-    std::string word;
-    if (!(words >> word)) continue;
-    if (word == "facet") {
-      corner = 0;
-      facet_line = line_no;
-    } else if (word == "vertex") {
-      double x = 0, y = 0, z = 0;
-      if (!(words >> x >> y >> z))
-        throw InputError({file, line_no, 0}, {}, "expected 'vertex x y z' with three numbers");
-      if (corner >= 3) throw InputError({file, line_no, 0}, {}, "a facet has more than three vertices");
-      corners[static_cast<std::size_t>(corner++)] = Eigen::Vector3d(x, y, z) * scale;
-    } else if (word == "endfacet") {
-      if (corner != 3)
-        throw InputError({file, facet_line, 0}, {},
-                         fmt::format("a facet has {} vertices, expected 3", corner));
-      add_triangle(mesh, welder, corners, file, facet_line);
-    } else if (word != "solid" && word != "endsolid" && word != "outer" && word != "endloop") {
-      throw InputError({file, line_no, 0}, {}, fmt::format("unexpected '{}' in an ASCII STL", word));
-    }
-  }
-  return mesh;
+        fmt::format("the part is {:.4g} x {:.4g} x {:.4g} m, larger than 100 m; are the mesh units right?",
+                    size.x() / 1000, size.y() / 1000, size.z() / 1000));
 }
 
 }  // namespace
 
-TriangleMesh read_stl(const std::filesystem::path& path, double unit_scale) {
+TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale, MeshReport* report) {
   const std::string file = path.string();
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError({file, 0, 0}, {}, "cannot open the mesh file");
-  const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  if (bytes.size() < 15) throw InputError({file, 0, 0}, {}, "file is too short to be an STL");
-  // An ASCII STL starts with "solid" and has "facet" soon; some binary files start with "solid" too,
-  // so the size check of the binary layout decides.
-  bool binary = true;
-  if (bytes.compare(0, 5, "solid") == 0) {
-    std::uint32_t count = 0;
-    if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, 4);
-    binary = bytes.size() >= 84 && bytes.size() == 84 + static_cast<std::size_t>(count) * 50;
-  }
-  if (binary && bytes.size() < 84) throw InputError({file, 0, 0}, {}, "file is too short to be a binary STL");
-  TriangleMesh mesh =
-      binary ? read_binary_stl(bytes, file, unit_scale) : read_ascii_stl(bytes, file, unit_scale);
-  if (mesh.triangles.empty()) throw InputError({file, 0, 0}, {}, "the mesh has no triangles");
+  if (!(unit_scale > 0) || !std::isfinite(unit_scale))
+    throw InputError({file, 0, 0}, {},
+                     fmt::format("the mesh unit scale must be positive, got {}", unit_scale));
+  MeshReport local;
+  MeshReport& r = report ? *report : local;
+  r = MeshReport{};
+  const TriangleMesh raw = import_scene(path, unit_scale, r);
+  if (raw.triangles.empty())
+    throw InputError({file, 0, 0}, {},
+                     r.ignored_primitives > 0 ? "the file holds points or lines but no triangles"
+                                              : "the file holds no triangles");
+  check_size(raw, file);
+  TriangleMesh mesh = repair_mesh(raw, r);
+  if (mesh.triangles.empty())
+    throw InputError({file, 0, 0}, {},
+                     fmt::format("no triangles are left after repair: all {} were degenerate or duplicates",
+                                 raw.triangles.size()));
+  add_repair_warnings(r, file);
+  for (const std::string& name : raw.body_names)
+    if (find_body(mesh, name) < 0)
+      r.warnings.push_back(
+          fmt::format("{}: body '{}' has no triangles left after repair and was dropped", file, name));
   return mesh;
+}
+
+TriangleMesh read_stl(const std::filesystem::path& path, double unit_scale) {
+  return read_mesh(path, unit_scale);
 }
 
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path) {
@@ -164,6 +240,36 @@ void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path) {
     out.append(2, '\0');
   }
   write_file_atomic(path, out);
+}
+
+TriangleMesh select_body(const TriangleMesh& mesh, int body) {
+  const bool tagged = !mesh.body.empty();
+  BT_CHECK(!tagged || mesh.body.size() == mesh.triangles.size());
+  BT_CHECK(body >= 0 && static_cast<std::size_t>(body) < std::max<std::size_t>(mesh.body_names.size(), 1));
+  TriangleMesh out;
+  out.body_names = {mesh.body_names.empty() ? std::string("part")
+                                            : mesh.body_names[static_cast<std::size_t>(body)]};
+  std::vector<int> index(mesh.vertices.size(), -1);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    if (tagged && mesh.body[f] != body) continue;
+    std::array<int, 3> t{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      int& v = index[static_cast<std::size_t>(mesh.triangles[f][c])];
+      if (v < 0) {
+        v = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(mesh.vertices[static_cast<std::size_t>(mesh.triangles[f][c])]);
+      }
+      t[c] = v;
+    }
+    out.triangles.push_back(t);
+    out.body.push_back(0);
+  }
+  return out;
+}
+
+int find_body(const TriangleMesh& mesh, std::string_view name) {
+  const auto it = std::find(mesh.body_names.begin(), mesh.body_names.end(), name);
+  return it == mesh.body_names.end() ? -1 : static_cast<int>(it - mesh.body_names.begin());
 }
 
 namespace {
@@ -192,15 +298,23 @@ void add_box(TriangleMesh& m, const Eigen::Vector3d& lo, const Eigen::Vector3d& 
     for (std::size_t i = first; i < m.triangles.size(); ++i) std::swap(m.triangles[i][1], m.triangles[i][2]);
 }
 
-// Merges vertices with equal coordinates so triangles share edges, as slicing needs.
+// Merges vertices with equal coordinates so triangles share edges, as slicing needs; one body, "part".
 TriangleMesh weld(const TriangleMesh& m) {
   TriangleMesh welded;
-  Welder welder(welded);
+  std::map<std::array<double, 3>, int> index;
   for (const auto& t : m.triangles) {
     std::array<int, 3> nt{};
-    for (std::size_t c = 0; c < 3; ++c) nt[c] = welder.add(m.vertices[static_cast<std::size_t>(t[c])]);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const Eigen::Vector3d& p = m.vertices[static_cast<std::size_t>(t[c])];
+      auto [it, inserted] =
+          index.try_emplace({p.x(), p.y(), p.z()}, static_cast<int>(welded.vertices.size()));
+      if (inserted) welded.vertices.push_back(p);
+      nt[c] = it->second;
+    }
     welded.triangles.push_back(nt);
   }
+  welded.body.assign(welded.triangles.size(), 0);
+  welded.body_names = {"part"};
   return welded;
 }
 

@@ -1,9 +1,12 @@
-// Part meshes: triangle soups read from STL (binary and ASCII) or made from built-in primitives.
+// Part meshes: read from STL, OBJ, 3MF, AMF, PLY (through assimp) and repaired, or made from built-in
+// primitives. A part may hold several bodies (the outside shape plus interior structures), each a set of
+// triangles tagged with its body index.
 #pragma once
 
 #include <array>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -13,6 +16,10 @@ namespace beadtwin::slicer {
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;      // mm, machine frame
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
+  // Per triangle: index into body_names (parallel to triangles). A mesh built by hand may leave both
+  // empty: then it is one body.
+  std::vector<int> body;
+  std::vector<std::string> body_names;  // one per body, unique
 
   Eigen::Vector3d min_corner() const;
   Eigen::Vector3d max_corner() const;
@@ -20,18 +27,53 @@ struct TriangleMesh {
   double volume_mm3() const;
 };
 
-// Reads a binary or ASCII STL. `unit_scale` converts the file's units to mm (1 for mm, 25.4 for inches).
-// Throws InputError naming the file (and the line, for ASCII) on anything that is not a usable STL.
+// What read_mesh found wrong with a file and repaired (or could not). All counts are after welding.
+struct MeshReport {
+  int welded_vertices = 0;     // distinct vertices closer than the weld tolerance to another, merged into it
+  int degenerate_faces = 0;    // faces with two corners at one (welded) vertex, dropped
+  int duplicate_faces = 0;     // repeated faces dropped (both copies when their windings are opposite)
+  int flipped_faces = 0;       // faces turned to match the winding of their neighbours
+  int reversed_shells = 0;     // closed shells turned inside out as a whole (to face out, or in for cavities)
+  int cavities = 0;            // closed shells inside another shell of the same body, oriented as holes
+  int open_edges = 0;          // edges with one face: the mesh has holes there (slices close them straight)
+  int non_manifold_edges = 0;  // edges shared by more than two faces
+  int ignored_primitives = 0;  // points and lines in the file, which bound no solid
+  int shells = 0;              // connected pieces (across edges shared by exactly two faces)
+  int bodies = 0;              // bodies after repair (the file's separate meshes or objects)
+  double weld_tolerance_mm = 0.0;
+  std::vector<std::string> warnings;  // one line per kind of problem, "file: what, how many", for the user
+};
+
+// Reads a part mesh in any format assimp knows (STL binary and ASCII, OBJ, 3MF, AMF, PLY, ...), bakes the
+// file's node transforms, scales by `unit_scale` (file units to mm: 1 for mm, 25.4 for inches) and repairs
+// it: welds vertices within 1e-6 of the bounding-box diagonal, drops degenerate and duplicate faces, makes
+// the winding consistent over each connected shell and orients closed shells outward (inward for a shell
+// nested inside another shell of the same body: a cavity). Each of the file's meshes/objects is a body,
+// named after its node or mesh (or the file's stem). Fills `report`, when given, with what was repaired.
+// Throws InputError naming the file when it cannot be read (with assimp's message), has a coordinate that
+// is not finite, is larger than 100 m, or has no triangles left after repair.
+TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale = 1.0,
+                       MeshReport* report = nullptr);
+
+// The same as read_mesh (kept for callers that read STL files by this name).
 TriangleMesh read_stl(const std::filesystem::path& path, double unit_scale = 1.0);
 
-// Writes a binary STL (used by tests and to hand generated parts to other slicers).
+// Writes a binary STL of all bodies (used by tests and to hand generated parts to other slicers).
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path);
 
-// A closed box [0,size] with its minimum corner at `origin`.
+// The triangles of one body (0 <= body < body_names.size(), or body 0 of a mesh without body tags) as a mesh
+// of its own with that one body.
+TriangleMesh select_body(const TriangleMesh& mesh, int body);
+
+// The index of the body named `name`, or -1 when there is none.
+int find_body(const TriangleMesh& mesh, std::string_view name);
+
+// A closed box [0,size] with its minimum corner at `origin`; one body named "part".
 TriangleMesh make_box(const Eigen::Vector3d& size, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
 // An open-top box: outer size, wall thickness and floor thickness (all mm), minimum corner at `origin`.
-// A closed, watertight solid (the walls' inner faces and the floor's top face bound the cavity).
+// A closed, watertight solid (the walls' inner faces and the floor's top face bound the cavity); one body
+// named "part".
 TriangleMesh make_open_box(const Eigen::Vector3d& size, double wall_mm, double floor_mm,
                            const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 

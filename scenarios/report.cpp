@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "scenarios/colours.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -33,11 +34,21 @@ json parameters_json(const Variant& v) {
                         {"travel_speed_mm_s", s.travel_speed_mm_s},
                         {"start_point_mm", {s.start_point_mm.x(), s.start_point_mm.y()}},
                         {"seam_offset_mm", s.seam_offset_mm},
+                        {"outer_stock_mm", s.outer_stock_mm},
+                        {"inner_stock_mm", s.inner_stock_mm},
+                        {"merge_slices", s.merge_slices},
+                        {"ignore_inner_contours", s.ignore_inner_contours},
+                        {"layer_order", s.fill_first ? "fill_first" : "boundary_first"},
+                        {"clearance_height_mm", s.clearance_height_mm},
+                        {"rafts", s.rafts},
+                        {"stock_on_top", s.stock_on_top},
                         {"boundary",
                          {{"passes", s.boundary.passes},
                           {"reverse_alternate", s.boundary.reverse_alternate},
                           {"lead_in_mm", s.boundary.lead_in_mm},
                           {"lead_out_mm", s.boundary.lead_out_mm},
+                          {"start_stop_overlap", s.boundary.start_stop_overlap},
+                          {"min_pass_length_mm", s.boundary.min_pass_length_mm},
                           {"overlap", s.boundary.overlap},
                           {"inside_out", s.boundary.inside_out}}},
                         {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},
@@ -164,9 +175,8 @@ std::string substrate_plot(const VariantResult& r) {
       w, h, w, h);
   svg += fmt::format(R"svg(<rect x="{}" y="{}" width="{}" height="{}" fill="#fbe3e0"/>)svg", l, t, w - l - rm,
                      std::max(0.0, y(support) - t));
-  svg +=
-      fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="#d9483b" stroke-dasharray="4 3"/>)svg",
-                  l, w - rm, y(support), y(support));
+  svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-dasharray="4 3"/>)svg", l,
+                     w - rm, y(support), y(support), hex(verdict_colour(thermal::Verdict::kTooHot)));
   svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11" fill="#b33">support limit {:.0f} °C</text>)svg",
                      w - rm - 130, y(support) - 4, support);
   for (int k = 0; k <= 4; ++k) {
@@ -182,10 +192,10 @@ std::string substrate_plot(const VariantResult& r) {
     if (!std::isfinite(row.substrate_at_start_c)) continue;
     line += fmt::format("{}{:.1f},{:.1f}", line.empty() ? "M" : " L", x(static_cast<double>(i)),
                         y(row.substrate_at_start_c));
-    const char* colour = row.too_hot           ? "#d9483b"
-                         : row.too_cold        ? "#3a73c9"
-                         : row.verdict == "ok" ? "#5dae6b"
-                                               : "#9aa3ad";
+    const std::string colour = hex(verdict_colour(row.too_hot           ? thermal::Verdict::kTooHot
+                                                  : row.too_cold        ? thermal::Verdict::kTooCold
+                                                  : row.verdict == "ok" ? thermal::Verdict::kOk
+                                                                        : thermal::Verdict::kNoInterface));
     band += fmt::format(
         R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="{}"><title>layer {}: {:.1f} °C, {}</title></circle>)svg",
         x(static_cast<double>(i)), y(row.substrate_at_start_c), colour, row.index, row.substrate_at_start_c,
@@ -211,6 +221,7 @@ std::string report_json(const RunResult& result) {
   j["scenario_file"] = result.scenario ? result.scenario->file : "";
   j["passed"] = result.passed;
   j["wall_time_s"] = result.wall_time_s;
+  j["warnings"] = result.scenario ? result.scenario->warnings : std::vector<std::string>{};
   j["variants"] = json::array();
   for (const auto& v : result.variants) j["variants"].push_back(variant_json(v));
   return j.dump(2) + "\n";
@@ -258,13 +269,31 @@ details{margin:1em 0} .muted{color:#777}
       h += fmt::format("<tr><td class=l><code>{}</code></td><td>{}</td><td>{}</td></tr>", esc(g.expr),
                        fmt_opt(g.value), g.passed ? "pass" : "<b>fail</b>");
     h += "</table>";
-    h += "<h3>The part, coloured by fusion verdict</h3><p class=legend>"
-         "<span style=\"background:#5dae6b\"></span>fuses "
-         "<span style=\"background:#d9483b\"></span>too hot (substrate above the support limit) "
-         "<span style=\"background:#3a73c9\"></span>too cold (interface does not heal) "
-         "<span style=\"background:#9aa3ad\"></span>first layer (on the table)</p>";
-    for (const auto& img : v.images)
+    h += fmt::format(
+        "<h3>The part, coloured by fusion verdict</h3><p class=legend>"
+        "<span style=\"background:{}\"></span>fuses <span style=\"background:{}\"></span>too hot (substrate "
+        "above the "
+        "support limit) <span style=\"background:{}\"></span>too cold (interface does not heal) "
+        "<span style=\"background:{}\"></span>first layer (on the table)</p>",
+        hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
+        hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kNoInterface)));
+    for (const auto& img : v.images) {
+      if (img.ends_with("sections.png")) continue;
       h += fmt::format("<p><img src=\"{}\" alt=\"{} {}\"></p>", esc(img), esc(v.name), esc(img));
+    }
+    if (v.variant) {
+      h += "<h3>The sections</h3><p class=legend>";
+      for (std::size_t i = 0; i < v.variant->sections.size(); ++i) {
+        const auto& sec = v.variant->sections[i];
+        h += fmt::format("<span style=\"background:{}\"></span>{} ({} boundary pass{}, fill {}) ",
+                         hex(section_colour(static_cast<int>(i))), esc(sec.name), sec.boundary.passes,
+                         sec.boundary.passes == 1 ? "" : "es", sec.fill.enabled ? "on" : "off");
+      }
+      h += "</p>";
+      for (const auto& img : v.images)
+        if (img.ends_with("sections.png"))
+          h += fmt::format("<p><img src=\"{}\" alt=\"{} sections\"></p>", esc(img), esc(v.name));
+    }
     h += "<h3>Substrate temperature when each layer lands</h3>" + substrate_plot(v);
     const Metrics& m = v.metrics;
     h += "<h3>Metrics</h3><table>";

@@ -11,6 +11,7 @@
 #include "core/atomic_file.hpp"
 #include "render/image.hpp"
 #include "render/render.hpp"
+#include "scenarios/colours.hpp"
 #include "scenarios/report.hpp"
 #include "sim/deposit.hpp"
 #include "slicer/mesh.hpp"
@@ -23,7 +24,7 @@ namespace {
 slicer::TriangleMesh build_part(const PartSpec& part) {
   switch (part.kind) {
     case PartSpec::Kind::kMesh:
-      return slicer::read_stl(part.mesh, part.mesh_scale);
+      return part.loaded ? *part.loaded : slicer::read_mesh(part.mesh, part.mesh_scale);
     case PartSpec::Kind::kBox:
       return slicer::make_box(part.size, part.origin);
     case PartSpec::Kind::kOpenBox:
@@ -58,20 +59,6 @@ std::vector<thermal::LayerInput> thermal_inputs(const Toolpath& tp) {
     in.push_back(li);
   }
   return in;
-}
-
-render::Rgb verdict_colour(thermal::Verdict v) {
-  switch (v) {
-    case thermal::Verdict::kOk:
-      return {0.36f, 0.68f, 0.42f};
-    case thermal::Verdict::kTooHot:
-      return {0.85f, 0.28f, 0.23f};
-    case thermal::Verdict::kTooCold:
-      return {0.23f, 0.45f, 0.79f};
-    case thermal::Verdict::kNoInterface:
-      return {0.60f, 0.64f, 0.68f};
-  }
-  return {0.5f, 0.5f, 0.5f};
 }
 
 void write_vdb(const sim::Deposit& d, const std::filesystem::path& path) {
@@ -226,6 +213,15 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
       render::write_png(render::render_deposit(deposit, colour, o), dir / file);
       res.images.push_back((std::filesystem::path(v.name) / file).string());
     }
+    // The sections, each in its own colour, so a person sees where each parameter set applies.
+    const auto by_section = [&](int layer) {
+      if (layer < 0 || static_cast<std::size_t>(layer) >= tp.layers.size())
+        return render::Rgb{0.5f, 0.5f, 0.5f};
+      return section_colour(tp.layers[static_cast<std::size_t>(layer)].section);
+    };
+    o.view = render::View::kIsometric;
+    render::write_png(render::render_deposit(deposit, by_section, o), dir / "sections.png");
+    res.images.push_back((std::filesystem::path(v.name) / "sections.png").string());
   });
   stages.run("vdb", [&] { write_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();

@@ -180,7 +180,24 @@ Eigen::Vector3d read_vector(BlockReader& r, const std::string& key, bool require
   return v;
 }
 
-PartSpec read_part(BlockReader& r, const std::filesystem::path& dir) {
+// Meshes read while loading, shared by the variants that use the same file at the same scale, with the
+// repairs their reading reported.
+struct MeshCache {
+  std::map<std::pair<std::string, double>, std::shared_ptr<const slicer::TriangleMesh>> meshes;
+  std::vector<std::string> warnings;
+
+  std::shared_ptr<const slicer::TriangleMesh> get(const std::filesystem::path& path, double scale) {
+    auto& slot = meshes[{path.string(), scale}];
+    if (!slot) {
+      slicer::MeshReport report;
+      slot = std::make_shared<const slicer::TriangleMesh>(slicer::read_mesh(path, scale, &report));
+      warnings.insert(warnings.end(), report.warnings.begin(), report.warnings.end());
+    }
+    return slot;
+  }
+};
+
+PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& meshes) {
   PartSpec p;
   const ParamSpec kLen{"", ParamType::kQuantity, Dimension::kLength, "", 0, 1e5, true, "", ""};
   auto length = [&](const std::string& key) {
@@ -194,11 +211,13 @@ PartSpec read_part(BlockReader& r, const std::filesystem::path& dir) {
   };
   const bool has_mesh = r.has("mesh"), has_box = r.has("box"), has_open = r.has("open_box");
   if (has_mesh + has_box + has_open != 1)
-    r.fail(YAML::Node(), "", "expected exactly one of: mesh (an STL file), box, open_box");
+    r.fail(YAML::Node(), "",
+           "expected exactly one of: mesh (an STL, OBJ, 3MF, AMF or PLY file), box, open_box");
   if (has_mesh) {
     p.kind = PartSpec::Kind::kMesh;
     YAML::Node node = r.take("mesh");
-    if (!node.IsScalar()) r.fail(node, "mesh", "expected the path of an STL file");
+    if (!node.IsScalar())
+      r.fail(node, "mesh", "expected the path of a mesh file (STL, OBJ, 3MF, AMF or PLY)");
     p.mesh = dir / node.Scalar();
     if (!std::filesystem::exists(p.mesh))
       r.fail(node, "mesh", fmt::format("no such file: {}", p.mesh.string()));
@@ -210,6 +229,7 @@ PartSpec read_part(BlockReader& r, const std::filesystem::path& dir) {
         r.fail(units, "mesh_units", e.what());
       }
     }
+    p.loaded = meshes.get(p.mesh, p.mesh_scale);
   } else {
     const std::string kind = has_box ? "box" : "open_box";
     p.kind = has_box ? PartSpec::Kind::kBox : PartSpec::Kind::kOpenBox;
@@ -275,6 +295,20 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.boundary.reverse_alternate = r.boolean(spec(t, "boundary.reverse_alternate"));
   s.boundary.lead_in_mm = r.quantity(spec(t, "boundary.lead_in"));
   s.boundary.lead_out_mm = r.quantity(spec(t, "boundary.lead_out"));
+  s.outer_stock_mm = r.quantity(spec(t, "outer_stock"));
+  s.inner_stock_mm = r.quantity(spec(t, "inner_stock"));
+  s.merge_slices = r.boolean(spec(t, "merge_slices"));
+  s.ignore_inner_contours = r.boolean(spec(t, "ignore_inner_contours"));
+  const std::string order = r.string(spec(t, "layer_order"));
+  if (order != "boundary_first" && order != "fill_first")
+    r.fail(r.take("layer_order"), "layer_order",
+           fmt::format("expected boundary_first or fill_first but found '{}'", order));
+  s.fill_first = order == "fill_first";
+  s.clearance_height_mm = r.quantity(spec(t, "clearance_height"));
+  s.rafts = r.integer(spec(t, "rafts"));
+  s.stock_on_top = r.integer(spec(t, "stock_on_top"));
+  s.boundary.start_stop_overlap = r.quantity(spec(t, "boundary.start_stop_overlap"));
+  s.boundary.min_pass_length_mm = r.quantity(spec(t, "boundary.min_pass_length"));
   s.boundary.passes = r.integer(spec(t, "boundary.passes"));
   s.boundary.overlap = r.quantity(spec(t, "boundary.overlap"));
   s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));
@@ -396,7 +430,8 @@ Gate parse_gate(const YAML::Node& node, const std::string& file) {
   return g;
 }
 
-Variant build_variant(const Tree& tree, const std::string& name, const std::filesystem::path& dir) {
+Variant build_variant(const Tree& tree, const std::string& name, const std::filesystem::path& dir,
+                      MeshCache& meshes) {
   Variant v;
   v.name = name;
   BlockReader machine_r(tree.machine, "machine", tree.machine_src, &tree.overridden);
@@ -406,7 +441,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   BlockReader part_r(tree.root["part"], "part", tree.scenario_src, &tree.overridden);
   if (!tree.root["part"])
     part_r.fail(tree.root, "part", "required key is missing (the part: mesh, box or open_box)");
-  v.part = read_part(part_r, dir);
+  v.part = read_part(part_r, dir, meshes);
 
   BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
@@ -421,9 +456,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));
   th_r.finish(thermal_params());
 
-  const double part_top = v.part.kind == PartSpec::Kind::kMesh
-                              ? slicer::read_stl(v.part.mesh, v.part.mesh_scale).max_corner().z()
-                              : v.part.origin.z() + v.part.size.z();
+  const double part_top = v.part.kind == PartSpec::Kind::kMesh ? v.part.loaded->max_corner().z()
+                                                               : v.part.origin.z() + v.part.size.z();
   const YAML::Node sections = tree.root["sections"];
   if (!sections || !sections.IsSequence() || sections.size() == 0)
     throw InputError(location_of(sections ? sections : tree.root, tree.scenario_src->file), "sections",
@@ -557,6 +591,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
   } else {
     variant_nodes.emplace_back("baseline", YAML::Node());
   }
+  MeshCache meshes;
   for (const auto& [name, set] : variant_nodes) {
     Tree tree = variant_nodes.size() == 1 ? base : parse_tree(text, file, dir);
     std::map<std::string, std::string> overrides;
@@ -570,10 +605,11 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
         overrides[path] = it->second.IsScalar() ? it->second.Scalar() : YAML::Dump(it->second);
       }
     }
-    Variant v = build_variant(tree, name, dir);
+    Variant v = build_variant(tree, name, dir, meshes);
     v.overrides = std::move(overrides);
     sc.variants.push_back(std::move(v));
   }
+  sc.warnings = std::move(meshes.warnings);
   return sc;
 }
 

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
 #include "slicer/gcode_writer.hpp"
+#include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
 namespace beadtwin::scenarios {
@@ -30,9 +32,11 @@ struct Machine {
 struct PartSpec {
   enum class Kind { kMesh, kBox, kOpenBox };
   Kind kind = Kind::kOpenBox;
-  std::filesystem::path mesh;                        // kMesh: resolved path
-  double mesh_scale = 1.0;                           // mesh file units to mm
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();    // kBox, kOpenBox: outer size, mm
+  std::filesystem::path mesh;  // kMesh: resolved path
+  double mesh_scale = 1.0;     // mesh file units to mm
+  std::shared_ptr<const slicer::TriangleMesh>
+      loaded;                                      // kMesh: read (and repaired) once, when the scenario loads
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // kBox, kOpenBox: outer size, mm
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // minimum corner, mm
   double wall_mm = 0.0;                              // kOpenBox
   double floor_mm = 0.0;                             // kOpenBox
@@ -80,6 +84,8 @@ struct Scenario {
   std::string file;  // where it was read from ("<built-in default>" for the embedded one)
   std::vector<Variant> variants;
   std::vector<Gate> gates;
+  std::vector<std::string>
+      warnings;  // things repaired or doubtful in the inputs (mesh repairs), for the user
 };
 
 // Loads and validates a scenario file. Machine and material given by name are looked up as

@@ -66,8 +66,10 @@ std::vector<Polyline> zigzag_lines(const Polygons& region, double angle_rad, dou
 
 class LayerBuilder {
  public:
-  LayerBuilder(Toolpath& tp, const SectionParams& s, int section, int layer, double z, Eigen::Vector2d& head)
-      : tp_(tp), s_(s), section_(section), layer_(layer), z_(z), head_(head) {
+  // `role` marks every printed move of the layer (kRaft, kStockOnTop); kUnknown keeps each move's own.
+  LayerBuilder(Toolpath& tp, const SectionParams& s, int section, int layer, double z, Eigen::Vector2d& head,
+               Feature role)
+      : tp_(tp), s_(s), section_(section), layer_(layer), z_(z), head_(head), role_(role) {
     area_ = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
   }
 
@@ -76,11 +78,17 @@ class LayerBuilder {
     m.kind = MoveKind::kTravel;
     // From wherever the head really is (the previous layer's height on a layer change).
     m.start = tp_.moves.empty() ? Eigen::Vector3d(head_.x(), head_.y(), z_) : tp_.moves.back().end;
-    m.end = {p.x(), p.y(), z_};
-    if ((m.end - m.start).norm() < 1e-9) return;
     m.feed_mm_s = s_.travel_speed_mm_s;
-    tp_.moves.push_back(m);
+    if (m.start.z() > z_ + 1e-9 && (p - m.start.head<2>()).norm() > 1e-9) {
+      // Raised (clearance height): across at that height first, then straight down.
+      m.end = {p.x(), p.y(), m.start.z()};
+      tp_.moves.push_back(m);
+      m.start = m.end;
+    }
+    m.end = {p.x(), p.y(), z_};
     head_ = p;
+    if ((m.end - m.start).norm() < 1e-9) return;
+    tp_.moves.push_back(m);
   }
 
   void event(ExtruderEvent e) {
@@ -93,16 +101,29 @@ class LayerBuilder {
 
   // A closed boundary pass with its lead-in (a straight approach along the first segment's line, ending at
   // the start) and lead-out (a straight run-off along the last segment's direction), both printed.
-  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm) {
+  // `overlap_mm` runs the pass on past its start (start/stop overlap) before the lead-out.
+  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm, double overlap_mm) {
     if (loop.size() < 2) return;
     const Eigen::Vector2d first_dir = (loop[1] - loop[0]).normalized();
-    const Eigen::Vector2d last_dir = (loop[0] - loop.back()).normalized();
     travel_to(loop.front() - lead_in_mm * first_dir);
     event(ExtruderEvent::kMeltOn);
     if (lead_in_mm > 0) print_segment(loop.front(), Feature::kLeadIn, pass);
     for (std::size_t i = 1; i <= loop.size(); ++i)
       print_segment(loop[i % loop.size()], Feature::kBoundary, pass);
-    if (lead_out_mm > 0) print_segment(loop.front() + lead_out_mm * last_dir, Feature::kLeadOut, pass);
+    // Start/stop overlap: on along the contour again.
+    double left = overlap_mm;
+    for (std::size_t i = 1; left > 1e-9 && i <= loop.size(); ++i) {
+      const Eigen::Vector2d& to = loop[i % loop.size()];
+      const double len = (to - head_).norm();
+      print_segment(len <= left ? to : Eigen::Vector2d(head_ + (to - head_) * (left / len)),
+                    Feature::kBoundary, pass);
+      left -= std::min(len, left);
+    }
+    if (lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
+      const Move& last = tp_.moves.back();
+      const Eigen::Vector2d dir = (last.end - last.start).head<2>().normalized();
+      print_segment(head_ + lead_out_mm * dir, Feature::kLeadOut, pass);
+    }
     event(ExtruderEvent::kMeltOff);
   }
 
@@ -126,7 +147,9 @@ class LayerBuilder {
  private:
   Move base(Feature feature) const {
     Move m;
-    m.feature = feature;
+    m.feature = role_ != Feature::kUnknown && feature != Feature::kTravel && feature != Feature::kUnknown
+                    ? role_
+                    : feature;
     m.section = section_;
     m.layer = layer_;
     m.bead_width_mm = s_.bead_width_mm;
@@ -139,6 +162,7 @@ class LayerBuilder {
   int section_, layer_;
   double z_;
   Eigen::Vector2d& head_;
+  Feature role_;
   double area_ = 0.0;
 };
 
@@ -183,53 +207,50 @@ Polygon start_at(const Polygon& poly, const Eigen::Vector2d& near, double advanc
   return out;
 }
 
-void plan_layer(const TriangleMesh& mesh, const SectionParams& s, int section, int layer_in_section,
-                Toolpath& tp, Eigen::Vector2d& head, PlanStats& stats) {
-  const double z_top = s.z_min_mm + (layer_in_section + 1) * s.layer_height_mm;
+// The region a layer of section `s` fills at height `z_mid`, after the toolpath parameters that change it.
+Polygons layer_region(const TriangleMesh& mesh, const SectionParams& s, double z_mid, PlanStats& stats) {
   SliceStats slice_stats;
-  const Polygons region = slice_mesh(mesh, z_top - 0.5 * s.layer_height_mm, &slice_stats);
+  Polygons region = slice_mesh(mesh, z_mid, &slice_stats);
   stats.open_chains += slice_stats.open_chains;
-  if (region.empty()) {
-    ++stats.empty_layers;
-    return;
+  if (s.merge_slices) {
+    // Merge slices for extra stock: the largest outline of the previous, this and the next layer.
+    for (const double dz : {-s.layer_height_mm, s.layer_height_mm}) {
+      Polygons other = slice_mesh(mesh, z_mid + dz);
+      if (area_mm2(other) > area_mm2(region)) region = std::move(other);
+    }
   }
-  const int layer = static_cast<int>(tp.layers.size());
-  ToolpathLayer info;
-  info.z_mm = z_top;
-  info.height_mm = s.layer_height_mm;
-  info.section = section;
-  info.outline_area_mm2 = area_mm2(region);
-  info.outline_perimeter_mm = perimeter_mm(region);
-  tp.layers.push_back(info);
-
-  const double w = s.bead_width_mm;
-  const double pitch = w * (1.0 - s.boundary.overlap);
-  LayerBuilder b(tp, s, section, layer, z_top, head);
-
-  // Boundary passes: pass k runs along the outline offset inward by w/2 + k·pitch.
-  std::vector<Polygons> passes;
-  for (int k = 0; k < s.boundary.passes; ++k) {
-    Polygons loops = offset(region, -(0.5 * w + k * pitch));
-    if (loops.empty()) break;
-    passes.push_back(std::move(loops));
+  Polygons outers, holes;
+  split_contours(region, outers, holes);
+  if (s.ignore_inner_contours) holes.clear();
+  if (s.outer_stock_mm != 0.0) outers = offset(outers, s.outer_stock_mm);
+  if (!holes.empty()) {
+    // Holes as regions of their own (counter-clockwise), shrunk by the inner stock, cut out of the outers.
+    for (Polygon& h : holes) std::reverse(h.begin(), h.end());
+    if (s.inner_stock_mm != 0.0) holes = offset(holes, -s.inner_stock_mm);
+    return difference(outers, holes);
   }
+  return union_nonzero(outers);
+}
+
+void lay_boundary(LayerBuilder& b, const SectionParams& s, const std::vector<Polygons>& passes,
+                  int layer_in_section) {
   const int laid = static_cast<int>(passes.size());
   const bool reversed = s.boundary.reverse_alternate && layer_in_section % 2 == 1;
   const double advance = layer_in_section * s.seam_offset_mm;
   for (int i = 0; i < laid; ++i) {
     const int k = s.boundary.inside_out ? laid - 1 - i : i;
     for (Polygon loop : passes[static_cast<std::size_t>(k)]) {
+      if (s.boundary.min_pass_length_mm > 0 && perimeter_mm({loop}) < s.boundary.min_pass_length_mm) continue;
       if (reversed) std::reverse(loop.begin(), loop.end());
       b.print_pass(start_at(loop, s.start_point_mm, advance), k, s.boundary.lead_in_mm,
-                   s.boundary.lead_out_mm);
+                   s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm);
     }
   }
+}
 
-  if (!s.fill.enabled) return;
-  // The fill's bead centres stay w/2 − overlap·w inside the last boundary bead's inner edge, which works out
-  // to the offset the next boundary pass would have had.
+void lay_fill(LayerBuilder& b, const SectionParams& s, const Polygons& fill_region, int layer_in_section) {
+  const double w = s.bead_width_mm;
   const double fill_pitch = w * (1.0 - s.fill.overlap);
-  const Polygons fill_region = offset(region, -(0.5 * w + laid * pitch));
   if (fill_region.empty()) return;
   const double angle = (s.fill.angle_deg + layer_in_section * s.fill.angle_step_deg) * kPi / 180.0;
   std::vector<Polyline> lines = zigzag_lines(fill_region, angle, fill_pitch);
@@ -267,6 +288,83 @@ void plan_layer(const TriangleMesh& mesh, const SectionParams& s, int section, i
   if (printing) b.event(ExtruderEvent::kMeltOff);
 }
 
+// One layer: the boundary passes and (where enabled, or forced for rafts) the fill, in the section's layer
+// order. `role` marks raft and stock-on-top layers. `angle_index` turns the fill and moves the seam.
+void lay_layer(Toolpath& tp, const SectionParams& s, int section, const Polygons& region, double z_top,
+               int angle_index, Feature role, bool fill, Eigen::Vector2d& head) {
+  const int layer = static_cast<int>(tp.layers.size());
+  ToolpathLayer info;
+  info.z_mm = z_top;
+  info.height_mm = s.layer_height_mm;
+  info.section = section;
+  info.outline_area_mm2 = area_mm2(region);
+  info.outline_perimeter_mm = perimeter_mm(region);
+  tp.layers.push_back(info);
+
+  const double w = s.bead_width_mm;
+  const double pitch = w * (1.0 - s.boundary.overlap);
+  if (s.clearance_height_mm > 0 && !tp.moves.empty()) {
+    // Clearance between layers: straight up, then across at the clearance height.
+    const double zc = std::max(s.clearance_height_mm, z_top);
+    const Eigen::Vector3d from = tp.moves.back().end;
+    Move up;
+    up.kind = MoveKind::kTravel;
+    up.feature = Feature::kTravel;
+    up.section = section;
+    up.layer = layer;
+    up.feed_mm_s = s.travel_speed_mm_s;
+    up.start = from;
+    up.end = {from.x(), from.y(), std::max(zc, from.z())};
+    if ((up.end - up.start).norm() > 1e-9) tp.moves.push_back(up);
+  }
+  LayerBuilder b(tp, s, section, layer, z_top, head, role);
+
+  // Boundary passes: pass k runs along the outline offset inward by w/2 + k·pitch.
+  std::vector<Polygons> passes;
+  for (int k = 0; k < s.boundary.passes; ++k) {
+    Polygons loops = offset(region, -(0.5 * w + k * pitch));
+    if (loops.empty()) break;
+    passes.push_back(std::move(loops));
+  }
+  // The fill's bead centres stay w/2 − overlap·w inside the last boundary bead's inner edge, which works out
+  // to the offset the next boundary pass would have had.
+  const Polygons fill_region =
+      fill ? offset(region, -(0.5 * w + static_cast<double>(passes.size()) * pitch)) : Polygons{};
+  if (s.fill_first) lay_fill(b, s, fill_region, angle_index);
+  lay_boundary(b, s, passes, angle_index);
+  if (!s.fill_first) lay_fill(b, s, fill_region, angle_index);
+}
+
+// Every layer of one section, with its rafts below and its stock on top, shifted up by `z_shift_mm`.
+void plan_section(const TriangleMesh& mesh, const SectionParams& s, int section, double z_shift_mm,
+                  Toolpath& tp, Eigen::Vector2d& head, PlanStats& stats) {
+  const int layers = static_cast<int>(std::floor((s.z_max_mm - s.z_min_mm) / s.layer_height_mm + 1e-6));
+  const double h = s.layer_height_mm;
+  int index = 0;  // layers laid so far in this section: turns the fill and moves the seam
+  Polygons last;
+  double last_top = 0.0;
+  for (int l = 0; l < layers; ++l) {
+    const double z_cad = s.z_min_mm + (l + 1) * h;
+    const Polygons region = layer_region(mesh, s, z_cad - 0.5 * h, stats);
+    if (region.empty()) {
+      ++stats.empty_layers;
+      continue;
+    }
+    if (index == 0) {
+      // Rafts: solid layers with the first layer's outline; the part sits on them (z_shift_mm includes them).
+      for (int r = 0; r < s.rafts; ++r)
+        lay_layer(tp, s, section, region, z_cad - (s.rafts - r) * h + z_shift_mm, index++, Feature::kRaft,
+                  true, head);
+    }
+    lay_layer(tp, s, section, region, z_cad + z_shift_mm, index++, Feature::kUnknown, s.fill.enabled, head);
+    last = region;
+    last_top = z_cad + z_shift_mm;
+  }
+  // Stock on top: solid layers on the section's top layer, with its outline.
+  for (int t = 0; t < s.stock_on_top && !last.empty(); ++t)
+    lay_layer(tp, s, section, last, last_top + (t + 1) * h, index++, Feature::kStockOnTop, true, head);
+}
+
 void validate(const std::vector<SectionParams>& sections) {
   for (const auto& s : sections) {
     const std::string key = "sections." + s.name;
@@ -295,15 +393,20 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return sections[a].z_min_mm < sections[b].z_min_mm; });
+  if (sections.empty()) throw InputError({}, "sections", "there is no section to plan");
+  for (std::size_t i = 1; i < order.size(); ++i)
+    if (sections[order[i]].rafts > 0)
+      throw InputError({}, "sections." + sections[order[i]].name + ".rafts",
+                       "rafts go under the lowest section only (they lift the whole part)");
   Toolpath tp;
   for (const auto& s : sections) tp.sections.push_back(s.name);
   PlanStats local;
   Eigen::Vector2d head(mesh.min_corner().x(), mesh.min_corner().y());
-  for (const std::size_t si : order) {
-    const SectionParams& s = sections[si];
-    const int layers = static_cast<int>(std::floor((s.z_max_mm - s.z_min_mm) / s.layer_height_mm + 1e-6));
-    for (int l = 0; l < layers; ++l) plan_layer(mesh, s, static_cast<int>(si), l, tp, head, local);
-  }
+  // Rafts under the lowest section lift the whole part.
+  const SectionParams& lowest = sections[order.front()];
+  const double z_shift = lowest.rafts * lowest.layer_height_mm;
+  for (const std::size_t si : order)
+    plan_section(mesh, sections[si], static_cast<int>(si), z_shift, tp, head, local);
   time_toolpath(tp, motion);
   if (stats) *stats = local;
   return tp;

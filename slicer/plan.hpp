@@ -19,8 +19,11 @@ struct BoundaryParams {
   bool inside_out = false;         // lay the innermost pass first (patent (49))
   bool reverse_alternate = false;  // run every other layer's passes the opposite way round (patent (49))
   double lead_in_mm = 0.0;         // bead laid on a straight approach before each pass starts (patent (50))
-  double lead_out_mm =
-      0.0;  // bead laid on a straight run-off after each pass ends, tangent to it (patent (50))
+  // Bead laid on a straight run-off after each pass ends, tangent to its end (patent (50)).
+  double lead_out_mm = 0.0;
+  double start_stop_overlap =
+      0.0;  // a closed pass runs on past its start by this fraction of w (patent (50))
+  double min_pass_length_mm = 0.0;  // closed passes shorter than this are left out (patent (49))
 };
 
 struct FillParams {
@@ -42,6 +45,17 @@ struct SectionParams {
   Eigen::Vector2d start_point_mm = Eigen::Vector2d::Zero();
   // ...moved along the contour by this much more on every layer, so seams do not stack (patent (43)).
   double seam_offset_mm = 0.0;
+  // Toolpath parameters (patent (44)-(45)).
+  double outer_stock_mm = 0.0;         // the outline's outer contours grow by this (stock to machine off)
+  double inner_stock_mm = 0.0;         // the outline's holes shrink by this
+  bool merge_slices = false;           // use the largest of the previous, this and the next layer's outline
+  bool ignore_inner_contours = false;  // fill holes in: print every outline as solid
+  bool fill_first = false;             // layer order: fill before the boundary passes
+  double clearance_height_mm =
+      0.0;  // between layers the head rises to this height above the table (0: no lift)
+  // Process parameters (patent (46)).
+  int rafts = 0;         // layers printed under the section's first layer (the part sits on them)
+  int stock_on_top = 0;  // layers printed on the section's top layer with its outline
   BoundaryParams boundary;
   FillParams fill;
 };

@@ -81,6 +81,21 @@ Polygons union_nonzero(const Polygons& loops) {
   return to_polygons(out);
 }
 
+Polygons difference(const Polygons& a, const Polygons& b) {
+  ClipperLib::Clipper c;
+  c.AddPaths(to_paths(a), ClipperLib::ptSubject, true);
+  c.AddPaths(to_paths(b), ClipperLib::ptClip, true);
+  ClipperLib::Paths out;
+  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return to_polygons(out);
+}
+
+void split_contours(const Polygons& region, Polygons& outers, Polygons& holes) {
+  outers.clear();
+  holes.clear();
+  for (const Polygon& p : region) (area_mm2({p}) >= 0 ? outers : holes).push_back(p);
+}
+
 std::vector<Polyline> clip_lines(const std::vector<Polyline>& lines, const Polygons& region) {
   ClipperLib::Clipper c;
   c.AddPaths(to_paths(lines), ClipperLib::ptSubject, false);

@@ -23,6 +23,10 @@ Polygons offset(const Polygons& polygons, double delta_mm);
 // Cleans up a soup of possibly overlapping or inconsistently oriented loops into a proper region
 // (non-zero winding of each loop taken in its own orientation, then union).
 Polygons union_nonzero(const Polygons& loops);
+// The part of `a` outside `b`.
+Polygons difference(const Polygons& a, const Polygons& b);
+// Outer contours (counter-clockwise) and holes (clockwise) of a region, each as its own list.
+void split_contours(const Polygons& region, Polygons& outers, Polygons& holes);
 // Parts of `lines` inside `region`.
 std::vector<Polyline> clip_lines(const std::vector<Polyline>& lines, const Polygons& region);
 // Point-in-region test (holes excluded).

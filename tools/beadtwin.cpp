@@ -25,9 +25,12 @@ constexpr int kExitGateFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitInternal = 3;
 
+// Loads the scenario (the built-in default without a path) and prints what its inputs needed repaired.
 beadtwin::scenarios::Scenario load(const std::string& path) {
-  return path.empty() ? beadtwin::scenarios::load_default_scenario()
-                      : beadtwin::scenarios::load_scenario(path);
+  auto scenario =
+      path.empty() ? beadtwin::scenarios::load_default_scenario() : beadtwin::scenarios::load_scenario(path);
+  for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  return scenario;
 }
 
 int cmd_run(const std::string& scenario_path, const std::string& out_dir,

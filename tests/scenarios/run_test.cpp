@@ -73,7 +73,7 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_EQ(v["layers"][0]["section"], "floor");
     EXPECT_EQ(v["layers"][5]["section"], "walls");
     EXPECT_EQ(v["gates"].size(), 2u);
-    ASSERT_EQ(v["images"].size(), 2u);  // isometric and top views
+    ASSERT_EQ(v["images"].size(), 3u);  // isometric and top views by fusion verdict, isometric by section
     for (const auto& img : v["images"])
       EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
     EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);

@@ -1,5 +1,8 @@
 #include "scenarios/scenario.hpp"
 
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include "core/units.hpp"
@@ -183,6 +186,34 @@ TEST(Scenario, BoundaryStartAndSeamParameters) {
   EXPECT_DOUBLE_EQ(floor.seam_offset_mm, 0);
   const InputError e = load_error(replace(text, "start_point: [100, 2 in]", "start_point: [100]"));
   EXPECT_EQ(e.key(), "sections.walls.start_point");
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+// A part given as a mesh file is read once, repaired, and what was repaired reaches the user.
+TEST(Scenario, MeshPartIsReadOnceWithItsRepairsReported) {
+  const auto dir = std::filesystem::temp_directory_path() / "bt_scenario_mesh";
+  std::filesystem::create_directories(dir);
+  // A 100 x 100 x 20 mm box as OBJ, with its top face (two triangles) wound the wrong way.
+  std::ofstream(dir / "part.obj") << "v 0 0 0\nv 100 0 0\nv 100 100 0\nv 0 100 0\n"
+                                     "v 0 0 20\nv 100 0 20\nv 100 100 20\nv 0 100 20\n"
+                                     "f 1 3 2\nf 1 4 3\nf 5 7 6\nf 5 8 7\nf 1 2 6\nf 1 6 5\n"
+                                     "f 2 3 7\nf 2 7 6\nf 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  std::ofstream(dir / "sc.yaml")
+      << "name: m\nmachine: lsam-ph15\nmaterial: cf-abs-20\npart: {mesh: part.obj}\n"
+         "sections:\n  - {name: a, z: part, layer_height: 5 mm, bead_width: 20 mm}\n"
+         "variants:\n  - name: one\n  - name: two\n";
+  const Scenario sc = load_scenario(dir / "sc.yaml");
+  ASSERT_EQ(sc.variants.size(), 2u);
+  EXPECT_EQ(sc.variants[0].part.loaded, sc.variants[1].part.loaded);  // one read for both variants
+  EXPECT_NEAR(sc.variants[0].part.loaded->volume_mm3(), 100.0 * 100 * 20, 1e-6);
+  EXPECT_NEAR(sc.variants[0].sections[0].z_max_mm, 20, 1e-12);  // z: part
+  ASSERT_EQ(sc.warnings.size(), 1u);
+  EXPECT_NE(sc.warnings[0].find("2 faces were flipped"), std::string::npos) << sc.warnings[0];
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #include <cmath>
-#include <filesystem>
-#include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -15,10 +14,6 @@
 namespace beadtwin::slicer {
 namespace {
 
-std::filesystem::path temp_file(const std::string& name) {
-  return std::filesystem::temp_directory_path() / name;
-}
-
 SectionParams section(double z0, double z1, double h, double w, int passes, bool fill) {
   SectionParams s;
   s.name = "s";
@@ -31,43 +26,6 @@ SectionParams section(double z0, double z1, double h, double w, int passes, bool
   s.boundary.passes = passes;
   s.fill.enabled = fill;
   return s;
-}
-
-TEST(Mesh, BoxIsClosedWithTheRightVolume) {
-  const TriangleMesh box = make_box({100, 50, 20});
-  EXPECT_NEAR(box.volume_mm3(), 100.0 * 50 * 20, 1e-6);
-  const TriangleMesh open = make_open_box({100, 80, 50}, 10, 5);
-  EXPECT_NEAR(open.volume_mm3(), 100.0 * 80 * 50 - 80.0 * 60 * 45, 1e-6);
-}
-
-TEST(Mesh, BinaryAndAsciiStlRoundTrip) {
-  const TriangleMesh box = make_box({10, 20, 30}, {1, 2, 3});
-  write_stl(box, temp_file("bt_box.stl"));
-  const TriangleMesh back = read_stl(temp_file("bt_box.stl"));
-  EXPECT_EQ(back.triangles.size(), box.triangles.size());
-  EXPECT_EQ(back.vertices.size(), 8u);  // welded
-  EXPECT_NEAR(back.volume_mm3(), 6000.0, 1e-3);
-  // ASCII, in inches.
-  std::ofstream(temp_file("bt_tri.stl"))
-      << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-         "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
-  const TriangleMesh tri = read_stl(temp_file("bt_tri.stl"), 25.4);
-  ASSERT_EQ(tri.triangles.size(), 1u);
-  EXPECT_DOUBLE_EQ(tri.max_corner().x(), 25.4);
-}
-
-TEST(Mesh, BadStlNamesFileAndLine) {
-  std::ofstream(temp_file("bt_bad.stl")) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nendloop\n";
-  try {
-    (void)read_stl(temp_file("bt_bad.stl"));
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.where().line, 4) << e.what();
-    EXPECT_NE(std::string(e.what()).find("bt_bad.stl"), std::string::npos);
-  }
-  std::ofstream(temp_file("bt_short.stl"), std::ios::binary) << std::string(90, 'x');
-  EXPECT_THROW((void)read_stl(temp_file("bt_short.stl")), InputError);
-  EXPECT_THROW((void)read_stl(temp_file("bt_missing_file.stl")), InputError);
 }
 
 TEST(Slice, BoxSliceIsItsFootprint) {
@@ -282,6 +240,146 @@ TEST(Plan, LeadInAndLeadOutHaveTheirLengths) {
   }
   EXPECT_EQ(lead_ins, 4);  // two passes on each of two layers
   EXPECT_EQ(lead_outs, 4);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// A square frustum: `bottom` wide at z = 0, `top` wide at z = height, centred on (0, 0).
+TriangleMesh frustum(double bottom, double top, double height) {
+  TriangleMesh m;
+  const double b = bottom / 2, t = top / 2;
+  m.vertices = {{-b, -b, 0},      {b, -b, 0},      {b, b, 0},      {-b, b, 0},
+                {-t, -t, height}, {t, -t, height}, {t, t, height}, {-t, t, height}};
+  m.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                 {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  return m;
+}
+
+double min_x_of(const Toolpath& tp, Feature f, int pass, int layer = -1) {
+  double x = 1e18;
+  for (const Move& m : tp.moves)
+    if (m.feature == f && m.pass == pass && (layer < 0 || m.layer == layer))
+      x = std::min({x, m.start.x(), m.end.x()});
+  return x;
+}
+
+TEST(Plan, StockToLeaveOffsetsTheOutline) {
+  // Outer stock moves the outer pass out; inner stock moves the hole's pass in (away from the wall).
+  const TriangleMesh ring = make_open_box({300, 300, 20}, 80, 5, {-150, -150, 0});
+  SectionParams s = section(5, 10, 5, 20, 1, false);
+  const double plain = min_x_of(plan_toolpath(ring, {s}, {}), Feature::kBoundary, 0);
+  EXPECT_NEAR(plain, -150 + 10, 1e-3);
+  s.outer_stock_mm = 6;
+  s.inner_stock_mm = 4;
+  const Toolpath tp = plan_toolpath(ring, {s}, {});
+  EXPECT_NEAR(min_x_of(tp, Feature::kBoundary, 0), -150 - 6 + 10, 1e-3);
+  // The hole's pass: the hole spans x in [-70, 70]; its pass sits w/2 inside the wall, i.e. at |x| = 80,
+  // and with inner stock at |x| = 70 + 4 + 10... the hole shrinks, so the pass moves toward the centre.
+  double hole_pass = -1e18;
+  for (const Move& m : tp.moves)
+    if (m.feature == Feature::kBoundary && m.start.x() < 0 && std::abs(m.start.y()) < 40)
+      hole_pass = std::max(hole_pass, m.start.x());
+  EXPECT_NEAR(hole_pass, -70 + 4 - 10, 1e-3);
+}
+
+TEST(Plan, MergeSlicesTakesTheLargestNeighbouringOutline) {
+  // A frustum narrowing upward: each layer's largest neighbour is the one below it.
+  const TriangleMesh f = frustum(200, 100, 50);
+  SectionParams s = section(0, 50, 5, 10, 1, false);
+  const Toolpath plain = plan_toolpath(f, {s}, {});
+  s.merge_slices = true;
+  const Toolpath merged = plan_toolpath(f, {s}, {});
+  ASSERT_EQ(plain.layers.size(), merged.layers.size());
+  for (std::size_t l = 1; l < plain.layers.size(); ++l)
+    EXPECT_NEAR(merged.layers[l].outline_area_mm2, plain.layers[l - 1].outline_area_mm2, 1e-3)
+        << "layer " << l;
+  // Below the first layer there is nothing: it keeps its own outline.
+  EXPECT_NEAR(merged.layers[0].outline_area_mm2, plain.layers[0].outline_area_mm2, 1e-3);
+}
+
+TEST(Plan, IgnoreInnerContoursPrintsTheOutlineSolid) {
+  const TriangleMesh ring = make_open_box({300, 300, 20}, 80, 5);
+  SectionParams s = section(5, 10, 5, 20, 1, false);
+  EXPECT_NEAR(plan_toolpath(ring, {s}, {}).layers[0].outline_area_mm2, 300.0 * 300 - 140.0 * 140, 1e-3);
+  s.ignore_inner_contours = true;
+  EXPECT_NEAR(plan_toolpath(ring, {s}, {}).layers[0].outline_area_mm2, 300.0 * 300, 1e-3);
+}
+
+TEST(Plan, LayerOrderPutsFillOrBoundaryFirst) {
+  SectionParams s = section(0, 5, 5, 20, 1, true);
+  auto first_print = [&] {
+    for (const Move& m : plan_toolpath(make_box({200, 200, 5}), {s}, {}).moves)
+      if (m.kind == MoveKind::kPrint) return m.feature;
+    return Feature::kUnknown;
+  };
+  EXPECT_EQ(first_print(), Feature::kBoundary);
+  s.fill_first = true;
+  EXPECT_EQ(first_print(), Feature::kFill);
+}
+
+TEST(Plan, StartStopOverlapAndMinimumPassLength) {
+  SectionParams s = section(0, 5, 5, 20, 1, false);
+  auto boundary_length = [&](const TriangleMesh& m) {
+    double l = 0;
+    for (const Move& mv : plan_toolpath(m, {s}, {}).moves)
+      if (mv.feature == Feature::kBoundary) l += mv.length_mm();
+    return l;
+  };
+  const double loop = 4 * 180.0;  // pass 0 of a 200 mm square
+  EXPECT_NEAR(boundary_length(make_box({200, 200, 5})), loop, 1e-6);
+  s.boundary.start_stop_overlap = 0.5;  // half a bead width past the start
+  EXPECT_NEAR(boundary_length(make_box({200, 200, 5})), loop + 10, 1e-6);
+  s.boundary.min_pass_length_mm = loop + 1;
+  EXPECT_EQ(boundary_length(make_box({200, 200, 5})), 0.0);
+}
+
+TEST(Plan, RaftsLiftThePartAndStockOnTopCaps) {
+  SectionParams s = section(0, 20, 5, 20, 1, false);
+  s.rafts = 2;
+  s.stock_on_top = 3;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 20}), {s}, {});
+  ASSERT_EQ(tp.layers.size(), 2u + 4u + 3u);
+  for (std::size_t l = 0; l < tp.layers.size(); ++l)
+    EXPECT_NEAR(tp.layers[l].z_mm, 5.0 * static_cast<double>(l + 1), 1e-9);
+  int raft_layers = 0, top_layers = 0, part_fill = 0;
+  std::set<int> raft, top;
+  for (const Move& m : tp.moves) {
+    if (m.feature == Feature::kRaft) raft.insert(m.layer);
+    if (m.feature == Feature::kStockOnTop) top.insert(m.layer);
+    if (m.feature == Feature::kFill) ++part_fill;
+  }
+  raft_layers = static_cast<int>(raft.size());
+  top_layers = static_cast<int>(top.size());
+  EXPECT_EQ(raft_layers, 2);
+  EXPECT_EQ(*raft.rbegin(), 1);
+  EXPECT_EQ(top_layers, 3);
+  EXPECT_EQ(*top.begin(), 6);
+  EXPECT_EQ(part_fill, 0);  // the part's own layers have no fill; rafts and stock on top are solid
+  // Rafts go under the lowest section only.
+  SectionParams upper = section(20, 30, 5, 20, 1, false);
+  upper.rafts = 1;
+  EXPECT_THROW((void)plan_toolpath(make_box({200, 200, 30}), {section(0, 20, 5, 20, 1, false), upper}, {}),
+               InputError);
+}
+
+TEST(Plan, ClearanceHeightBetweenLayers) {
+  SectionParams s = section(0, 15, 5, 20, 1, false);
+  s.clearance_height_mm = 100;
+  s.seam_offset_mm = 50;  // so each layer starts elsewhere and the head crosses over at the clearance height
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 15}), {s}, {});
+  int lifts = 0;
+  for (const Move& m : tp.moves)
+    if (m.kind == MoveKind::kTravel && m.end.z() == 100.0) ++lifts;
+  EXPECT_EQ(lifts, 4);  // up after layers 0 and 1, and across at that height before layers 1 and 2
+  for (const Move& m : tp.moves) {  // never a diagonal plunge
+    if (m.kind == MoveKind::kTravel && m.start.z() == 100.0 && m.end.z() < 100.0) {
+      EXPECT_NEAR((m.end - m.start).head<2>().norm(), 0.0, 1e-9);
+    }
+  }
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ slicer::TriangleMesh build_part(const PartSpec& part) {
     case PartSpec::Kind::kBox:
       return slicer::make_box(part.size, part.origin);
     case PartSpec::Kind::kOpenBox:
-      return slicer::make_open_box(part.size, part.wall_mm, part.floor_mm, part.origin);
+      return slicer::make_open_box(part.size, part.tiers, part.floor_mm, part.origin);
   }
   throw InternalError("unknown part kind");
 }

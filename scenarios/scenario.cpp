@@ -238,11 +238,25 @@ PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& 
       if (!(p.size[i] > 0)) r.fail(r.take(kind + ".size"), kind + ".size", "every size must be positive");
     p.origin = read_vector(r, kind + ".origin", false);
     if (!has_box) {
-      p.wall_mm = length("open_box.wall");
+      // wall: a thickness, or tiers [[z_top, thickness], ...] from the floor up (walls thinning inside).
+      YAML::Node wall = r.take("open_box.wall");
+      if (wall.IsSequence()) {
+        for (std::size_t i = 0; i < wall.size(); ++i) {
+          if (!wall[i].IsSequence() || wall[i].size() != 2)
+            r.fail(wall[i], "open_box.wall", "expected a thickness or tiers [[z_top, thickness], ...]");
+          p.tiers.push_back({r.parse(wall[i][0], Dimension::kLength, "open_box.wall"),
+                             r.parse(wall[i][1], Dimension::kLength, "open_box.wall")});
+          if (i > 0 && !(p.tiers[i].z_top_mm > p.tiers[i - 1].z_top_mm))
+            r.fail(wall[i], "open_box.wall", "tier tops must increase from the floor up");
+        }
+        if (p.tiers.empty()) r.fail(wall, "open_box.wall", "expected at least one tier");
+      } else {
+        p.tiers.push_back({0.0, length("open_box.wall")});
+      }
       p.floor_mm = length("open_box.floor");
-      if (2 * p.wall_mm >= std::min(p.size.x(), p.size.y()))
-        r.fail(r.take("open_box.wall"), "open_box.wall",
-               "walls meet in the middle: wall must be less than half the width");
+      for (const auto& tier : p.tiers)
+        if (!(tier.wall_mm > 0) || 2 * tier.wall_mm >= std::min(p.size.x(), p.size.y()))
+          r.fail(wall, "open_box.wall", "every wall must be positive and less than half the box's width");
       if (p.floor_mm >= p.size.z())
         r.fail(r.take("open_box.floor"), "open_box.floor", "floor must be thinner than the box is tall");
     }
@@ -488,9 +502,12 @@ std::string PartSpec::describe() const {
       return mesh.filename().string();
     case Kind::kBox:
       return fmt::format("box {:.0f} x {:.0f} x {:.0f} mm", size.x(), size.y(), size.z());
-    case Kind::kOpenBox:
-      return fmt::format("open-top box {:.0f} x {:.0f} x {:.0f} mm, wall {:.0f} mm, floor {:.0f} mm",
-                         size.x(), size.y(), size.z(), wall_mm, floor_mm);
+    case Kind::kOpenBox: {
+      std::string walls;
+      for (const auto& t : tiers) walls += fmt::format("{}{:.0f}", walls.empty() ? "" : "/", t.wall_mm);
+      return fmt::format("open-top box {:.0f} x {:.0f} x {:.0f} mm, wall{} {} mm, floor {:.0f} mm", size.x(),
+                         size.y(), size.z(), tiers.size() > 1 ? "s" : "", walls, floor_mm);
+    }
   }
   return "?";
 }

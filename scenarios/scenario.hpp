@@ -38,7 +38,7 @@ struct PartSpec {
       loaded;                                      // kMesh: read (and repaired) once, when the scenario loads
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // kBox, kOpenBox: outer size, mm
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // minimum corner, mm
-  double wall_mm = 0.0;                              // kOpenBox
+  std::vector<slicer::WallTier> tiers;               // kOpenBox: wall thickness from the floor up
   double floor_mm = 0.0;                             // kOpenBox
   std::string describe() const;
 };

@@ -328,34 +328,64 @@ TriangleMesh make_box(const Eigen::Vector3d& size, const Eigen::Vector3d& origin
 
 TriangleMesh make_open_box(const Eigen::Vector3d& size, double wall_mm, double floor_mm,
                            const Eigen::Vector3d& origin) {
-  // The solid is the outer box minus the cavity box that pokes out through the top. Built as the outer
-  // box's faces except its top, the cavity's faces (inward) except its top, and the rim ring on top.
+  return make_open_box(size, std::vector<WallTier>{{size.z(), wall_mm}}, floor_mm, origin);
+}
+
+TriangleMesh make_open_box(const Eigen::Vector3d& size, const std::vector<WallTier>& tiers, double floor_mm,
+                           const Eigen::Vector3d& origin) {
+  // The outer box's faces except its top; for each tier the cavity's side faces (facing in); the cavity's
+  // floor; between tiers the ledge ring (facing up where the wall above is thinner, down where it is
+  // thicker: an overhang); and the rim ring on top.
   using V = Eigen::Vector3d;
   const V lo = origin, hi = origin + size;
-  const V clo(lo.x() + wall_mm, lo.y() + wall_mm, lo.z() + floor_mm);
-  const V chi(hi.x() - wall_mm, hi.y() - wall_mm, hi.z());
-  TriangleMesh outer, cavity;
-  add_box(outer, lo, hi, false);
-  add_box(cavity, clo, chi, true);
   TriangleMesh m;
-  auto copy_except_top = [&m](const TriangleMesh& src) {
-    for (std::size_t t = 0; t < src.triangles.size(); ++t) {
+  {
+    TriangleMesh outer;
+    add_box(outer, lo, hi, false);
+    for (std::size_t t = 0; t < outer.triangles.size(); ++t) {
       if (t == 2 || t == 3) continue;  // the top quad is the second one added
       const int base = static_cast<int>(m.vertices.size());
-      for (int c = 0; c < 3; ++c)
-        m.vertices.push_back(
-            src.vertices[static_cast<std::size_t>(src.triangles[t][static_cast<std::size_t>(c)])]);
+      for (std::size_t c = 0; c < 3; ++c)
+        m.vertices.push_back(outer.vertices[static_cast<std::size_t>(outer.triangles[t][c])]);
       m.triangles.push_back({base, base + 1, base + 2});
     }
+  }
+  // Rectangle inset by `w` at height z, corners counter-clockwise from the minimum corner.
+  const auto rect = [&](double w, double z) {
+    return std::array<V, 4>{V(lo.x() + w, lo.y() + w, z), V(hi.x() - w, lo.y() + w, z),
+                            V(hi.x() - w, hi.y() - w, z), V(lo.x() + w, hi.y() - w, z)};
   };
-  copy_except_top(outer);
-  copy_except_top(cavity);
-  const double z = hi.z();
-  // Rim: four quads between the outer and inner top outlines, facing +z.
-  add_quad(m, V(lo.x(), lo.y(), z), V(hi.x(), lo.y(), z), V(chi.x(), clo.y(), z), V(clo.x(), clo.y(), z));
-  add_quad(m, V(hi.x(), lo.y(), z), V(hi.x(), hi.y(), z), V(chi.x(), chi.y(), z), V(chi.x(), clo.y(), z));
-  add_quad(m, V(hi.x(), hi.y(), z), V(lo.x(), hi.y(), z), V(clo.x(), chi.y(), z), V(chi.x(), chi.y(), z));
-  add_quad(m, V(lo.x(), hi.y(), z), V(lo.x(), lo.y(), z), V(clo.x(), clo.y(), z), V(clo.x(), chi.y(), z));
+  // The ring between rectangles `a` (outer) and `b` (inner) at one height, facing up or down.
+  const auto ring = [&](const std::array<V, 4>& a, const std::array<V, 4>& b, bool up) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::size_t j = (i + 1) % 4;
+      if (up)
+        add_quad(m, a[i], a[j], b[j], b[i]);
+      else
+        add_quad(m, a[i], b[i], b[j], a[j]);
+    }
+  };
+  double z0 = lo.z() + floor_mm;
+  {
+    const auto f = rect(tiers.front().wall_mm, z0);
+    add_quad(m, f[0], f[1], f[2], f[3]);  // cavity floor, facing up
+  }
+  for (std::size_t k = 0; k < tiers.size(); ++k) {
+    const double w = tiers[k].wall_mm;
+    const double z1 = k + 1 == tiers.size() ? hi.z() : lo.z() + tiers[k].z_top_mm;
+    const auto b = rect(w, z0), t = rect(w, z1);
+    for (std::size_t i = 0; i < 4; ++i)
+      add_quad(m, b[i], t[i], t[(i + 1) % 4], b[(i + 1) % 4]);  // faces the cavity
+    if (k + 1 < tiers.size() && tiers[k + 1].wall_mm != w) {
+      const double w_next = tiers[k + 1].wall_mm;
+      if (w_next < w)
+        ring(rect(w_next, z1), t, true);  // a ledge on the wall below
+      else
+        ring(t, rect(w_next, z1), false);  // the underside of a thicker wall above
+    }
+    z0 = z1;
+  }
+  ring(rect(0.0, hi.z()), rect(tiers.back().wall_mm, hi.z()), true);  // the rim
   return weld(m);
 }
 

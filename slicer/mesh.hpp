@@ -71,9 +71,21 @@ int find_body(const TriangleMesh& mesh, std::string_view name);
 // A closed box [0,size] with its minimum corner at `origin`; one body named "part".
 TriangleMesh make_box(const Eigen::Vector3d& size, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 
+// One tier of an open box's wall: the wall is `wall_mm` thick up to `z_top_mm` above the box's bottom.
+struct WallTier {
+  double z_top_mm = 0.0;
+  double wall_mm = 0.0;
+};
+
+// An open-top box whose wall thickness changes in tiers from the floor up (the last tier reaches the top,
+// whatever its z_top_mm). Walls thin on the inside: a thinner tier stands on a ledge of the one below.
+// Preconditions: tiers not empty, z_top_mm increasing, every wall less than half the smaller side.
+TriangleMesh make_open_box(const Eigen::Vector3d& size, const std::vector<WallTier>& tiers, double floor_mm,
+                           const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
+
 // An open-top box: outer size, wall thickness and floor thickness (all mm), minimum corner at `origin`.
 // A closed, watertight solid (the walls' inner faces and the floor's top face bound the cavity); one body
-// named "part".
+// named "part" (as every open box).
 TriangleMesh make_open_box(const Eigen::Vector3d& size, double wall_mm, double floor_mm,
                            const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());
 

@@ -218,3 +218,33 @@ TEST(Scenario, MeshPartIsReadOnceWithItsRepairsReported) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+#include "scenarios/embedded.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+// Every scenario shipped in scenarios/ is embedded and loads without error.
+TEST(Scenario, EveryShippedScenarioLoads) {
+  int count = 0;
+  for (const auto& [path, text] : shipped_files()) {
+    if (path.find('/') != std::string::npos) continue;  // machines/, materials/
+    SCOPED_TRACE(path);
+    const Scenario sc = load_scenario_text(text, "<built-in>/" + path);
+    EXPECT_FALSE(sc.variants.empty());
+    EXPECT_FALSE(sc.variants[0].sections.empty());
+    ++count;
+  }
+  EXPECT_GE(count, 2);
+  const Scenario fig7 = load_scenario_text(shipped_files().at("fig7-three-sections.yaml"), "<built-in>/fig7");
+  ASSERT_EQ(fig7.variants[0].sections.size(), 3u);
+  EXPECT_EQ(fig7.variants[0].sections[0].boundary.passes, 2);
+  EXPECT_TRUE(fig7.variants[0].sections[0].fill.enabled);
+  EXPECT_EQ(fig7.variants[0].sections[1].boundary.passes, 2);
+  EXPECT_FALSE(fig7.variants[0].sections[1].fill.enabled);
+  EXPECT_EQ(fig7.variants[0].sections[2].boundary.passes, 1);
+  EXPECT_EQ(fig7.variants[0].part.tiers.size(), 3u);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

@@ -384,3 +384,21 @@ TEST(Plan, ClearanceHeightBetweenLayers) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Mesh, TieredOpenBoxThinsFromTheInside) {
+  // 300 x 200 x 30 with a 10 mm floor; walls 40 mm up to z = 20, then 20 mm.
+  const TriangleMesh m = make_open_box({300, 200, 30}, {{20, 40}, {30, 20}}, 10);
+  const double cavity_low = 220.0 * 120 * 10, cavity_high = 260.0 * 160 * 10;
+  EXPECT_NEAR(m.volume_mm3(), 300.0 * 200 * 30 - cavity_low - cavity_high, 1e-6);
+  EXPECT_NEAR(area_mm2(slice_mesh(m, 15)), 300.0 * 200 - 220.0 * 120, 1e-6);
+  EXPECT_NEAR(area_mm2(slice_mesh(m, 25)), 300.0 * 200 - 260.0 * 160, 1e-6);
+  // A thicker wall above (an overhang into the cavity) is a valid solid too.
+  const TriangleMesh over = make_open_box({300, 200, 30}, {{20, 20}, {30, 40}}, 10);
+  EXPECT_NEAR(over.volume_mm3(), 300.0 * 200 * 30 - 260.0 * 160 * 10 - 220.0 * 120 * 10, 1e-6);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

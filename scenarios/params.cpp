@@ -15,6 +15,9 @@ using T = ParamType;
 constexpr ParamSpec kSection[] = {
     {"name", T::kString, D::kDimensionless, "", 0, 0, false,
      "name of the section, used in reports and variant paths", "patent (12)"},
+    {"body", T::kString, D::kDimensionless, "", 0, 0, false,
+     "slice only this body of the part (a mesh file's object); absent: the whole part", "patent (12), (35)",
+     true},
     {"z", T::kQuantity, D::kLength, "", -kInf, kInf, false,
      "Z limits [lower, upper] of the section; 'part' for the whole part", "patent (41) Z limits"},
     {"layer_height", T::kQuantity, D::kLength, "0.2 in", 0, 100, true,

@@ -21,21 +21,9 @@
 namespace beadtwin::scenarios {
 namespace {
 
-slicer::TriangleMesh build_part(const PartSpec& part) {
-  switch (part.kind) {
-    case PartSpec::Kind::kMesh:
-      return part.loaded ? *part.loaded : slicer::read_mesh(part.mesh, part.mesh_scale);
-    case PartSpec::Kind::kBox:
-      return slicer::make_box(part.size, part.origin);
-    case PartSpec::Kind::kOpenBox:
-      return slicer::make_open_box(part.size, part.tiers, part.floor_mm, part.origin);
-  }
-  throw InternalError("unknown part kind");
-}
-
 Toolpath slice_variant(const Variant& v) {
-  const slicer::TriangleMesh mesh = build_part(v.part);
-  Toolpath tp = slicer::plan_toolpath(mesh, v.sections, v.machine.motion);
+  BT_CHECK(v.part.loaded != nullptr);
+  Toolpath tp = slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion);
   if (tp.layers.empty())
     throw InputError({}, "sections",
                      fmt::format("variant '{}': no section's Z range meets the part ({}), nothing to print",
@@ -43,22 +31,40 @@ Toolpath slice_variant(const Variant& v) {
   return tp;
 }
 
-std::vector<thermal::LayerInput> thermal_inputs(const Toolpath& tp) {
-  std::vector<thermal::LayerInput> in;
-  in.reserve(tp.layers.size());
+// The layer stack the thermal model integrates. Toolpath layers at the same height (sections side by side,
+// merged by Z) are one thermal layer: their areas and exposed edges add up, and the layer lasts from the
+// first one's start to the last one's end. `of_layer` maps each toolpath layer to its thermal layer.
+struct ThermalStack {
+  std::vector<thermal::LayerInput> layers;
+  std::vector<std::size_t> of_layer;
+};
+
+ThermalStack thermal_stack(const Toolpath& tp) {
+  ThermalStack stack;
   for (const ToolpathLayer& l : tp.layers) {
-    thermal::LayerInput li;
-    li.z_top_mm = l.z_mm;
-    li.height_mm = l.height_mm;
-    li.start_s = l.start_s;
-    li.end_s = std::max(l.end_s, l.start_s);
     double volume = 0.0;
     for (std::size_t i = l.first_move; i < l.end_move; ++i) volume += tp.moves[i].volume_mm3;
-    li.area_mm2 = l.outline_area_mm2 > 0 ? l.outline_area_mm2 : volume / l.height_mm;
-    li.perimeter_mm = l.outline_perimeter_mm;
-    in.push_back(li);
+    const double area = l.outline_area_mm2 > 0 ? l.outline_area_mm2 : volume / l.height_mm;
+    if (!stack.layers.empty() && std::abs(stack.layers.back().z_top_mm - l.z_mm) < 1e-6) {
+      thermal::LayerInput& g = stack.layers.back();
+      g.area_mm2 += area;
+      g.perimeter_mm += l.outline_perimeter_mm;
+      g.start_s = std::min(g.start_s, l.start_s);
+      g.end_s = std::max(g.end_s, l.end_s);
+      g.height_mm = std::max(g.height_mm, l.height_mm);
+    } else {
+      thermal::LayerInput li;
+      li.z_top_mm = l.z_mm;
+      li.height_mm = l.height_mm;
+      li.start_s = l.start_s;
+      li.end_s = std::max(l.end_s, l.start_s);
+      li.area_mm2 = area;
+      li.perimeter_mm = l.outline_perimeter_mm;
+      stack.layers.push_back(li);
+    }
+    stack.of_layer.push_back(stack.layers.size() - 1);
   }
-  return in;
+  return stack;
 }
 
 void write_vdb(const sim::Deposit& d, const std::filesystem::path& path) {
@@ -107,9 +113,8 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
   m.thermal_steps = th.steps;
   std::vector<double> durations, healing;
   int hot = 0, cold = 0;
-  for (std::size_t i = 0; i < tp.layers.size(); ++i) {
-    durations.push_back(tp.layers[i].duration_s());
-    const thermal::LayerResult& r = th.layers[i];
+  for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
+  for (const thermal::LayerResult& r : th.layers) {
     if (r.verdict == thermal::Verdict::kNoInterface) continue;
     ++m.interfaces;
     healing.push_back(r.healing);
@@ -127,11 +132,12 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
   return m;
 }
 
-std::vector<LayerRow> layer_rows(const Toolpath& tp, const thermal::ThermalResult& th) {
+std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalStack& stack,
+                                 const thermal::ThermalResult& th) {
   std::vector<LayerRow> rows;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
-    const thermal::LayerResult& r = th.layers[i];
+    const thermal::LayerResult& r = th.layers[stack.of_layer[i]];
     LayerRow row;
     row.index = static_cast<int>(i);
     row.z_mm = l.z_mm;
@@ -189,23 +195,23 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     o.voxel_size_mm = v.output.voxel_size_mm;
     return sim::deposit(tp, o);
   });
+  const ThermalStack stack = thermal_stack(tp);
   const thermal::ThermalResult th = stages.run("thermal", [&] {
     thermal::Options o;
     o.nodes_per_layer = v.thermal.nodes_per_layer;
     o.cooldown_s = v.thermal.cooldown_s;
     o.rel_tol = v.thermal.rel_tol;
     o.abs_tol_k = v.thermal.abs_tol_k;
-    const auto inputs = thermal_inputs(tp);
-    return thermal::solve_thermal(inputs, v.material, v.machine.environment, o);
+    return thermal::solve_thermal(stack.layers, v.material, v.machine.environment, o);
   });
   stages.run("render", [&] {
     render::RenderOptions o;
     o.width = v.output.image_width;
     o.height = v.output.image_height;
     const auto colour = [&](int layer) {
-      if (layer < 0 || static_cast<std::size_t>(layer) >= th.layers.size())
+      if (layer < 0 || static_cast<std::size_t>(layer) >= stack.of_layer.size())
         return render::Rgb{0.5f, 0.5f, 0.5f};
-      return verdict_colour(th.layers[static_cast<std::size_t>(layer)].verdict);
+      return verdict_colour(th.layers[stack.of_layer[static_cast<std::size_t>(layer)]].verdict);
     };
     for (const auto& [view, file] : {std::pair{render::View::kIsometric, "fusion.png"},
                                      std::pair{render::View::kTop, "fusion-top.png"}}) {
@@ -226,7 +232,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   stages.run("vdb", [&] { write_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
   res.metrics = measure(v, tp, deposit, th);
-  res.layers = layer_rows(tp, th);
+  res.layers = layer_rows(tp, stack, th);
   res.gates = evaluate_gates(sc.gates, res.metrics);
   res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });
   res.stage_times = stages.times();

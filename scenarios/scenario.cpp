@@ -268,16 +268,44 @@ PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& 
   return p;
 }
 
+// The part as a mesh: a built-in primitive (a mesh file is read into `loaded` by read_part).
+slicer::TriangleMesh build_part_mesh(const PartSpec& part) {
+  switch (part.kind) {
+    case PartSpec::Kind::kBox:
+      return slicer::make_box(part.size, part.origin);
+    case PartSpec::Kind::kOpenBox:
+      return slicer::make_open_box(part.size, part.tiers, part.floor_mm, part.origin);
+    case PartSpec::Kind::kMesh:
+      break;
+  }
+  throw InternalError("a mesh part is read when it is loaded");
+}
+
+// `part` is the part's mesh (for `z: part` and `body`).
 slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const Material& material,
-                                   double part_top) {
+                                   const slicer::TriangleMesh& part) {
   const auto t = section_params();
   slicer::SectionParams s;
   s.name = r.string(spec(t, "name"));
+  if (YAML::Node body = r.take("body"); body.IsDefined()) {
+    if (!body.IsScalar() || body.Scalar().empty())
+      r.fail(body, "body", "expected the name of one of the part's bodies");
+    s.body = body.Scalar();
+  }
   YAML::Node z = r.take("z");
   if (!z.IsDefined()) r.fail(z, "z", "required key is missing (Z limits [lower, upper], or 'part')");
   if (z.IsScalar() && z.Scalar() == "part") {
-    s.z_min_mm = 0.0;
-    s.z_max_mm = part_top;
+    // The full part (patent (42)): from the bottom of the section's body (or of the part) to its top.
+    const int body = s.body.empty() ? -1 : slicer::find_body(part, s.body);
+    if (!s.body.empty() && body < 0) {
+      std::string names;
+      for (const auto& n : part.body_names) names += (names.empty() ? "" : ", ") + n;
+      r.fail(r.take("body"), "body",
+             fmt::format("the part has no body named '{}'; its bodies are: {}", s.body, names));
+    }
+    const slicer::TriangleMesh& m = body < 0 ? part : slicer::select_body(part, body);
+    s.z_min_mm = m.min_corner().z();
+    s.z_max_mm = m.max_corner().z();
   } else {
     if (!z.IsSequence() || z.size() != 2) r.fail(z, "z", "expected Z limits [lower, upper] or 'part'");
     s.z_min_mm = r.parse(z[0], Dimension::kLength, "z");
@@ -470,8 +498,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));
   th_r.finish(thermal_params());
 
-  const double part_top = v.part.kind == PartSpec::Kind::kMesh ? v.part.loaded->max_corner().z()
-                                                               : v.part.origin.z() + v.part.size.z();
+  if (!v.part.loaded) v.part.loaded = std::make_shared<const slicer::TriangleMesh>(build_part_mesh(v.part));
   const YAML::Node sections = tree.root["sections"];
   if (!sections || !sections.IsSequence() || sections.size() == 0)
     throw InputError(location_of(sections ? sections : tree.root, tree.scenario_src->file), "sections",
@@ -480,15 +507,19 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     const std::string prefix =
         sections[i]["name"] ? "sections." + sections[i]["name"].Scalar() : fmt::format("sections[{}]", i);
     BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
-    v.sections.push_back(read_section(sr, v.machine, v.material, part_top));
+    v.sections.push_back(read_section(sr, v.machine, v.material, *v.part.loaded));
     for (std::size_t j = 0; j + 1 < v.sections.size(); ++j) {
       const auto& a = v.sections[j];
       const auto& b = v.sections.back();
       if (a.name == b.name)
         sr.fail(sections[i]["name"], "name", fmt::format("a section named '{}' already exists", b.name));
-      if (b.z_min_mm < a.z_max_mm - 1e-9 && a.z_min_mm < b.z_max_mm - 1e-9)
-        sr.fail(sections[i]["z"], "z",
-                fmt::format("overlaps section '{}' in Z ({} to {} mm)", a.name, a.z_min_mm, a.z_max_mm));
+      const bool other_bodies = !a.body.empty() && !b.body.empty() && a.body != b.body;
+      if (!other_bodies && b.z_min_mm < a.z_max_mm - 1e-9 && a.z_min_mm < b.z_max_mm - 1e-9)
+        sr.fail(
+            sections[i]["z"], "z",
+            fmt::format("overlaps section '{}' in Z ({} to {} mm); sections may share heights only when they "
+                        "slice different bodies",
+                        a.name, a.z_min_mm, a.z_max_mm));
     }
   }
   return v;

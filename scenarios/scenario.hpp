@@ -32,14 +32,13 @@ struct Machine {
 struct PartSpec {
   enum class Kind { kMesh, kBox, kOpenBox };
   Kind kind = Kind::kOpenBox;
-  std::filesystem::path mesh;  // kMesh: resolved path
-  double mesh_scale = 1.0;     // mesh file units to mm
-  std::shared_ptr<const slicer::TriangleMesh>
-      loaded;                                      // kMesh: read (and repaired) once, when the scenario loads
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();  // kBox, kOpenBox: outer size, mm
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // minimum corner, mm
-  std::vector<slicer::WallTier> tiers;               // kOpenBox: wall thickness from the floor up
-  double floor_mm = 0.0;                             // kOpenBox
+  std::filesystem::path mesh;                          // kMesh: resolved path
+  double mesh_scale = 1.0;                             // mesh file units to mm
+  std::shared_ptr<const slicer::TriangleMesh> loaded;  // the part as a mesh, made or read once when loading
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();      // kBox, kOpenBox: outer size, mm
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();    // minimum corner, mm
+  std::vector<slicer::WallTier> tiers;                 // kOpenBox: wall thickness from the floor up
+  double floor_mm = 0.0;                               // kOpenBox
   std::string describe() const;
 };
 

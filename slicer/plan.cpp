@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -335,17 +336,27 @@ void lay_layer(Toolpath& tp, const SectionParams& s, int section, const Polygons
   if (!s.fill_first) lay_fill(b, s, fill_region, angle_index);
 }
 
+// One layer to lay: where, for which section, with what outline and role.
+struct LayerJob {
+  double z_top_mm = 0.0;
+  int section = 0;
+  int order = 0;  // the section's place in Z order: breaks ties at equal heights
+  Polygons region;
+  int angle_index = 0;  // layers laid before it in its section: turns the fill and moves the seam
+  Feature role = Feature::kUnknown;
+  bool fill = false;
+};
+
 // Every layer of one section, with its rafts below and its stock on top, shifted up by `z_shift_mm`.
-void plan_section(const TriangleMesh& mesh, const SectionParams& s, int section, double z_shift_mm,
-                  Toolpath& tp, Eigen::Vector2d& head, PlanStats& stats) {
+void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section, int order, double z_shift_mm,
+                  std::vector<LayerJob>& jobs, PlanStats& stats) {
   const int layers = static_cast<int>(std::floor((s.z_max_mm - s.z_min_mm) / s.layer_height_mm + 1e-6));
   const double h = s.layer_height_mm;
-  int index = 0;  // layers laid so far in this section: turns the fill and moves the seam
-  Polygons last;
-  double last_top = 0.0;
+  int index = 0;
+  std::optional<std::size_t> last_at;  // the section's top layer among the jobs
   for (int l = 0; l < layers; ++l) {
     const double z_cad = s.z_min_mm + (l + 1) * h;
-    const Polygons region = layer_region(mesh, s, z_cad - 0.5 * h, stats);
+    Polygons region = layer_region(mesh, s, z_cad - 0.5 * h, stats);
     if (region.empty()) {
       ++stats.empty_layers;
       continue;
@@ -353,16 +364,33 @@ void plan_section(const TriangleMesh& mesh, const SectionParams& s, int section,
     if (index == 0) {
       // Rafts: solid layers with the first layer's outline; the part sits on them (z_shift_mm includes them).
       for (int r = 0; r < s.rafts; ++r)
-        lay_layer(tp, s, section, region, z_cad - (s.rafts - r) * h + z_shift_mm, index++, Feature::kRaft,
-                  true, head);
+        jobs.push_back(
+            {z_cad - (s.rafts - r) * h + z_shift_mm, section, order, region, index++, Feature::kRaft, true});
     }
-    lay_layer(tp, s, section, region, z_cad + z_shift_mm, index++, Feature::kUnknown, s.fill.enabled, head);
-    last = region;
-    last_top = z_cad + z_shift_mm;
+    jobs.push_back(
+        {z_cad + z_shift_mm, section, order, std::move(region), index++, Feature::kUnknown, s.fill.enabled});
+    last_at = jobs.size() - 1;
   }
   // Stock on top: solid layers on the section's top layer, with its outline.
-  for (int t = 0; t < s.stock_on_top && !last.empty(); ++t)
-    lay_layer(tp, s, section, last, last_top + (t + 1) * h, index++, Feature::kStockOnTop, true, head);
+  if (!last_at) return;
+  const Polygons top = jobs[*last_at].region;
+  const double top_z = jobs[*last_at].z_top_mm;
+  for (int t = 0; t < s.stock_on_top; ++t)
+    jobs.push_back({top_z + (t + 1) * h, section, order, top, index++, Feature::kStockOnTop, true});
+}
+
+// The mesh a section slices: the whole part, or the one body it names.
+TriangleMesh section_mesh(const TriangleMesh& mesh, const SectionParams& s) {
+  if (s.body.empty()) return mesh;
+  const int body = find_body(mesh, s.body);
+  if (body < 0) {
+    std::string names;
+    for (const auto& n : mesh.body_names) names += (names.empty() ? "" : ", ") + n;
+    throw InputError({}, "sections." + s.name + ".body",
+                     fmt::format("the part has no body named '{}'; its bodies are: {}", s.body,
+                                 names.empty() ? "part" : names));
+  }
+  return select_body(mesh, body);
 }
 
 void validate(const std::vector<SectionParams>& sections) {
@@ -405,8 +433,21 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   // Rafts under the lowest section lift the whole part.
   const SectionParams& lowest = sections[order.front()];
   const double z_shift = lowest.rafts * lowest.layer_height_mm;
-  for (const std::size_t si : order)
-    plan_section(mesh, sections[si], static_cast<int>(si), z_shift, tp, head, local);
+  std::vector<LayerJob> jobs;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const SectionParams& s = sections[order[i]];
+    section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs,
+                 local);
+  }
+  // AM Z merge (patent (14), (39)): the layers of all sections in one program, by height, so sections side
+  // by side rise together and an elevated section starts when the build reaches it (patent (16)).
+  std::stable_sort(jobs.begin(), jobs.end(), [](const LayerJob& a, const LayerJob& b) {
+    if (std::abs(a.z_top_mm - b.z_top_mm) > 1e-9) return a.z_top_mm < b.z_top_mm;
+    return a.order < b.order;
+  });
+  for (const LayerJob& j : jobs)
+    lay_layer(tp, sections[static_cast<std::size_t>(j.section)], j.section, j.region, j.z_top_mm,
+              j.angle_index, j.role, j.fill, head);
   time_toolpath(tp, motion);
   if (stats) *stats = local;
   return tp;

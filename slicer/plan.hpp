@@ -35,6 +35,7 @@ struct FillParams {
 
 struct SectionParams {
   std::string name;
+  std::string body;       // slice only this body of the part (patent (12), (35)); empty: the whole part
   double z_min_mm = 0.0;  // bottom of the section's first layer
   double z_max_mm = 0.0;  // top of the section's last layer
   double layer_height_mm = 5.08;
@@ -65,8 +66,9 @@ struct PlanStats {
   int open_chains = 0;   // slice loops that did not close (mesh holes), summed over layers
 };
 
-// Plans every section and merges them into one Toolpath (times from `motion`). Sections must not overlap in
-// Z (checked by the scenario loader). Throws InputError on parameters the planner cannot use.
+// Plans every section and merges their layers by height into one Toolpath (times from `motion`). Sections
+// may overlap in Z only when they slice different bodies (checked by the scenario loader). Throws InputError
+// on parameters the planner cannot use.
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
                        const MotionLimits& motion, PlanStats* stats = nullptr);
 

@@ -248,3 +248,51 @@ TEST(Scenario, EveryShippedScenarioLoads) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+// Sections on different bodies may share heights; `z: part` spans the section's own body.
+TEST(Scenario, SectionsOnBodies) {
+  const auto dir = std::filesystem::temp_directory_path() / "bt_scenario_bodies";
+  std::filesystem::create_directories(dir);
+  std::ofstream obj(dir / "two.obj");
+  const auto cube = [&obj](const char* name, double x0, double z0, double z1, int base) {
+    obj << "o " << name << "\n";
+    for (int k = 0; k < 8; ++k)
+      obj << "v " << x0 + 100 * (((k + 1) / 2) % 2) << " " << 100 * ((k / 2) % 2) << " " << (k < 4 ? z0 : z1)
+          << "\n";
+    const int f[12][3] = {{1, 3, 2}, {1, 4, 3}, {5, 6, 7}, {5, 7, 8}, {1, 2, 6}, {1, 6, 5},
+                          {2, 3, 7}, {2, 7, 6}, {3, 4, 8}, {3, 8, 7}, {4, 1, 5}, {4, 5, 8}};
+    for (const auto& t : f) obj << "f " << t[0] + base << " " << t[1] + base << " " << t[2] + base << "\n";
+  };
+  cube("tower", 0, 0, 40, 0);
+  cube("block", 200, 20, 40, 8);
+  obj.close();
+  const std::string head =
+      "name: b\nmachine: lsam-ph15\nmaterial: cf-abs-20\npart: {mesh: two.obj}\nsections:\n";
+  std::ofstream(dir / "ok.yaml")
+      << head << "  - {name: t, body: tower, z: part, layer_height: 5 mm, bead_width: 20 mm}\n"
+      << "  - {name: k, body: block, z: part, layer_height: 5 mm, bead_width: 20 mm}\n";
+  const Scenario sc = load_scenario(dir / "ok.yaml");
+  ASSERT_EQ(sc.variants[0].sections.size(), 2u);
+  EXPECT_DOUBLE_EQ(sc.variants[0].sections[1].z_min_mm, 20);
+  EXPECT_DOUBLE_EQ(sc.variants[0].sections[1].z_max_mm, 40);
+  std::ofstream(dir / "bad.yaml")
+      << head << "  - {name: t, body: tower, z: part, layer_height: 5 mm, bead_width: 20 mm}\n"
+      << "  - {name: k, body: nope, z: part, layer_height: 5 mm, bead_width: 20 mm}\n";
+  try {
+    (void)load_scenario(dir / "bad.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "sections.k.body");
+    EXPECT_NE(std::string(e.what()).find("tower, block"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "overlap.yaml")
+      << head << "  - {name: t, z: part, layer_height: 5 mm, bead_width: 20 mm}\n"
+      << "  - {name: k, body: block, z: part, layer_height: 5 mm, bead_width: 20 mm}\n";
+  EXPECT_THROW((void)load_scenario(dir / "overlap.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

@@ -402,3 +402,65 @@ TEST(Mesh, TieredOpenBoxThinsFromTheInside) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// Two bodies side by side: "a" at x in [0, 100], "b" at x in [200, 300] from z = b_bottom to b_top.
+TriangleMesh two_bodies(double a_top, double b_bottom, double b_top) {
+  TriangleMesh a = make_box({100, 100, a_top});
+  const TriangleMesh b = make_box({100, 100, b_top - b_bottom}, {200, 0, b_bottom});
+  const int base = static_cast<int>(a.vertices.size());
+  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (auto t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  a.body.assign(a.triangles.size(), 0);
+  std::fill(a.body.begin() + static_cast<std::ptrdiff_t>(b.triangles.size()), a.body.end(), 1);
+  a.body_names = {"a", "b"};
+  return a;
+}
+
+std::vector<std::pair<double, int>> layer_sequence(const Toolpath& tp) {
+  std::vector<std::pair<double, int>> seq;
+  for (const auto& l : tp.layers) seq.emplace_back(l.z_mm, l.section);
+  return seq;
+}
+
+TEST(Plan, SectionsOnBodiesMergeByHeight) {
+  // "AM Z merge": section 0 on body a at 5 mm layers, section 1 on body b at 10 mm layers, one program in
+  // order of height; at equal heights the sections keep their order.
+  SectionParams a = section(0, 20, 5, 20, 1, false), b = section(0, 20, 10, 20, 1, false);
+  a.name = "a";
+  a.body = "a";
+  b.name = "b";
+  b.body = "b";
+  const Toolpath tp = plan_toolpath(two_bodies(20, 0, 20), {a, b}, {});
+  const std::vector<std::pair<double, int>> expected = {{5, 0}, {10, 0}, {10, 1}, {15, 0}, {20, 0}, {20, 1}};
+  EXPECT_EQ(layer_sequence(tp), expected);
+  // Each section printed only its own body.
+  for (const Move& m : tp.moves) {
+    if (m.kind != MoveKind::kPrint) continue;
+    EXPECT_EQ(m.section == 0, m.end.x() < 150.0)
+        << "a move of section " << m.section << " at x = " << m.end.x();
+  }
+  SectionParams missing = a;
+  missing.body = "c";
+  EXPECT_THROW((void)plan_toolpath(two_bodies(20, 0, 20), {missing}, {}), InputError);
+}
+
+TEST(Plan, ElevatedSectionWaitsForTheBuildToReachIt) {
+  // Body b starts 20 mm above the table (patent (16)): its first layer comes after body a's layer at 20 mm.
+  SectionParams a = section(0, 40, 5, 20, 1, false), b = section(20, 40, 5, 20, 1, false);
+  a.body = "a";
+  b.body = "b";
+  const Toolpath tp = plan_toolpath(two_bodies(40, 20, 40), {a, b}, {});
+  const auto seq = layer_sequence(tp);
+  ASSERT_EQ(seq.size(), 8u + 4u);
+  const auto first_b = std::find_if(seq.begin(), seq.end(), [](const auto& p) { return p.second == 1; });
+  ASSERT_NE(first_b, seq.end());
+  EXPECT_DOUBLE_EQ(first_b->first, 25.0);
+  EXPECT_EQ(std::prev(first_b)->first, 25.0);  // a's layer at 25 mm just before, at the same height
+  EXPECT_EQ(std::count_if(seq.begin(), first_b, [](const auto& p) { return p.second == 0; }), 5);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -18,6 +18,10 @@ constexpr ParamSpec kSection[] = {
     {"body", T::kString, D::kDimensionless, "", 0, 0, false,
      "slice only this body of the part (a mesh file's object); absent: the whole part", "patent (12), (35)",
      true},
+    {"tool", T::kString, D::kDimensionless, "", 0, 0, false,
+     "name of a tool / melt configuration under `tools:`; it gives bead_width and layer_height unless set "
+     "here",
+     "patent (48)", true},
     {"z", T::kQuantity, D::kLength, "", -kInf, kInf, false,
      "Z limits [lower, upper] of the section; 'part' for the whole part", "patent (41) Z limits"},
     {"layer_height", T::kQuantity, D::kLength, "0.2 in", 0, 100, true,
@@ -165,8 +169,21 @@ constexpr ParamSpec kThermal[] = {
     {"abs_tol", T::kQuantity, D::kDimensionless, "1e-4", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
 };
 
+// Tool / melt configurations (patent (48)): named bead sets the sections refer to with `tool:`.
+constexpr ParamSpec kTool[] = {
+    {"description", T::kString, D::kDimensionless, "-", 0, 0, false, "what the configuration is", ""},
+    {"material", T::kString, D::kDimensionless, "", 0, 0, false,
+     "material it prints; must be the scenario's material when given", "patent (48)", true},
+    {"bead_width", T::kQuantity, D::kLength, "", 0, 500, true, "bead width after the roller", "patent (48)"},
+    {"bead_thickness", T::kQuantity, D::kLength, "", 0, 100, true,
+     "bead thickness after the roller: the layer height of sections using it", "patent (48), (55)"},
+};
+
 }  // namespace
 
+std::span<const ParamSpec> tool_params() {
+  return kTool;
+}
 std::span<const ParamSpec> section_params() {
   return kSection;
 }
@@ -243,6 +260,8 @@ std::string params_markdown() {
   table(out, "Material",
         "A file in `materials/` (or an inline `material:` map); variants set `material.<key>`.",
         material_params());
+  table(out, "Tools (melt configurations)",
+        "Each entry of the `tools:` map, by name; sections refer to one with `tool: <name>`.", tool_params());
   table(out, "Output", "The `output:` block.", output_params());
   table(out, "Thermal solver", "The `thermal:` block.", thermal_params());
   return out;

@@ -33,6 +33,7 @@ std::span<const ParamSpec> machine_params();
 std::span<const ParamSpec> material_params();
 std::span<const ParamSpec> output_params();
 std::span<const ParamSpec> thermal_params();
+std::span<const ParamSpec> tool_params();
 
 }  // namespace beadtwin::scenarios
 

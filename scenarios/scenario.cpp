@@ -281,9 +281,44 @@ slicer::TriangleMesh build_part_mesh(const PartSpec& part) {
   throw InternalError("a mesh part is read when it is loaded");
 }
 
+// A tool / melt configuration (patent (48)): the bead a section lays when it names the tool.
+struct Tool {
+  double bead_width_mm = 0.0;
+  double bead_thickness_mm = 0.0;
+};
+
+std::map<std::string, Tool> read_tools(const Tree& tree, const Material& material) {
+  std::map<std::string, Tool> tools;
+  const YAML::Node node = tree.root["tools"];
+  if (!node.IsDefined() || node.IsNull()) return tools;
+  if (!node.IsMap())
+    throw InputError(location_of(node, tree.scenario_src->file), "tools",
+                     "expected a map of named tools {name: {bead_width, bead_thickness}}");
+  const auto t = tool_params();
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    const std::string name = it->first.Scalar();
+    BlockReader r(it->second, "tools." + name, tree.scenario_src, &tree.overridden);
+    (void)r.string(spec(t, "description"));
+    if (YAML::Node m = r.take("material"); m.IsDefined() && (!m.IsScalar() || m.Scalar() != material.name))
+      r.fail(
+          m, "material",
+          fmt::format("tool prints '{}' but the scenario's material is '{}' (one material per run for now)",
+                      m.IsScalar() ? m.Scalar() : std::string("?"), material.name));
+    Tool tool;
+    tool.bead_width_mm = r.quantity(spec(t, "bead_width"));
+    tool.bead_thickness_mm = r.quantity(spec(t, "bead_thickness"));
+    if (tool.bead_width_mm < tool.bead_thickness_mm)
+      r.fail(r.take("bead_width"), "bead_width", "a bead cannot be narrower than it is thick");
+    r.finish(t);
+    tools[name] = tool;
+  }
+  return tools;
+}
+
 // `part` is the part's mesh (for `z: part` and `body`).
 slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const Material& material,
-                                   const slicer::TriangleMesh& part) {
+                                   const slicer::TriangleMesh& part,
+                                   const std::map<std::string, Tool>& tools) {
   const auto t = section_params();
   slicer::SectionParams s;
   s.name = r.string(spec(t, "name"));
@@ -313,8 +348,27 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     if (!(s.z_max_mm > s.z_min_mm))
       r.fail(z, "z", fmt::format("upper limit {} mm is not above lower limit {} mm", s.z_max_mm, s.z_min_mm));
   }
-  s.layer_height_mm = r.quantity(spec(t, "layer_height"));
-  s.bead_width_mm = r.quantity(spec(t, "bead_width"));
+  // The bead: from the section, else from its tool (patent (48)), else the defaults.
+  const Tool* tool = nullptr;
+  if (YAML::Node tn = r.take("tool"); tn.IsDefined()) {
+    const auto found = tn.IsScalar() ? tools.find(tn.Scalar()) : tools.end();
+    if (found == tools.end()) {
+      std::string names;
+      for (const auto& [n, _] : tools) names += (names.empty() ? "" : ", ") + n;
+      r.fail(tn, "tool",
+             fmt::format("no tool named '{}' under tools: (there are: {})", tn.IsScalar() ? tn.Scalar() : "?",
+                         names.empty() ? "none" : names));
+    }
+    tool = &found->second;
+  }
+  const auto height = r.optional_quantity(spec(t, "layer_height"));
+  const auto width = r.optional_quantity(spec(t, "bead_width"));
+  s.layer_height_mm = height ? *height
+                      : tool ? tool->bead_thickness_mm
+                             : parse_quantity(spec(t, "layer_height").default_text, Dimension::kLength);
+  s.bead_width_mm = width  ? *width
+                    : tool ? tool->bead_width_mm
+                           : parse_quantity(spec(t, "bead_width").default_text, Dimension::kLength);
   if (s.bead_width_mm < s.layer_height_mm)
     r.fail(r.take("bead_width"), "bead_width",
            fmt::format("bead width {} mm is less than the layer height {} mm", s.bead_width_mm,
@@ -408,12 +462,13 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
     }
     if (!found) throw InputError(at, path, fmt::format("no section named '{}'", parts[1]));
     first = 2;
-  } else if (head == "part" || head == "output" || head == "thermal") {
+  } else if (head == "part" || head == "output" || head == "thermal" || head == "tools") {
     if (!tree.root[head]) tree.root[head] = YAML::Node(YAML::NodeType::Map);
     target.reset(tree.root[head]);
   } else {
     throw InputError(
-        at, path, "a variant can set keys under machine, material, part, output, thermal or sections.<name>");
+        at, path,
+        "a variant can set keys under machine, material, part, output, thermal, tools or sections.<name>");
   }
   if (parts.size() <= first) throw InputError(at, path, "expected a key below the block");
   for (std::size_t i = first; i + 1 < parts.size(); ++i) {
@@ -499,6 +554,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   th_r.finish(thermal_params());
 
   if (!v.part.loaded) v.part.loaded = std::make_shared<const slicer::TriangleMesh>(build_part_mesh(v.part));
+  const std::map<std::string, Tool> tools = read_tools(tree, v.material);
   const YAML::Node sections = tree.root["sections"];
   if (!sections || !sections.IsSequence() || sections.size() == 0)
     throw InputError(location_of(sections ? sections : tree.root, tree.scenario_src->file), "sections",
@@ -507,7 +563,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     const std::string prefix =
         sections[i]["name"] ? "sections." + sections[i]["name"].Scalar() : fmt::format("sections[{}]", i);
     BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
-    v.sections.push_back(read_section(sr, v.machine, v.material, *v.part.loaded));
+    v.sections.push_back(read_section(sr, v.machine, v.material, *v.part.loaded, tools));
     for (std::size_t j = 0; j + 1 < v.sections.size(); ++j) {
       const auto& a = v.sections[j];
       const auto& b = v.sections.back();
@@ -603,8 +659,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
         "description", ParamType::kString, Dimension::kDimensionless, "-", 0, 0, false, "", ""};
     sc.name = top.string(kName);
     sc.description = top.string(kDesc);
-    static constexpr std::string_view kKeys[] = {"units",   "machine",  "material", "part", "output",
-                                                 "thermal", "sections", "variants", "gates"};
+    static constexpr std::string_view kKeys[] = {"units",   "machine", "material", "part",     "output",
+                                                 "thermal", "tools",   "sections", "variants", "gates"};
     for (const auto k : kKeys) (void)top.take(k);
     static const ParamSpec kTop[] = {kName, kDesc};
     top.finish(kTop, kKeys);

@@ -170,8 +170,19 @@ void BlockReader::check_range(const ParamSpec& spec, double value, const YAML::N
 YAML::Node BlockReader::value_or_default(const ParamSpec& spec, bool& from_default) {
   YAML::Node node = take(spec.key);
   from_default = !node.IsDefined() || node.IsNull();
-  if (from_default && spec.default_text.empty())
+  if (from_default && spec.default_text.empty()) {
+    // A misspelling of the key is the likeliest reason: point at it.
+    if (node_.IsDefined() && node_.IsMap()) {
+      std::vector<std::pair<std::string, YAML::Node>> present;
+      leaves(node_, "", present);
+      for (const auto& [key, key_node] : present) {
+        if (key != spec.key && edit_distance(key, spec.key) <= 2)
+          throw InputError(where(key_node, key), full_key(key),
+                           fmt::format("unknown key; did you mean '{}'? (required: {})", spec.key, spec.meaning));
+      }
+    }
     fail(node_, spec.key, fmt::format("required key is missing ({})", spec.meaning));
+  }
   return node;
 }
 

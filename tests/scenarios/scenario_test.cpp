@@ -296,3 +296,36 @@ TEST(Scenario, SectionsOnBodies) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+// Tool / melt configurations (patent (48)): sections take their bead from the tool they name.
+TEST(Scenario, SectionsTakeTheirBeadFromTheirTool) {
+  const std::string tools =
+      "tools:\n  big: {bead_width: 1 in, bead_thickness: 0.25 in, material: cf-abs-20}\n"
+      "  small: {bead_width: 10 mm, bead_thickness: 2 mm}\nsections:\n";
+  std::string text = replace(kGood, "sections:\n", tools);
+  text = replace(text, "    layer_height: 5\n    bead_width: 20\n    boundary: {passes: 2}",
+                 "    tool: big\n    boundary: {passes: 2}");
+  text = replace(text, "    layer_height: 5\n    bead_width: 20\n    boundary: {passes: 1}",
+                 "    tool: small\n    bead_width: 12\n    boundary: {passes: 1}");
+  const Scenario sc = load_scenario_text(text, "t.yaml");
+  const auto& floor = sc.variants[0].sections[0];
+  EXPECT_DOUBLE_EQ(floor.bead_width_mm, 25.4);
+  EXPECT_DOUBLE_EQ(floor.layer_height_mm, 6.35);
+  const auto& walls = sc.variants[0].sections[1];
+  EXPECT_DOUBLE_EQ(walls.bead_width_mm, 12);  // the section's own value wins
+  EXPECT_DOUBLE_EQ(walls.layer_height_mm, 2);
+
+  const InputError unknown = load_error(replace(text, "tool: small", "tool: tiny"));
+  EXPECT_EQ(unknown.key(), "sections.walls.tool");
+  EXPECT_NE(std::string(unknown.what()).find("big, small"), std::string::npos) << unknown.what();
+  const InputError other = load_error(replace(text, "material: cf-abs-20}", "material: pla}"));
+  EXPECT_EQ(other.key(), "tools.big.material");
+  const InputError key = load_error(replace(text, "bead_thickness: 2 mm", "bead_thicknes: 2 mm"));
+  EXPECT_EQ(key.key(), "tools.small.bead_thicknes");
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

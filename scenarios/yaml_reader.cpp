@@ -177,8 +177,9 @@ YAML::Node BlockReader::value_or_default(const ParamSpec& spec, bool& from_defau
       leaves(node_, "", present);
       for (const auto& [key, key_node] : present) {
         if (key != spec.key && edit_distance(key, spec.key) <= 2)
-          throw InputError(where(key_node, key), full_key(key),
-                           fmt::format("unknown key; did you mean '{}'? (required: {})", spec.key, spec.meaning));
+          throw InputError(
+              where(key_node, key), full_key(key),
+              fmt::format("unknown key; did you mean '{}'? (required: {})", spec.key, spec.meaning));
       }
     }
     fail(node_, spec.key, fmt::format("required key is missing ({})", spec.meaning));

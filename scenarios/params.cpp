@@ -22,6 +22,14 @@ constexpr ParamSpec kSection[] = {
      "name of a tool / melt configuration under `tools:`; it gives bead_width and layer_height unless set "
      "here",
      "patent (48)", true},
+    {"outline.points", T::kQuantity, D::kLength, "", 0, 0, false,
+     "AM Outline: the 2-D path [[x, y], ...] the section prints itself, layer after layer, instead of "
+     "slicing",
+     "patent (39) AM Outline", true},
+    {"outline.closed", T::kBool, D::kDimensionless, "true", 0, 0, false,
+     "the outline path returns to its start", "patent (39)"},
+    {"layers", T::kInteger, D::kDimensionless, "", 1, 100000, false,
+     "number of layers, instead of an upper Z limit (for AM Outline sections)", "patent (39)", true},
     {"z", T::kQuantity, D::kLength, "", -kInf, kInf, false,
      "Z limits [lower, upper] of the section; 'part' for the whole part", "patent (41) Z limits"},
     {"layer_height", T::kQuantity, D::kLength, "0.2 in", 0, 100, true,

@@ -275,6 +275,8 @@ slicer::TriangleMesh build_part_mesh(const PartSpec& part) {
       return slicer::make_box(part.size, part.origin);
     case PartSpec::Kind::kOpenBox:
       return slicer::make_open_box(part.size, part.tiers, part.floor_mm, part.origin);
+    case PartSpec::Kind::kNone:
+      return {};
     case PartSpec::Kind::kMesh:
       break;
   }
@@ -327,9 +329,33 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
       r.fail(body, "body", "expected the name of one of the part's bodies");
     s.body = body.Scalar();
   }
+  // AM Outline (patent (39)): a 2-D path printed as it is.
+  if (YAML::Node outline = r.take("outline"); outline.IsDefined()) {
+    BlockReader orr(outline, r.full_key("outline"), std::make_shared<YamlSource>(r.source()));
+    YAML::Node pts = orr.take("points");
+    if (!pts.IsSequence() || pts.size() < 2)
+      orr.fail(pts, "points", "expected at least two points [[x, y], ...]");
+    for (const auto& p : pts) {
+      if (!p.IsSequence() || p.size() != 2) orr.fail(p, "points", "expected a point [x, y]");
+      s.outline_path.emplace_back(orr.parse(p[0], Dimension::kLength, "points"),
+                                  orr.parse(p[1], Dimension::kLength, "points"));
+    }
+    ParamSpec closed = spec(t, "outline.closed");
+    closed.key = "closed";  // inside the outline block
+    s.outline_closed = orr.boolean(closed);
+    static constexpr std::string_view kOutlineKeys[] = {"points", "closed"};
+    orr.finish({}, kOutlineKeys);
+  }
   YAML::Node z = r.take("z");
-  if (!z.IsDefined()) r.fail(z, "z", "required key is missing (Z limits [lower, upper], or 'part')");
-  if (z.IsScalar() && z.Scalar() == "part") {
+  YAML::Node layers = r.take("layers");
+  if (!z.IsDefined() && !(layers.IsDefined() && !s.outline_path.empty()))
+    r.fail(
+        z, "z",
+        "required key is missing (Z limits [lower, upper], or 'part'; an outline section may give layers)");
+  if (z.IsDefined() && layers.IsDefined()) r.fail(layers, "layers", "give either z or layers, not both");
+  if (!z.IsDefined()) {
+    // Set from `layers` once the layer height is known (below).
+  } else if (z.IsScalar() && z.Scalar() == "part") {
     // The full part (patent (42)): from the bottom of the section's body (or of the part) to its top.
     const int body = s.body.empty() ? -1 : slicer::find_body(part, s.body);
     if (!s.body.empty() && body < 0) {
@@ -373,6 +399,10 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     r.fail(r.take("bead_width"), "bead_width",
            fmt::format("bead width {} mm is less than the layer height {} mm", s.bead_width_mm,
                        s.layer_height_mm));
+  if (layers.IsDefined()) {
+    s.z_min_mm = 0.0;
+    s.z_max_mm = r.integer(spec(t, "layers")) * s.layer_height_mm;
+  }
   const double area = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
   const double nominal_flow_mm3_s = machine.extruder_output_kg_s / material.density_kg_m3 * 1e9;
   s.print_speed_mm_s = r.optional_quantity(spec(t, "speed")).value_or(nominal_flow_mm3_s / area);
@@ -536,9 +566,11 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   BlockReader material_r(tree.material, "material", tree.material_src, &tree.overridden);
   v.material = read_material(material_r);
   BlockReader part_r(tree.root["part"], "part", tree.scenario_src, &tree.overridden);
-  if (!tree.root["part"])
-    part_r.fail(tree.root, "part", "required key is missing (the part: mesh, box or open_box)");
-  v.part = read_part(part_r, dir, meshes);
+  // No part is fine when every section prints an AM Outline (checked with the sections below).
+  if (tree.root["part"])
+    v.part = read_part(part_r, dir, meshes);
+  else
+    v.part.kind = PartSpec::Kind::kNone;
 
   BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
@@ -564,6 +596,11 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
         sections[i]["name"] ? "sections." + sections[i]["name"].Scalar() : fmt::format("sections[{}]", i);
     BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
     v.sections.push_back(read_section(sr, v.machine, v.material, *v.part.loaded, tools));
+    if (v.part.kind == PartSpec::Kind::kNone && v.sections.back().outline_path.empty())
+      throw InputError(
+          location_of(sections[i], tree.scenario_src->file), prefix,
+          "this section slices a part, but the scenario has no part: add part: {mesh: ...} (or give the "
+          "section an outline to print)");
     for (std::size_t j = 0; j + 1 < v.sections.size(); ++j) {
       const auto& a = v.sections[j];
       const auto& b = v.sections.back();
@@ -585,6 +622,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
 
 std::string PartSpec::describe() const {
   switch (kind) {
+    case Kind::kNone:
+      return "none (AM Outline sections only)";
     case Kind::kMesh:
       return mesh.filename().string();
     case Kind::kBox:

@@ -30,7 +30,7 @@ struct Machine {
 };
 
 struct PartSpec {
-  enum class Kind { kMesh, kBox, kOpenBox };
+  enum class Kind { kNone, kMesh, kBox, kOpenBox };
   Kind kind = Kind::kOpenBox;
   std::filesystem::path mesh;                          // kMesh: resolved path
   double mesh_scale = 1.0;                             // mesh file units to mm

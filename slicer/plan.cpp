@@ -128,6 +128,20 @@ class LayerBuilder {
     event(ExtruderEvent::kMeltOff);
   }
 
+  // An open path (AM Outline) with its lead-in along the first segment and its lead-out along the last.
+  void print_open(const Polyline& path, int pass, double lead_in_mm, double lead_out_mm) {
+    if (path.size() < 2) return;
+    const Eigen::Vector2d first_dir = (path[1] - path[0]).normalized();
+    travel_to(path.front() - lead_in_mm * first_dir);
+    event(ExtruderEvent::kMeltOn);
+    if (lead_in_mm > 0) print_segment(path.front(), Feature::kLeadIn, pass);
+    for (std::size_t i = 1; i < path.size(); ++i) print_segment(path[i], Feature::kBoundary, pass);
+    if (lead_out_mm > 0)
+      print_segment(head_ + lead_out_mm * (path.back() - path[path.size() - 2]).normalized(),
+                    Feature::kLeadOut, pass);
+    event(ExtruderEvent::kMeltOff);
+  }
+
   void print_segment(const Eigen::Vector2d& to, Feature feature, int pass) {
     const double len = (to - head_).norm();
     if (len < 1e-6) return;
@@ -345,6 +359,7 @@ struct LayerJob {
   int angle_index = 0;  // layers laid before it in its section: turns the fill and moves the seam
   Feature role = Feature::kUnknown;
   bool fill = false;
+  bool outline = false;  // an AM Outline layer: the section's own path, not a slice
 };
 
 // Every layer of one section, with its rafts below and its stock on top, shifted up by `z_shift_mm`.
@@ -377,6 +392,44 @@ void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section,
   const double top_z = jobs[*last_at].z_top_mm;
   for (int t = 0; t < s.stock_on_top; ++t)
     jobs.push_back({top_z + (t + 1) * h, section, order, top, index++, Feature::kStockOnTop, true});
+}
+
+// AM Outline: every layer of the section prints its 2-D path (patent (39)).
+void outline_jobs(const SectionParams& s, int section, int order, double z_shift_mm,
+                  std::vector<LayerJob>& jobs) {
+  const int layers = static_cast<int>(std::floor((s.z_max_mm - s.z_min_mm) / s.layer_height_mm + 1e-6));
+  for (int l = 0; l < layers; ++l) {
+    LayerJob j;
+    j.z_top_mm = s.z_min_mm + (l + 1) * s.layer_height_mm + z_shift_mm;
+    j.section = section;
+    j.order = order;
+    j.angle_index = l;
+    j.outline = true;
+    jobs.push_back(std::move(j));
+  }
+}
+
+void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top, int index,
+                 Eigen::Vector2d& head) {
+  Polygon path = s.outline_path;
+  const double length =
+      s.outline_closed ? perimeter_mm({path}) : perimeter_mm({path}) - (path.back() - path.front()).norm();
+  ToolpathLayer info;
+  info.z_mm = z_top;
+  info.height_mm = s.layer_height_mm;
+  info.section = section;
+  info.outline_area_mm2 = length * s.bead_width_mm;  // the bead's footprint
+  info.outline_perimeter_mm = 2.0 * length;
+  const int layer = static_cast<int>(tp.layers.size());
+  tp.layers.push_back(info);
+  LayerBuilder b(tp, s, section, layer, z_top, head, Feature::kUnknown);
+  if (s.boundary.reverse_alternate && index % 2 == 1) std::reverse(path.begin(), path.end());
+  if (s.outline_closed) {
+    b.print_pass(start_at(path, s.start_point_mm, index * s.seam_offset_mm), 0, s.boundary.lead_in_mm,
+                 s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm);
+    return;
+  }
+  b.print_open(path, 0, s.boundary.lead_in_mm, s.boundary.lead_out_mm);
 }
 
 // The mesh a section slices: the whole part, or the one body it names.
@@ -429,15 +482,20 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   Toolpath tp;
   for (const auto& s : sections) tp.sections.push_back(s.name);
   PlanStats local;
-  Eigen::Vector2d head(mesh.min_corner().x(), mesh.min_corner().y());
+  Eigen::Vector2d head = mesh.vertices.empty()
+                             ? Eigen::Vector2d::Zero()
+                             : Eigen::Vector2d(mesh.min_corner().x(), mesh.min_corner().y());
   // Rafts under the lowest section lift the whole part.
   const SectionParams& lowest = sections[order.front()];
   const double z_shift = lowest.rafts * lowest.layer_height_mm;
   std::vector<LayerJob> jobs;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const SectionParams& s = sections[order[i]];
-    section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs,
-                 local);
+    if (!s.outline_path.empty())
+      outline_jobs(s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs);
+    else
+      section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs,
+                   local);
   }
   // AM Z merge (patent (14), (39)): the layers of all sections in one program, by height, so sections side
   // by side rise together and an elevated section starts when the build reaches it (patent (16)).
@@ -445,9 +503,15 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
     if (std::abs(a.z_top_mm - b.z_top_mm) > 1e-9) return a.z_top_mm < b.z_top_mm;
     return a.order < b.order;
   });
-  for (const LayerJob& j : jobs)
+  for (const LayerJob& j : jobs) {
+    if (j.outline) {
+      lay_outline(tp, sections[static_cast<std::size_t>(j.section)], j.section, j.z_top_mm, j.angle_index,
+                  head);
+      continue;
+    }
     lay_layer(tp, sections[static_cast<std::size_t>(j.section)], j.section, j.region, j.z_top_mm,
               j.angle_index, j.role, j.fill, head);
+  }
   time_toolpath(tp, motion);
   if (stats) *stats = local;
   return tp;

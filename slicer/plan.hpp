@@ -35,7 +35,11 @@ struct FillParams {
 
 struct SectionParams {
   std::string name;
-  std::string body;       // slice only this body of the part (patent (12), (35)); empty: the whole part
+  std::string body;  // slice only this body of the part (patent (12), (35)); empty: the whole part
+  // AM Outline (patent (39)): when set, the section prints this 2-D path itself, layer after layer, instead
+  // of slicing the part.
+  std::vector<Eigen::Vector2d> outline_path;
+  bool outline_closed = true;
   double z_min_mm = 0.0;  // bottom of the section's first layer
   double z_max_mm = 0.0;  // top of the section's last layer
   double layer_height_mm = 5.08;

@@ -329,3 +329,27 @@ TEST(Scenario, SectionsTakeTheirBeadFromTheirTool) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+TEST(Scenario, OutlineSectionsNeedNoPart) {
+  const std::string text =
+      "name: o\nmachine: lsam-ph15\nmaterial: cf-abs-20\nunits: {length: mm}\nsections:\n"
+      "  - name: wall\n    layers: 12\n    layer_height: 5\n    bead_width: 20\n"
+      "    outline: {points: [[0, 0], [500, 0], [500, 300]], closed: false}\n";
+  const Scenario sc = load_scenario_text(text, "o.yaml");
+  const auto& s = sc.variants[0].sections[0];
+  ASSERT_EQ(s.outline_path.size(), 3u);
+  EXPECT_FALSE(s.outline_closed);
+  EXPECT_DOUBLE_EQ(s.z_max_mm, 60);
+  // A slicing section without a part is an error naming the section.
+  const InputError e = load_error(text + "  - {name: cut, z: [60, 80]}\n");
+  EXPECT_EQ(e.key(), "sections.cut");
+  EXPECT_NE(std::string(e.what()).find("no part"), std::string::npos);
+  EXPECT_THROW((void)load_scenario_text(replace(text, "layers: 12", "layers: 12\n    z: [0, 10]"), "o"),
+               InputError);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

@@ -464,3 +464,33 @@ TEST(Plan, ElevatedSectionWaitsForTheBuildToReachIt) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// AM Outline (patent (39)): the section prints its 2-D path itself, layer after layer.
+TEST(Plan, OutlineSectionPrintsItsPath) {
+  SectionParams s = section(0, 15, 5, 20, 1, false);
+  s.outline_path = {{0, 0}, {300, 0}, {300, 100}, {0, 100}};
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
+  ASSERT_EQ(tp.layers.size(), 3u);
+  std::vector<double> printed(3, 0.0);
+  for (const Move& m : tp.moves)
+    if (m.kind == MoveKind::kPrint) printed[static_cast<std::size_t>(m.layer)] += m.length_mm();
+  for (double l : printed) EXPECT_NEAR(l, 800.0, 1e-9);  // the path itself: no offset
+  EXPECT_NEAR(tp.moves[1].start.x(), 0.0, 1e-9);         // starts at the point nearest the start point
+  // Open, with a lead-in.
+  s.outline_closed = false;
+  s.boundary.lead_in_mm = 25;
+  const Toolpath open = plan_toolpath(TriangleMesh{}, {s}, {});
+  double lead = 0, body = 0;
+  for (const Move& m : open.moves) {
+    if (m.layer != 0 || m.kind != MoveKind::kPrint) continue;
+    (m.feature == Feature::kLeadIn ? lead : body) += m.length_mm();
+  }
+  EXPECT_NEAR(lead, 25, 1e-9);
+  EXPECT_NEAR(body, 700, 1e-9);  // three sides (300 + 100 + 300), not back to the start
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

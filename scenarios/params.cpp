@@ -78,6 +78,8 @@ constexpr ParamSpec kSection[] = {
     {"boundary.lead_out", T::kQuantity, D::kLength, "0", 0, kInf, false,
      "bead laid on a straight run-off after each boundary pass, tangent to its end",
      "patent (50) lead-out length"},
+    {"boundary.force_tangential_lead_out", T::kBool, D::kDimensionless, "true", 0, 0, false,
+     "lead-out straight on, tangent to the pass's end; false: on along the pass itself", "patent (50)"},
     {"boundary.start_stop_overlap", T::kQuantity, D::kFraction, "0", 0, 1, false,
      "a closed pass runs on past its start by this fraction of the bead width",
      "patent (50) start/stop overlap"},

@@ -47,6 +47,7 @@ json parameters_json(const Variant& v) {
                           {"reverse_alternate", s.boundary.reverse_alternate},
                           {"lead_in_mm", s.boundary.lead_in_mm},
                           {"lead_out_mm", s.boundary.lead_out_mm},
+                          {"force_tangential_lead_out", s.boundary.tangential_lead_out},
                           {"start_stop_overlap", s.boundary.start_stop_overlap},
                           {"min_pass_length_mm", s.boundary.min_pass_length_mm},
                           {"overlap", s.boundary.overlap},

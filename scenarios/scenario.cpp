@@ -421,6 +421,7 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.boundary.reverse_alternate = r.boolean(spec(t, "boundary.reverse_alternate"));
   s.boundary.lead_in_mm = r.quantity(spec(t, "boundary.lead_in"));
   s.boundary.lead_out_mm = r.quantity(spec(t, "boundary.lead_out"));
+  s.boundary.tangential_lead_out = r.boolean(spec(t, "boundary.force_tangential_lead_out"));
   s.outer_stock_mm = r.quantity(spec(t, "outer_stock"));
   s.inner_stock_mm = r.quantity(spec(t, "inner_stock"));
   s.merge_slices = r.boolean(spec(t, "merge_slices"));

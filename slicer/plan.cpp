@@ -103,7 +103,8 @@ class LayerBuilder {
   // A closed boundary pass with its lead-in (a straight approach along the first segment's line, ending at
   // the start) and lead-out (a straight run-off along the last segment's direction), both printed.
   // `overlap_mm` runs the pass on past its start (start/stop overlap) before the lead-out.
-  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm, double overlap_mm) {
+  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm, double overlap_mm,
+                  bool tangential_lead_out) {
     if (loop.size() < 2) return;
     const Eigen::Vector2d first_dir = (loop[1] - loop[0]).normalized();
     travel_to(loop.front() - lead_in_mm * first_dir);
@@ -111,16 +112,22 @@ class LayerBuilder {
     if (lead_in_mm > 0) print_segment(loop.front(), Feature::kLeadIn, pass);
     for (std::size_t i = 1; i <= loop.size(); ++i)
       print_segment(loop[i % loop.size()], Feature::kBoundary, pass);
-    // Start/stop overlap: on along the contour again.
-    double left = overlap_mm;
-    for (std::size_t i = 1; left > 1e-9 && i <= loop.size(); ++i) {
+    // Start/stop overlap, then (unless the lead-out is tangential) the lead-out: on along the contour again.
+    const double along = overlap_mm + (tangential_lead_out ? 0.0 : lead_out_mm);
+    double left = along;
+    for (std::size_t i = 1; left > 1e-9 && i <= 2 * loop.size(); ++i) {
       const Eigen::Vector2d& to = loop[i % loop.size()];
       const double len = (to - head_).norm();
-      print_segment(len <= left ? to : Eigen::Vector2d(head_ + (to - head_) * (left / len)),
-                    Feature::kBoundary, pass);
-      left -= std::min(len, left);
+      if (len <= 0.0) continue;
+      const Feature f = along - left < overlap_mm - 1e-9 ? Feature::kBoundary : Feature::kLeadOut;
+      // Split where the overlap ends and the lead-out begins.
+      const double step =
+          f == Feature::kBoundary ? std::min(left - (along - overlap_mm), len) : std::min(left, len);
+      print_segment(step >= len ? to : Eigen::Vector2d(head_ + (to - head_) * (step / len)), f, pass);
+      left -= step;
+      if (step < len) --i;  // the rest of this segment still lies ahead
     }
-    if (lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
+    if (tangential_lead_out && lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
       const Move& last = tp_.moves.back();
       const Eigen::Vector2d dir = (last.end - last.start).head<2>().normalized();
       print_segment(head_ + lead_out_mm * dir, Feature::kLeadOut, pass);
@@ -258,7 +265,8 @@ void lay_boundary(LayerBuilder& b, const SectionParams& s, const std::vector<Pol
       if (s.boundary.min_pass_length_mm > 0 && perimeter_mm({loop}) < s.boundary.min_pass_length_mm) continue;
       if (reversed) std::reverse(loop.begin(), loop.end());
       b.print_pass(start_at(loop, s.start_point_mm, advance), k, s.boundary.lead_in_mm,
-                   s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm);
+                   s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm,
+                   s.boundary.tangential_lead_out);
     }
   }
 }
@@ -426,7 +434,8 @@ void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top
   if (s.boundary.reverse_alternate && index % 2 == 1) std::reverse(path.begin(), path.end());
   if (s.outline_closed) {
     b.print_pass(start_at(path, s.start_point_mm, index * s.seam_offset_mm), 0, s.boundary.lead_in_mm,
-                 s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm);
+                 s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm,
+                 s.boundary.tangential_lead_out);
     return;
   }
   b.print_open(path, 0, s.boundary.lead_in_mm, s.boundary.lead_out_mm);

@@ -21,6 +21,8 @@ struct BoundaryParams {
   double lead_in_mm = 0.0;         // bead laid on a straight approach before each pass starts (patent (50))
   // Bead laid on a straight run-off after each pass ends, tangent to its end (patent (50)).
   double lead_out_mm = 0.0;
+  // Lead-out straight on along the pass's last direction (true), or on along the pass itself (false).
+  bool tangential_lead_out = true;
   double start_stop_overlap =
       0.0;  // a closed pass runs on past its start by this fraction of w (patent (50))
   double min_pass_length_mm = 0.0;  // closed passes shorter than this are left out (patent (49))

@@ -494,3 +494,27 @@ TEST(Plan, OutlineSectionPrintsItsPath) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Plan, LeadOutAlongThePassWhenNotTangential) {
+  SectionParams s = section(0, 5, 5, 20, 1, false);
+  s.boundary.lead_out_mm = 45;
+  s.boundary.start_stop_overlap = 0.5;  // 10 mm
+  s.boundary.tangential_lead_out = false;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 5}), {s}, {});
+  double boundary = 0, lead_out = 0;
+  for (const Move& m : tp.moves) {
+    if (m.feature == Feature::kBoundary) boundary += m.length_mm();
+    if (m.feature == Feature::kLeadOut) {
+      lead_out += m.length_mm();
+      EXPECT_NEAR(m.end.y(), 10.0, 1e-9);  // on along the pass's first side (y = 10), not off it
+    }
+  }
+  EXPECT_NEAR(boundary, 720 + 10, 1e-9);
+  EXPECT_NEAR(lead_out, 45, 1e-9);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -422,6 +422,9 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.boundary.lead_in_mm = r.quantity(spec(t, "boundary.lead_in"));
   s.boundary.lead_out_mm = r.quantity(spec(t, "boundary.lead_out"));
   s.boundary.tangential_lead_out = r.boolean(spec(t, "boundary.force_tangential_lead_out"));
+  s.chord_tolerance_mm = r.quantity(spec(t, "chord_tolerance"));
+  s.min_polygon_area_mm2 = r.quantity(spec(t, "min_polygon_area"));
+  s.contact_offset_mm = r.quantity(spec(t, "contact_offset"));
   s.outer_stock_mm = r.quantity(spec(t, "outer_stock"));
   s.inner_stock_mm = r.quantity(spec(t, "inner_stock"));
   s.merge_slices = r.boolean(spec(t, "merge_slices"));

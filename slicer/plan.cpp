@@ -241,6 +241,7 @@ Polygons layer_region(const TriangleMesh& mesh, const SectionParams& s, double z
       if (area_mm2(other) > area_mm2(region)) region = std::move(other);
     }
   }
+  region = drop_small(simplify(region, s.chord_tolerance_mm), s.min_polygon_area_mm2);
   Polygons outers, holes;
   split_contours(region, outers, holes);
   if (s.ignore_inner_contours) holes.clear();
@@ -501,10 +502,10 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   for (std::size_t i = 0; i < order.size(); ++i) {
     const SectionParams& s = sections[order[i]];
     if (!s.outline_path.empty())
-      outline_jobs(s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs);
+      outline_jobs(s, static_cast<int>(order[i]), static_cast<int>(i), z_shift + s.contact_offset_mm, jobs);
     else
-      section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i), z_shift, jobs,
-                   local);
+      section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i),
+                   z_shift + s.contact_offset_mm, jobs, local);
   }
   // AM Z merge (patent (14), (39)): the layers of all sections in one program, by height, so sections side
   // by side rise together and an elevated section starts when the build reaches it (patent (16)).

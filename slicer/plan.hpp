@@ -52,6 +52,11 @@ struct SectionParams {
   Eigen::Vector2d start_point_mm = Eigen::Vector2d::Zero();
   // ...moved along the contour by this much more on every layer, so seams do not stack (patent (43)).
   double seam_offset_mm = 0.0;
+  double chord_tolerance_mm = 0.0;  // outlines follow the part within this (patent (41)); 0: exactly
+  double min_polygon_area_mm2 =
+      0.0;  // outline contours smaller than this are left out (patent (47) smoothing)
+  double contact_offset_mm =
+      0.0;  // the section prints this much above (below, negative) its Z limits (patent (45))
   // Toolpath parameters (patent (44)-(45)).
   double outer_stock_mm = 0.0;         // the outline's outer contours grow by this (stock to machine off)
   double inner_stock_mm = 0.0;         // the outline's holes shrink by this

@@ -1,5 +1,6 @@
 #include "slicer/polygons.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <clipper.hpp>
@@ -79,6 +80,66 @@ Polygons union_nonzero(const Polygons& loops) {
   ClipperLib::Paths out;
   c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   return to_polygons(out);
+}
+
+namespace {
+
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+// Marks the points of poly[first..last] to keep, Ramer-Douglas-Peucker.
+void rdp(const Polygon& poly, std::size_t first, std::size_t last, double tol, std::vector<bool>& keep) {
+  double worst = -1.0;
+  std::size_t at = first;
+  for (std::size_t i = first + 1; i < last; ++i) {
+    const double d = distance_to_segment(poly[i], poly[first], poly[last]);
+    if (d > worst) worst = d, at = i;
+  }
+  if (worst > tol) {
+    keep[at] = true;
+    rdp(poly, first, at, tol, keep);
+    rdp(poly, at, last, tol, keep);
+  }
+}
+
+}  // namespace
+
+Polygons simplify(const Polygons& polygons, double tolerance_mm) {
+  if (tolerance_mm <= 0) return polygons;
+  Polygons out;
+  for (const Polygon& poly : polygons) {
+    if (poly.size() < 4) {
+      out.push_back(poly);
+      continue;
+    }
+    // Split the closed contour at its first point and the point farthest from it, and simplify both halves.
+    std::size_t far = 0;
+    for (std::size_t i = 1; i < poly.size(); ++i)
+      if ((poly[i] - poly[0]).squaredNorm() > (poly[far] - poly[0]).squaredNorm()) far = i;
+    Polygon closed = poly;
+    closed.push_back(poly.front());
+    std::vector<bool> keep(closed.size(), false);
+    keep[0] = keep[far] = keep.back() = true;
+    rdp(closed, 0, far, tolerance_mm, keep);
+    rdp(closed, far, closed.size() - 1, tolerance_mm, keep);
+    Polygon simple;
+    for (std::size_t i = 0; i + 1 < closed.size(); ++i)
+      if (keep[i]) simple.push_back(closed[i]);
+    if (simple.size() >= 3) out.push_back(std::move(simple));
+  }
+  return out;
+}
+
+Polygons drop_small(const Polygons& polygons, double min_area_mm2) {
+  if (min_area_mm2 <= 0) return polygons;
+  Polygons out;
+  for (const Polygon& poly : polygons)
+    if (std::abs(area_mm2({poly})) >= min_area_mm2) out.push_back(poly);
+  return out;
 }
 
 Polygons difference(const Polygons& a, const Polygons& b) {

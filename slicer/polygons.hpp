@@ -23,6 +23,11 @@ Polygons offset(const Polygons& polygons, double delta_mm);
 // Cleans up a soup of possibly overlapping or inconsistently oriented loops into a proper region
 // (non-zero winding of each loop taken in its own orientation, then union).
 Polygons union_nonzero(const Polygons& loops);
+// Each contour simplified so it stays within `tolerance_mm` of the original (Ramer-Douglas-Peucker); the
+// chord tolerance of patent (41). Contours that collapse to fewer than three points are dropped.
+Polygons simplify(const Polygons& polygons, double tolerance_mm);
+// The contours whose own area (holes included, by absolute value) is at least `min_area_mm2`.
+Polygons drop_small(const Polygons& polygons, double min_area_mm2);
 // The part of `a` outside `b`.
 Polygons difference(const Polygons& a, const Polygons& b);
 // Outer contours (counter-clockwise) and holes (clockwise) of a region, each as its own list.

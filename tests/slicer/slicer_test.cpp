@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -5,6 +6,7 @@
 
 #include "core/bead.hpp"
 #include "core/error.hpp"
+#include "core/units.hpp"
 #include "slicer/gcode_writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
@@ -514,6 +516,53 @@ TEST(Plan, LeadOutAlongThePassWhenNotTangential) {
   }
   EXPECT_NEAR(boundary, 720 + 10, 1e-9);
   EXPECT_NEAR(lead_out, 45, 1e-9);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Polygons, ChordToleranceSimplifiesWithinTheTolerance) {
+  Polygon circle;
+  for (int i = 0; i < 720; ++i)
+    circle.emplace_back(100 * std::cos(i * kPi / 360), 100 * std::sin(i * kPi / 360));
+  const Polygons simple = simplify({circle}, 0.5);
+  ASSERT_EQ(simple.size(), 1u);
+  EXPECT_LT(simple[0].size(), 60u);
+  EXPECT_GT(simple[0].size(), 10u);
+  // Every original point stays within the tolerance of the simplified contour.
+  for (const auto& p : circle) {
+    double d = 1e9;
+    for (std::size_t i = 0; i < simple[0].size(); ++i) {
+      const Eigen::Vector2d a = simple[0][i], b = simple[0][(i + 1) % simple[0].size()];
+      const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+      d = std::min(d, (a + t * (b - a) - p).norm());
+    }
+    EXPECT_LE(d, 0.5 + 1e-9);
+  }
+  EXPECT_EQ(simplify({circle}, 0.0)[0].size(), circle.size());
+}
+
+TEST(Plan, SmallPolygonsAndContactOffset) {
+  // A 200 mm square with a 10 mm island beside it: the island is left out when below the minimum area.
+  TriangleMesh m = make_box({200, 200, 10});
+  const TriangleMesh island = make_box({10, 10, 10}, {250, 0, 0});
+  const int base = static_cast<int>(m.vertices.size());
+  m.vertices.insert(m.vertices.end(), island.vertices.begin(), island.vertices.end());
+  for (auto t : island.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  m.body.assign(m.triangles.size(), 0);
+  SectionParams s = section(0, 10, 5, 8, 1, false);
+  EXPECT_NEAR(plan_toolpath(m, {s}, {}).layers[0].outline_area_mm2, 40000 + 100, 1e-6);
+  s.min_polygon_area_mm2 = 500;
+  EXPECT_NEAR(plan_toolpath(m, {s}, {}).layers[0].outline_area_mm2, 40000, 1e-6);
+  // Contact tip-workpiece: a section whose limits start at 20 mm prints on the table with -20 mm.
+  SectionParams upper = section(20, 40, 5, 20, 1, false);
+  upper.contact_offset_mm = -20;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 40}), {upper}, {});
+  ASSERT_EQ(tp.layers.size(), 4u);
+  EXPECT_DOUBLE_EQ(tp.layers[0].z_mm, 5.0);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@ namespace beadtwin {
 
 enum class Dimension {
   kLength,             // mm
-  kArea,                 // mm²
+  kArea,               // mm²
   kTemperature,        // °C (absolute)
   kTime,               // s
   kMass,               // kg

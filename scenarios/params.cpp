@@ -69,6 +69,11 @@ constexpr ParamSpec kSection[] = {
     {"clearance_height", T::kQuantity, D::kLength, "0", 0, kInf, false,
      "height above the table the head rises to between layers (0: moves on at the layer's height)",
      "patent (45) clearance height"},
+    {"melt_reduction", T::kQuantity, D::kFraction, "0", 0, 1, false,
+     "the pump slows by this much where a bead is laid over one just laid (start/stop overlap, lead-out "
+     "along "
+     "the pass)",
+     "patent (46) melt settings"},
     {"rafts", T::kInteger, D::kDimensionless, "0", 0, 100, false,
      "solid layers printed under the lowest section's first layer; the part sits on them",
      "patent (46) rafts"},

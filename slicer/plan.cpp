@@ -123,7 +123,9 @@ class LayerBuilder {
       // Split where the overlap ends and the lead-out begins.
       const double step =
           f == Feature::kBoundary ? std::min(left - (along - overlap_mm), len) : std::min(left, len);
-      print_segment(step >= len ? to : Eigen::Vector2d(head_ + (to - head_) * (step / len)), f, pass);
+      // This retraces the bead just laid: the pump slows by the melt setting (patent (46)).
+      print_segment(step >= len ? to : Eigen::Vector2d(head_ + (to - head_) * (step / len)), f, pass,
+                    1.0 - s_.melt_reduction);
       left -= step;
       if (step < len) --i;  // the rest of this segment still lies ahead
     }
@@ -149,7 +151,8 @@ class LayerBuilder {
     event(ExtruderEvent::kMeltOff);
   }
 
-  void print_segment(const Eigen::Vector2d& to, Feature feature, int pass) {
+  // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another).
+  void print_segment(const Eigen::Vector2d& to, Feature feature, int pass, double flow = 1.0) {
     const double len = (to - head_).norm();
     if (len < 1e-6) return;
     Move m = base(feature);
@@ -159,7 +162,7 @@ class LayerBuilder {
     m.start = {head_.x(), head_.y(), z_};
     m.end = {to.x(), to.y(), z_};
     m.feed_mm_s = s_.print_speed_mm_s;
-    m.volume_mm3 = area_ * len;
+    m.volume_mm3 = area_ * len * flow;
     tp_.moves.push_back(m);
     head_ = to;
   }

@@ -66,8 +66,9 @@ struct SectionParams {
   double clearance_height_mm =
       0.0;  // between layers the head rises to this height above the table (0: no lift)
   // Process parameters (patent (46)).
-  int rafts = 0;         // layers printed under the section's first layer (the part sits on them)
-  int stock_on_top = 0;  // layers printed on the section's top layer with its outline
+  double melt_reduction = 0.0;  // pump slows by this fraction where a bead is laid over one just laid
+  int rafts = 0;                // layers printed under the section's first layer (the part sits on them)
+  int stock_on_top = 0;         // layers printed on the section's top layer with its outline
   BoundaryParams boundary;
   FillParams fill;
 };

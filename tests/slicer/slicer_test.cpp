@@ -567,3 +567,29 @@ TEST(Plan, SmallPolygonsAndContactOffset) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Plan, MeltSettingSlowsThePumpWhereABeadRetracesAnother) {
+  SectionParams s = section(0, 5, 5, 20, 1, false);
+  s.boundary.start_stop_overlap = 1.0;  // 20 mm laid over the start
+  s.melt_reduction = 0.4;
+  const Toolpath tp = plan_toolpath(make_box({200, 200, 5}), {s}, {});
+  const double area = bead_area_mm2(20, 5);
+  double full = 0, reduced = 0;
+  for (const Move& m : tp.moves) {
+    if (m.kind != MoveKind::kPrint) continue;
+    if (std::abs(m.volume_mm3 - area * m.length_mm()) < 1e-6)
+      full += m.length_mm();
+    else if (std::abs(m.volume_mm3 - 0.6 * area * m.length_mm()) < 1e-6)
+      reduced += m.length_mm();
+    else
+      ADD_FAILURE() << "volume " << m.volume_mm3 << " for " << m.length_mm() << " mm";
+  }
+  EXPECT_NEAR(full, 720, 1e-9);
+  EXPECT_NEAR(reduced, 20, 1e-9);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -193,7 +193,13 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   const sim::Deposit deposit = stages.run("deposit", [&] {
     sim::DepositOptions o;
     o.voxel_size_mm = v.output.voxel_size_mm;
-    return sim::deposit(tp, o);
+    try {
+      return sim::deposit(tp, o);
+    } catch (const InputError& e) {
+      // The deposit knows the option, not where it was written: name the scenario's key.
+      if (e.key() != "voxel_size") throw;
+      throw InputError(v.output.voxel_size_at, "output.voxel_size", e.message());
+    }
   });
   const ThermalStack stack = thermal_stack(tp);
   const thermal::ThermalResult th = stages.run("thermal", [&] {

@@ -403,6 +403,12 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     s.z_min_mm = 0.0;
     s.z_max_mm = r.integer(spec(t, "layers")) * s.layer_height_mm;
   }
+  constexpr double kMaxLayers = 20000;  // a 3 m part at 0.15 mm: far beyond any real section
+  if ((s.z_max_mm - s.z_min_mm) / s.layer_height_mm > kMaxLayers)
+    r.fail(r.has("layer_height") ? r.take("layer_height") : YAML::Node(), "layer_height",
+           fmt::format("{} mm layers over {} mm make {:.0f} layers; at most {:.0f} are allowed",
+                       s.layer_height_mm, s.z_max_mm - s.z_min_mm,
+                       (s.z_max_mm - s.z_min_mm) / s.layer_height_mm, kMaxLayers));
   const double area = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
   const double nominal_flow_mm3_s = machine.extruder_output_kg_s / material.density_kg_m3 * 1e9;
   s.print_speed_mm_s = r.optional_quantity(spec(t, "speed")).value_or(nominal_flow_mm3_s / area);
@@ -579,6 +585,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
 
   BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
+  v.output.voxel_size_at = out_r.where(out_r.take("voxel_size"), "voxel_size");
   v.output.image_width = out_r.integer(spec(output_params(), "image_width"));
   v.output.image_height = out_r.integer(spec(output_params(), "image_height"));
   out_r.finish(output_params());

@@ -44,6 +44,7 @@ struct PartSpec {
 
 struct OutputSpec {
   double voxel_size_mm = 0.0;
+  SourceLocation voxel_size_at;  // where it was set, for messages found when depositing
   int image_width = 1280;
   int image_height = 800;
 };

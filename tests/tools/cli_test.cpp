@@ -118,3 +118,29 @@ TEST(Cli, ParametersDocIsCurrent) {
 }
 
 }  // namespace
+
+namespace {
+
+// Inputs that would need absurd work are refused up front with the key and line to change.
+TEST(Cli, AbsurdResolutionsAreInputErrors) {
+  const std::string base =
+      "name: tiny\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+      "part:\n  box: {size: [120, 80, 15]}\n";
+  const auto vox =
+      write("bt_cli_vox.yaml", base +
+                                   "output: {voxel_size: 0.0001 mm}\nsections:\n"
+                                   "  - {name: a, z: [0, 15], layer_height: 5, bead_width: 20}\n");
+  const Result r1 = run("run " + vox.string() + " -q -o /tmp/bt_cli_vox");
+  EXPECT_EQ(r1.code, 2) << r1.output;
+  EXPECT_NE(r1.output.find(vox.string() + ":7:"), std::string::npos) << r1.output;
+  EXPECT_NE(r1.output.find("output.voxel_size"), std::string::npos) << r1.output;
+  const auto layers = write("bt_cli_layers.yaml", base +
+                                                      "sections:\n  - name: a\n    z: [0, 15]\n"
+                                                      "    layer_height: 0.0001\n    bead_width: 20\n");
+  const Result r2 = run("run " + layers.string() + " -q -o /tmp/bt_cli_layers");
+  EXPECT_EQ(r2.code, 2) << r2.output;
+  EXPECT_NE(r2.output.find(layers.string() + ":10:"), std::string::npos) << r2.output;
+  EXPECT_NE(r2.output.find("150000 layers"), std::string::npos) << r2.output;
+}
+
+}  // namespace

@@ -39,6 +39,8 @@ std::string_view to_string(Feature feature) {
       return "coast";
     case Feature::kStockOnTop:
       return "stock-on-top";
+    case Feature::kThinWall:
+      return "thin-wall";
     case Feature::kPrime:
       return "prime";
     case Feature::kReverse:

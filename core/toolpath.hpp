@@ -32,6 +32,7 @@ enum class Feature : std::uint8_t {
   kLeadOut,
   kCoast,
   kStockOnTop,
+  kThinWall,  // one bead down the centre of a wall too narrow for the boundary passes
   kPrime,
   kReverse,
 };

@@ -99,6 +99,12 @@ constexpr ParamSpec kSection[] = {
      "patent (50) start/stop overlap"},
     {"boundary.min_pass_length", T::kQuantity, D::kLength, "0", 0, kInf, false,
      "closed passes shorter than this are left out", "patent (49) minimum pass length"},
+    {"boundary.thin_walls", T::kBool, D::kDimensionless, "false", 0, 0, false,
+     "search for walls too narrow for a bead's centre to reach and lay one bead of their width down their "
+     "centre",
+     "patent (50) thin wall sections"},
+    {"boundary.thin_wall_max_width", T::kQuantity, D::kLength, "0", 0, kInf, false,
+     "walls wider than this are not filled as thin walls (0: the bead width)", "patent (50) maximum width"},
     {"fill.angle", T::kQuantity, D::kAngle, "45 deg", -360, 360, false,
      "fill direction of the section's first layer", "patent (63) starting fill angle"},
     {"fill.angle_step", T::kQuantity, D::kAngle, "90 deg", -360, 360, false,

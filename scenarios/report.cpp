@@ -54,6 +54,8 @@ json parameters_json(const Variant& v) {
                           {"force_tangential_lead_out", s.boundary.tangential_lead_out},
                           {"start_stop_overlap", s.boundary.start_stop_overlap},
                           {"min_pass_length_mm", s.boundary.min_pass_length_mm},
+                          {"thin_walls", s.boundary.thin_walls},
+                          {"thin_wall_max_width_mm", s.boundary.thin_wall_max_width_mm},
                           {"overlap", s.boundary.overlap},
                           {"inside_out", s.boundary.inside_out}}},
                         {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},

@@ -446,6 +446,8 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.stock_on_top = r.integer(spec(t, "stock_on_top"));
   s.boundary.start_stop_overlap = r.quantity(spec(t, "boundary.start_stop_overlap"));
   s.boundary.min_pass_length_mm = r.quantity(spec(t, "boundary.min_pass_length"));
+  s.boundary.thin_walls = r.boolean(spec(t, "boundary.thin_walls"));
+  s.boundary.thin_wall_max_width_mm = r.quantity(spec(t, "boundary.thin_wall_max_width"));
   s.boundary.passes = r.integer(spec(t, "boundary.passes"));
   s.boundary.overlap = r.quantity(spec(t, "boundary.overlap"));
   s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));

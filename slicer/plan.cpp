@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <Eigen/Eigenvalues>
 
 #include "core/bead.hpp"
 #include "core/error.hpp"
@@ -149,6 +150,14 @@ class LayerBuilder {
       print_segment(head_ + lead_out_mm * (path.back() - path[path.size() - 2]).normalized(),
                     Feature::kLeadOut, pass);
     event(ExtruderEvent::kMeltOff);
+  }
+
+  // One bead of its own width (a thin wall's); at least as wide as the layer is high.
+  void print_thin(const Eigen::Vector2d& to, double width_mm) {
+    const double w = std::max(width_mm, s_.layer_height_mm);
+    const std::size_t before = tp_.moves.size();
+    print_segment(to, Feature::kThinWall, -1, bead_area_mm2(w, s_.layer_height_mm) / area_);
+    if (tp_.moves.size() > before) tp_.moves.back().bead_width_mm = w;
   }
 
   // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another).
@@ -315,6 +324,59 @@ void lay_fill(LayerBuilder& b, const SectionParams& s, const Polygons& fill_regi
   if (printing) b.event(ExtruderEvent::kMeltOff);
 }
 
+// The thin walls of a region: the parts a bead's centre cannot reach (what an opening by w/2 removes),
+// each as its centre line and width, when no wider than the limit. A piece's width is 2·area/perimeter (exact
+// for a long strip) and its centre line runs along its principal axis.
+struct ThinWall {
+  Eigen::Vector2d a, b;
+  double width_mm = 0.0;
+};
+
+std::vector<ThinWall> thin_walls(const Polygons& region, double w, double max_width) {
+  std::vector<ThinWall> out;
+  // The opening leaves numerical slivers along edges it does not quite restore: a second, small opening
+  // (a tenth of the bead) drops anything too narrow to take a bead anyway.
+  const double sliver = 0.1 * w;
+  const Polygons thin =
+      offset(offset(difference(region, offset(offset(region, -0.5 * w), 0.5 * w)), -sliver), sliver);
+  for (const Polygon& piece : thin) {
+    const double area = std::abs(area_mm2({piece}));
+    const double perimeter = perimeter_mm({piece});
+    if (area <= 0 || perimeter <= 0) continue;
+    const double width = 2.0 * area / perimeter;
+    // Slivers (a bead corner's worth) are not walls; wide pieces are not thin.
+    if (width > max_width || area < 0.25 * w * w) continue;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& p : piece) mean += p;
+    mean /= static_cast<double>(piece.size());
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (const auto& p : piece) cov += (p - mean) * (p - mean).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+    const Eigen::Vector2d axis = eig.eigenvectors().col(1);
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& p : piece) {
+      lo = std::min(lo, (p - mean).dot(axis));
+      hi = std::max(hi, (p - mean).dot(axis));
+    }
+    // The bead's round ends reach half a width past its centre line's ends.
+    const double inset = std::min(0.5 * width, 0.5 * (hi - lo));
+    out.push_back({mean + (lo + inset) * axis, mean + (hi - inset) * axis, width});
+  }
+  return out;
+}
+
+void lay_thin_walls(LayerBuilder& b, const SectionParams& s, const Polygons& region) {
+  const double max_width =
+      s.boundary.thin_wall_max_width_mm > 0 ? s.boundary.thin_wall_max_width_mm : s.bead_width_mm;
+  for (const ThinWall& t : thin_walls(region, s.bead_width_mm, max_width)) {
+    if ((t.b - t.a).norm() < 1e-6) continue;
+    b.travel_to(t.a);
+    b.event(ExtruderEvent::kMeltOn);
+    b.print_thin(t.b, t.width_mm);
+    b.event(ExtruderEvent::kMeltOff);
+  }
+}
+
 // One layer: the boundary passes and (where enabled, or forced for rafts) the fill, in the section's layer
 // order. `role` marks raft and stock-on-top layers. `angle_index` turns the fill and moves the seam.
 void lay_layer(Toolpath& tp, const SectionParams& s, int section, const Polygons& region, double z_top,
@@ -359,6 +421,7 @@ void lay_layer(Toolpath& tp, const SectionParams& s, int section, const Polygons
       fill ? offset(region, -(0.5 * w + static_cast<double>(passes.size()) * pitch)) : Polygons{};
   if (s.fill_first) lay_fill(b, s, fill_region, angle_index);
   lay_boundary(b, s, passes, angle_index);
+  if (s.boundary.thin_walls) lay_thin_walls(b, s, region);
   if (!s.fill_first) lay_fill(b, s, fill_region, angle_index);
 }
 

@@ -25,7 +25,12 @@ struct BoundaryParams {
   bool tangential_lead_out = true;
   double start_stop_overlap =
       0.0;  // a closed pass runs on past its start by this fraction of w (patent (50))
-  double min_pass_length_mm = 0.0;  // closed passes shorter than this are left out (patent (49))
+  double min_pass_length_mm = 0.0;
+  // Thin walls (patent (50)): parts of the outline too narrow for a bead's centre to reach, no wider than
+  // thin_wall_max_width_mm, get one bead of their own width down their centre line.
+  bool thin_walls = false;
+  double thin_wall_max_width_mm =
+      0.0;  // 0: the bead width  // closed passes shorter than this are left out (patent (49))
 };
 
 struct FillParams {

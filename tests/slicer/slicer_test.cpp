@@ -593,3 +593,56 @@ TEST(Plan, MeltSettingSlowsThePumpWhereABeadRetracesAnother) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// A prism of a convex polygon (counter-clockwise), `height` tall.
+TriangleMesh prism(const std::vector<Eigen::Vector2d>& poly, double height) {
+  TriangleMesh m;
+  const int n = static_cast<int>(poly.size());
+  for (const auto& p : poly) m.vertices.emplace_back(p.x(), p.y(), 0.0);
+  for (const auto& p : poly) m.vertices.emplace_back(p.x(), p.y(), height);
+  for (int i = 1; i + 1 < n; ++i) {
+    m.triangles.push_back({0, i + 1, i});          // bottom, facing down
+    m.triangles.push_back({n, n + i, n + i + 1});  // top, facing up
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.push_back({i, j, n + j});
+    m.triangles.push_back({i, n + j, n + i});
+  }
+  m.body.assign(m.triangles.size(), 0);
+  return m;
+}
+
+TEST(Plan, ThinWallOnATaperedWallGetsOneCentreBead) {
+  // 40 mm wide at x = 0 tapering to 10 mm at x = 300; with a 20 mm bead, one pass reaches only where the
+  // wall is wider than 20 mm (x < 200); beyond that is a thin wall.
+  const TriangleMesh wedge = prism({{0, -20}, {300, -5}, {300, 5}, {0, 20}}, 5);
+  SectionParams s = section(0, 5, 5, 20, 1, false);
+  auto thin_moves = [&] {
+    std::vector<Move> out;
+    for (const Move& m : plan_toolpath(wedge, {s}, {}).moves)
+      if (m.feature == Feature::kThinWall) out.push_back(m);
+    return out;
+  };
+  EXPECT_TRUE(thin_moves().empty());  // off by default
+  s.boundary.thin_walls = true;
+  const auto thin = thin_moves();
+  ASSERT_EQ(thin.size(), 1u);
+  const Move& m = thin[0];
+  EXPECT_NEAR(m.start.y(), 0.0, 0.5);  // down the centre line
+  EXPECT_NEAR(m.end.y(), 0.0, 0.5);
+  EXPECT_GT(std::min(m.start.x(), m.end.x()), 190.0);
+  EXPECT_LT(std::max(m.start.x(), m.end.x()), 300.0);
+  EXPECT_GT(m.bead_width_mm, 10.0);  // the wall's own width there, between 10 and 20 mm
+  EXPECT_LT(m.bead_width_mm, 20.0);
+  EXPECT_NEAR(m.volume_mm3, bead_area_mm2(m.bead_width_mm, 5) * m.length_mm(), 1e-6);
+  // A limit below the wall's width leaves it alone.
+  s.boundary.thin_wall_max_width_mm = 8;
+  EXPECT_TRUE(thin_moves().empty());
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

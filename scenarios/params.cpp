@@ -74,6 +74,9 @@ constexpr ParamSpec kSection[] = {
      "along "
      "the pass)",
      "patent (46) melt settings"},
+    {"initial_clearance_height", T::kQuantity, D::kLength, "0", 0, kInf, false,
+     "height above the table the head starts the program at (0: at the first layer's height)",
+     "patent (45) initial clearance height"},
     {"rafts", T::kInteger, D::kDimensionless, "0", 0, 100, false,
      "solid layers printed under the lowest section's first layer; the part sits on them",
      "patent (46) rafts"},

@@ -43,6 +43,7 @@ json parameters_json(const Variant& v) {
                         {"ignore_inner_contours", s.ignore_inner_contours},
                         {"layer_order", s.fill_first ? "fill_first" : "boundary_first"},
                         {"clearance_height_mm", s.clearance_height_mm},
+                        {"initial_clearance_height_mm", s.initial_clearance_height_mm},
                         {"melt_reduction", s.melt_reduction},
                         {"rafts", s.rafts},
                         {"stock_on_top", s.stock_on_top},

@@ -441,6 +441,7 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
            fmt::format("expected boundary_first or fill_first but found '{}'", order));
   s.fill_first = order == "fill_first";
   s.clearance_height_mm = r.quantity(spec(t, "clearance_height"));
+  s.initial_clearance_height_mm = r.quantity(spec(t, "initial_clearance_height"));
   s.melt_reduction = r.quantity(spec(t, "melt_reduction"));
   s.rafts = r.integer(spec(t, "rafts"));
   s.stock_on_top = r.integer(spec(t, "stock_on_top"));

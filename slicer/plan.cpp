@@ -79,7 +79,10 @@ class LayerBuilder {
     Move m = base(Feature::kTravel);
     m.kind = MoveKind::kTravel;
     // From wherever the head really is (the previous layer's height on a layer change).
-    m.start = tp_.moves.empty() ? Eigen::Vector3d(head_.x(), head_.y(), z_) : tp_.moves.back().end;
+    // The program starts with the head at the initial clearance height (patent (45)), if one is set.
+    m.start = tp_.moves.empty()
+                  ? Eigen::Vector3d(head_.x(), head_.y(), std::max(z_, s_.initial_clearance_height_mm))
+                  : tp_.moves.back().end;
     m.feed_mm_s = s_.travel_speed_mm_s;
     if (m.start.z() > z_ + 1e-9 && (p - m.start.head<2>()).norm() > 1e-9) {
       // Raised (clearance height): across at that height first, then straight down.
@@ -505,6 +508,11 @@ void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top
                  s.boundary.tangential_lead_out);
     return;
   }
+  // Open toolpath start (patent (43)): from whichever end is nearer the start point (before the alternating
+  // reversal, which then runs every other layer back).
+  const bool from_far_end =
+      (s.outline_path.back() - s.start_point_mm).norm() < (s.outline_path.front() - s.start_point_mm).norm();
+  if (from_far_end) std::reverse(path.begin(), path.end());
   b.print_open(path, 0, s.boundary.lead_in_mm, s.boundary.lead_out_mm);
 }
 

@@ -68,6 +68,7 @@ struct SectionParams {
   bool merge_slices = false;           // use the largest of the previous, this and the next layer's outline
   bool ignore_inner_contours = false;  // fill holes in: print every outline as solid
   bool fill_first = false;             // layer order: fill before the boundary passes
+  double initial_clearance_height_mm = 0.0;  // the head starts the program at this height (0: first layer)
   double clearance_height_mm =
       0.0;  // between layers the head rises to this height above the table (0: no lift)
   // Process parameters (patent (46)).

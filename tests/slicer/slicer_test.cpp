@@ -646,3 +646,26 @@ TEST(Plan, ThinWallOnATaperedWallGetsOneCentreBead) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Plan, InitialClearanceAndOpenPathStart) {
+  SectionParams s = section(0, 10, 5, 20, 1, false);
+  s.initial_clearance_height_mm = 300;
+  s.outline_path = {{0, 0}, {400, 0}};
+  s.outline_closed = false;
+  s.start_point_mm = {500, 0};  // nearer the far end: the open path runs from (400, 0)
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
+  ASSERT_FALSE(tp.moves.empty());
+  EXPECT_DOUBLE_EQ(tp.moves.front().start.z(), 300.0);  // the program starts at the initial clearance height
+  for (const Move& m : tp.moves) {
+    if (m.kind != MoveKind::kPrint) continue;
+    EXPECT_DOUBLE_EQ(m.start.x(), 400.0);
+    EXPECT_DOUBLE_EQ(m.end.x(), 0.0);
+    break;
+  }
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -669,3 +669,25 @@ TEST(Plan, InitialClearanceAndOpenPathStart) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Plan, PassOverlapMeasuredBetweenAdjacentPasses) {
+  // Adjacent passes overlap by `overlap` of the bead width: their centre lines are w (1 − overlap) apart.
+  for (const double overlap : {0.0, 0.05, 0.2}) {
+    SectionParams s = section(0, 5, 5, 20, 3, false);
+    s.boundary.overlap = overlap;
+    const Toolpath tp = plan_toolpath(make_box({300, 300, 5}), {s}, {});
+    std::vector<double> x(3, 1e9);  // each pass's left side (its smallest x)
+    for (const Move& m : tp.moves)
+      if (m.feature == Feature::kBoundary) x[m.pass] = std::min({x[m.pass], m.start.x(), m.end.x()});
+    for (int k = 0; k + 1 < 3; ++k) {
+      const double pitch = x[k + 1] - x[k];
+      EXPECT_NEAR((20 - pitch) / 20, overlap, 1e-6) << "passes " << k << " and " << k + 1;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

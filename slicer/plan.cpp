@@ -361,9 +361,9 @@ std::vector<ThinWall> thin_walls(const Polygons& region, double w, double max_wi
       lo = std::min(lo, (p - mean).dot(axis));
       hi = std::max(hi, (p - mean).dot(axis));
     }
-    // The bead's round ends reach half a width past its centre line's ends.
-    const double inset = std::min(0.5 * width, 0.5 * (hi - lo));
-    out.push_back({mean + (lo + inset) * axis, mean + (hi - inset) * axis, width});
+    // The centre line spans the whole piece: a bead's free ends are square (as the deposit lays them), so it
+    // meets the passes at one end and the wall's tip at the other.
+    out.push_back({mean + lo * axis, mean + hi * axis, width});
   }
   return out;
 }

@@ -50,6 +50,10 @@ constexpr ParamSpec kSection[] = {
      "patent (41) tessellation chord tolerance"},
     {"min_polygon_area", T::kQuantity, D::kArea, "0", 0, kInf, false,
      "outline contours smaller than this are left out", "patent (47) remove small polygons"},
+    {"shift", T::kQuantity, D::kLength, "[0, 0]", -kInf, kInf, false,
+     "moves the section's toolpath by [dx, dy] so its beads overlap a neighbouring section's where they must "
+     "fuse",
+     "patent (15), (67)"},
     {"contact_offset", T::kQuantity, D::kLength, "0", -kInf, kInf, false,
      "the section prints this far above (below, if negative) its Z limits, e.g. -2 in to print a section "
      "whose limits start at 2 in on the table",

@@ -37,6 +37,7 @@ json parameters_json(const Variant& v) {
                         {"chord_tolerance_mm", s.chord_tolerance_mm},
                         {"min_polygon_area_mm2", s.min_polygon_area_mm2},
                         {"contact_offset_mm", s.contact_offset_mm},
+                        {"shift_mm", {s.shift_mm.x(), s.shift_mm.y()}},
                         {"outer_stock_mm", s.outer_stock_mm},
                         {"inner_stock_mm", s.inner_stock_mm},
                         {"merge_slices", s.merge_slices},

@@ -431,6 +431,10 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.chord_tolerance_mm = r.quantity(spec(t, "chord_tolerance"));
   s.min_polygon_area_mm2 = r.quantity(spec(t, "min_polygon_area"));
   s.contact_offset_mm = r.quantity(spec(t, "contact_offset"));
+  if (YAML::Node sh = r.take("shift"); sh.IsDefined()) {
+    if (!sh.IsSequence() || sh.size() != 2) r.fail(sh, "shift", "expected two lengths [dx, dy]");
+    s.shift_mm = {r.parse(sh[0], Dimension::kLength, "shift"), r.parse(sh[1], Dimension::kLength, "shift")};
+  }
   s.outer_stock_mm = r.quantity(spec(t, "outer_stock"));
   s.inner_stock_mm = r.quantity(spec(t, "inner_stock"));
   s.merge_slices = r.boolean(spec(t, "merge_slices"));

@@ -257,6 +257,9 @@ Polygons layer_region(const TriangleMesh& mesh, const SectionParams& s, double z
     }
   }
   region = drop_small(simplify(region, s.chord_tolerance_mm), s.min_polygon_area_mm2);
+  if (s.shift_mm != Eigen::Vector2d::Zero())
+    for (Polygon& poly : region)
+      for (Eigen::Vector2d& p : poly) p += s.shift_mm;
   Polygons outers, holes;
   split_contours(region, outers, holes);
   if (s.ignore_inner_contours) holes.clear();
@@ -490,6 +493,7 @@ void outline_jobs(const SectionParams& s, int section, int order, double z_shift
 void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top, int index,
                  Eigen::Vector2d& head) {
   Polygon path = s.outline_path;
+  for (Eigen::Vector2d& p : path) p += s.shift_mm;
   const double length =
       s.outline_closed ? perimeter_mm({path}) : perimeter_mm({path}) - (path.back() - path.front()).norm();
   ToolpathLayer info;

@@ -60,6 +60,9 @@ struct SectionParams {
   double chord_tolerance_mm = 0.0;  // outlines follow the part within this (patent (41)); 0: exactly
   double min_polygon_area_mm2 =
       0.0;  // outline contours smaller than this are left out (patent (47) smoothing)
+  // Moves the section's toolpath in the plane, so beads of neighbouring sections overlap where the sections
+  // must fuse (patent (15), (67)).
+  Eigen::Vector2d shift_mm = Eigen::Vector2d::Zero();
   double contact_offset_mm =
       0.0;  // the section prints this much above (below, negative) its Z limits (patent (45))
   // Toolpath parameters (patent (44)-(45)).

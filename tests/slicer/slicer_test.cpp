@@ -691,3 +691,26 @@ TEST(Plan, PassOverlapMeasuredBetweenAdjacentPasses) {
 
 }  // namespace
 }  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+TEST(Plan, SectionShiftMovesItsBeadsToOverlapItsNeighbour) {
+  // Body b printed 3 mm toward body a so their beads overlap where the sections fuse.
+  SectionParams a = section(0, 20, 5, 20, 1, false), b = section(0, 20, 5, 20, 1, false);
+  a.body = "a";
+  b.body = "b";
+  b.shift_mm = {-3, 0};
+  const Toolpath tp = plan_toolpath(two_bodies(20, 0, 20), {a, b}, {});
+  double b_min = 1e18, a_min = 1e18;
+  for (const Move& m : tp.moves) {
+    if (m.kind != MoveKind::kPrint) continue;
+    (m.section == 1 ? b_min : a_min) =
+        std::min(m.section == 1 ? b_min : a_min, std::min(m.start.x(), m.end.x()));
+  }
+  EXPECT_NEAR(b_min, 200 + 10 - 3, 1e-6);
+  EXPECT_NEAR(a_min, 10, 1e-6);  // the other section stays put
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

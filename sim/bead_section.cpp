@@ -9,17 +9,6 @@
 
 namespace beadtwin::sim {
 
-double stadium_area_mm2(double width_mm, double height_mm) {
-  return bead_area_mm2(width_mm, height_mm);
-}
-
-double stadium_width_mm(double area_mm2, double height_mm) {
-  BT_CHECK_OP(height_mm, >, 0.0);
-  // Below π h²/4 the formula would give w < h: no flattened bead has that area (see moving_bead_profile).
-  BT_CHECK_OP(area_mm2, >=, kPi * height_mm * height_mm / 4.0 * (1.0 - 1e-12));
-  return bead_width_mm(area_mm2, height_mm);
-}
-
 double BeadProfile::area_mm2() const {
   return 4.0 * core_half_width_mm * radius_mm + kPi * radius_mm * radius_mm;
 }
@@ -36,7 +25,7 @@ BeadProfile moving_bead_profile(double area_mm2, double height_mm) {
   BT_CHECK_OP(height_mm, >, 0.0);
   const double round_area = kPi * height_mm * height_mm / 4.0;
   if (area_mm2 < round_area) return {0.0, std::sqrt(area_mm2 / kPi)};
-  const double width = stadium_width_mm(area_mm2, height_mm);
+  const double width = bead_width_mm(area_mm2, height_mm);
   return {std::max(0.0, (width - height_mm) / 2.0), height_mm / 2.0};
 }
 

@@ -29,12 +29,8 @@
 
 namespace beadtwin::sim {
 
-// Stadium (flattened bead) cross-section: area from width and height, and width from area and height.
-// Preconditions: h > 0, w >= h (a bead can't be flatter than round across its width), i.e. A >= π h²/4.
-// A bead of smaller area cannot reach the roller; the deposit lays it as a round bead of that area whose
-// top is at the roller (sim/bead_section.hpp).
-double stadium_area_mm2(double width_mm, double height_mm);
-double stadium_width_mm(double area_mm2, double height_mm);
+// The flattened bead's section is core/bead.hpp's stadium. A bead of area below π h²/4 cannot reach the
+// roller; the deposit lays it as a round bead of that area whose top is at the roller (sim/bead_section.hpp).
 
 struct DepositOptions {
   double voxel_size_mm = 0.0;  // 0: chosen from the beads (half the smallest layer height)

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/bead.hpp"
 #include "core/toolpath.hpp"
 #include "render/render.hpp"
 #include "sim/deposit.hpp"
@@ -39,7 +40,7 @@ Toolpath box_toolpath(double side, int layers) {
       m.bead_width_mm = kBeadWidth;
       m.layer_height_mm = kLayerHeight;
       m.layer = layer;
-      m.volume_mm3 = sim::stadium_area_mm2(kBeadWidth, kLayerHeight) * m.length_mm();
+      m.volume_mm3 = bead_area_mm2(kBeadWidth, kLayerHeight) * m.length_mm();
       toolpath.moves.push_back(m);
     }
   }

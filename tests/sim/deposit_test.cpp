@@ -10,6 +10,7 @@
 
 #include <tbb/global_control.h>
 
+#include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "sim/bead_section.hpp"
@@ -33,7 +34,7 @@ Move bead(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer = 0,
   m.bead_width_mm = width;
   m.layer_height_mm = height;
   m.layer = layer;
-  m.volume_mm3 = sim::stadium_area_mm2(width, height) * m.length_mm();
+  m.volume_mm3 = bead_area_mm2(width, height) * m.length_mm();
   return m;
 }
 
@@ -101,10 +102,10 @@ TEST(StadiumSection, WidthIsTheInverseOfArea) {
   for (const double h : {1.0, 2.5, kBeadHeight})
     for (const double w : {h, 1.5 * h, 10.0, kBeadWidth, 40.0}) {
       if (w < h) continue;
-      EXPECT_NEAR(sim::stadium_width_mm(sim::stadium_area_mm2(w, h), h), w, 1e-12 * w) << w << " x " << h;
+      EXPECT_NEAR(bead_width_mm(bead_area_mm2(w, h), h), w, 1e-12 * w) << w << " x " << h;
     }
   // A round bead (w = h) is a disc.
-  EXPECT_NEAR(sim::stadium_area_mm2(3.0, 3.0), kPi * 9.0 / 4.0, 1e-12);
+  EXPECT_NEAR(bead_area_mm2(3.0, 3.0), kPi * 9.0 / 4.0, 1e-12);
 }
 
 TEST(StadiumSection, PatentRoundBeadFlattenedToAFifthOfAnInch) {
@@ -112,14 +113,13 @@ TEST(StadiumSection, PatentRoundBeadFlattenedToAFifthOfAnInch) {
   // about 1.02 in wide; and 0.83 in × 0.20 in means A ≈ 0.157 in².
   const double area_mm2 = kPi * std::pow(0.25 * kMmPerInch, 2);
   EXPECT_NEAR(area_mm2 / (kMmPerInch * kMmPerInch), 0.196, 0.001);
-  const double width_mm = sim::stadium_width_mm(area_mm2, kBeadHeight);
+  const double width_mm = bead_width_mm(area_mm2, kBeadHeight);
   EXPECT_NEAR(width_mm / kMmPerInch, 1.02, 0.01);
-  EXPECT_NEAR(sim::stadium_area_mm2(kBeadWidth, kBeadHeight) / (kMmPerInch * kMmPerInch), 0.157, 0.001);
+  EXPECT_NEAR(bead_area_mm2(kBeadWidth, kBeadHeight) / (kMmPerInch * kMmPerInch), 0.157, 0.001);
 }
 
 TEST(StadiumSection, AreaTooSmallToReachTheRollerIsNotAStadium) {
-  EXPECT_THROW(sim::stadium_width_mm(0.5 * kPi * kBeadHeight * kBeadHeight / 4.0, kBeadHeight),
-               InternalError);
+  EXPECT_THROW(bead_width_mm(0.5 * kPi * kBeadHeight * kBeadHeight / 4.0, kBeadHeight), InternalError);
   // The deposit lays it as a round bead of the same area, thinner than the layer.
   const sim::BeadProfile round = sim::moving_bead_profile(10.0, kBeadHeight);
   EXPECT_DOUBLE_EQ(round.core_half_width_mm, 0.0);
@@ -185,7 +185,7 @@ TEST(Deposit, SingleStraightBeadHoldsItsVolumeAndWidth) {
     widest_mm = std::max(widest_mm, row * s);
     section_mm2 += row * s * s;
   }
-  const double area = sim::stadium_area_mm2(kBeadWidth, kBeadHeight);
+  const double area = bead_area_mm2(kBeadWidth, kBeadHeight);
   std::printf(
       "single bead: voxel %.3f mm, measured width %.3f mm (formula %.3f, mean %.3f), section %.2f mm² (A "
       "%.2f)\n",
@@ -437,7 +437,7 @@ TEST(Deposit, ResultDoesNotDependOnThreads) {
 // ---- porosity -----------------------------------------------------------------------------------------
 
 TEST(Deposit, PorosityIsSmallAtTheIdealPitchAndGrowsWithWiderPitch) {
-  const double ideal = sim::stadium_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
+  const double ideal = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
   const sim::Deposit tight = sim::deposit(parallel_beads(8, ideal, 400.0));
   const sim::Deposit loose = sim::deposit(parallel_beads(8, 1.5 * ideal, 400.0));
   const sim::Deposit single = sim::deposit(parallel_beads(1, ideal, 400.0));
@@ -453,7 +453,7 @@ TEST(Deposit, PorosityIsSmallAtTheIdealPitchAndGrowsWithWiderPitch) {
 }
 
 TEST(Deposit, LaterLayersStackOnEarlierOnes) {
-  const double ideal = sim::stadium_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
+  const double ideal = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
   const sim::Deposit d = sim::deposit(parallel_beads(4, ideal, 200.0, 3));
   EXPECT_LT(d.porosity, 0.03);
   const openvdb::Coord lower = sim::voxel_containing({100, ideal, 0.5 * kBeadHeight}, d.voxel_size_mm);
@@ -515,7 +515,7 @@ TEST(Deposit, BadOptionsAreInputErrors) {
 
 TEST(Deposit, HundredMetresOfBeadTakeSeconds) {
   // A 1 m square filled by a zigzag raster at the ideal pitch, two layers: about 100 m of bead.
-  const double ideal = sim::stadium_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
+  const double ideal = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
   std::vector<Move> moves;
   for (int layer = 0; layer < 2; ++layer) {
     const double z = (layer + 1) * kBeadHeight;

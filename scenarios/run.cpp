@@ -247,28 +247,6 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
 
 }  // namespace
 
-std::optional<double> Metrics::get(const std::string& name) const {
-  if (name == "layers") return layers;
-  if (name == "print_time_s") return print_time_s;
-  if (name == "print_length_mm") return print_length_mm;
-  if (name == "travel_length_mm") return travel_length_mm;
-  if (name == "commanded_volume_mm3") return commanded_volume_mm3;
-  if (name == "deposited_volume_mm3") return deposited_volume_mm3;
-  if (name == "mass_kg") return mass_kg;
-  if (name == "porosity") return porosity;
-  if (name == "min_stock_mm") return min_stock_mm;
-  if (name == "undercut_fraction") return undercut_fraction;
-  if (name == "interfaces.count") return interfaces;
-  if (name == "interfaces.too_hot_fraction") return too_hot_fraction;
-  if (name == "interfaces.too_cold_fraction") return too_cold_fraction;
-  if (name == "interfaces.min_healing") return min_healing;
-  if (name == "interfaces.mean_healing") return mean_healing;
-  if (name == "layer_time_s.min") return layer_time_s.min;
-  if (name == "layer_time_s.mean") return layer_time_s.mean;
-  if (name == "layer_time_s.max") return layer_time_s.max;
-  throw InternalError("unknown metric " + name);
-}
-
 std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics) {
   std::vector<GateResult> out;
   for (const Gate& g : gates) {

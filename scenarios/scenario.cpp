@@ -528,11 +528,6 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
   tree.overridden[path] = at;
 }
 
-double metric_check(const std::string& name) {
-  const auto& m = gate_metrics();
-  return std::find(m.begin(), m.end(), name) != m.end() ? 1.0 : 0.0;
-}
-
 Gate parse_gate(const YAML::Node& node, const std::string& file) {
   const SourceLocation at = location_of(node, file);
   if (!node.IsScalar()) throw InputError(at, "gates", "expected a gate such as 'porosity < 0.03'");
@@ -561,7 +556,8 @@ Gate parse_gate(const YAML::Node& node, const std::string& file) {
   };
   g.metric = trim(g.expr.substr(0, pos));
   const std::string rhs = trim(g.expr.substr(pos + len));
-  if (metric_check(g.metric) == 0.0) {
+  const auto& known = gate_metrics();
+  if (std::find(known.begin(), known.end(), g.metric) == known.end()) {
     std::string names;
     for (const auto& n : gate_metrics()) names += (names.empty() ? "" : ", ") + n;
     throw InputError(at, "gates", fmt::format("unknown metric '{}'; expected one of: {}", g.metric, names));
@@ -655,28 +651,6 @@ std::string PartSpec::describe() const {
     }
   }
   return "?";
-}
-
-const std::vector<std::string>& gate_metrics() {
-  static const std::vector<std::string> names = {"layers",
-                                                 "print_time_s",
-                                                 "print_length_mm",
-                                                 "travel_length_mm",
-                                                 "commanded_volume_mm3",
-                                                 "deposited_volume_mm3",
-                                                 "mass_kg",
-                                                 "porosity",
-                                                 "min_stock_mm",
-                                                 "undercut_fraction",
-                                                 "interfaces.count",
-                                                 "interfaces.too_hot_fraction",
-                                                 "interfaces.too_cold_fraction",
-                                                 "interfaces.min_healing",
-                                                 "interfaces.mean_healing",
-                                                 "layer_time_s.min",
-                                                 "layer_time_s.mean",
-                                                 "layer_time_s.max"};
-  return names;
 }
 
 namespace {

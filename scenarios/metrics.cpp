@@ -1,0 +1,58 @@
+// The metrics a gate may name, each once: its dotted name (as in report.json) and how to read it.
+#include <algorithm>
+
+#include "core/error.hpp"
+#include "scenarios/result.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+struct MetricDef {
+  const char* name;
+  std::optional<double> (*read)(const Metrics&);
+};
+
+const MetricDef kMetrics[] = {
+    {"layers", [](const Metrics& m) -> std::optional<double> { return m.layers; }},
+    {"print_time_s", [](const Metrics& m) -> std::optional<double> { return m.print_time_s; }},
+    {"print_length_mm", [](const Metrics& m) -> std::optional<double> { return m.print_length_mm; }},
+    {"travel_length_mm", [](const Metrics& m) -> std::optional<double> { return m.travel_length_mm; }},
+    {"commanded_volume_mm3",
+     [](const Metrics& m) -> std::optional<double> { return m.commanded_volume_mm3; }},
+    {"deposited_volume_mm3",
+     [](const Metrics& m) -> std::optional<double> { return m.deposited_volume_mm3; }},
+    {"mass_kg", [](const Metrics& m) -> std::optional<double> { return m.mass_kg; }},
+    {"porosity", [](const Metrics& m) -> std::optional<double> { return m.porosity; }},
+    {"min_stock_mm", [](const Metrics& m) { return m.min_stock_mm; }},
+    {"undercut_fraction", [](const Metrics& m) { return m.undercut_fraction; }},
+    {"interfaces.count", [](const Metrics& m) -> std::optional<double> { return m.interfaces; }},
+    {"interfaces.too_hot_fraction",
+     [](const Metrics& m) -> std::optional<double> { return m.too_hot_fraction; }},
+    {"interfaces.too_cold_fraction",
+     [](const Metrics& m) -> std::optional<double> { return m.too_cold_fraction; }},
+    {"interfaces.min_healing", [](const Metrics& m) -> std::optional<double> { return m.min_healing; }},
+    {"interfaces.mean_healing", [](const Metrics& m) -> std::optional<double> { return m.mean_healing; }},
+    {"layer_time_s.min", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.min; }},
+    {"layer_time_s.mean", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.mean; }},
+    {"layer_time_s.max", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.max; }},
+};
+
+}  // namespace
+
+const std::vector<std::string>& gate_metrics() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& d : kMetrics) out.emplace_back(d.name);
+    return out;
+  }();
+  return names;
+}
+
+std::optional<double> Metrics::get(const std::string& name) const {
+  for (const auto& d : kMetrics)
+    if (name == d.name) return d.read(*this);
+  throw InternalError("unknown metric " + name);
+}
+
+}  // namespace beadtwin::scenarios

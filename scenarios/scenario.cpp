@@ -328,6 +328,10 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     if (!body.IsScalar() || body.Scalar().empty())
       r.fail(body, "body", "expected the name of one of the part's bodies");
     s.body = body.Scalar();
+    if (slicer::find_body(part, s.body) < 0)
+      r.fail(body, "body",
+             fmt::format("the part has no body named '{}'; its bodies are: {}", s.body,
+                         slicer::body_list(part)));
   }
   // AM Outline (patent (39)): a 2-D path printed as it is.
   if (YAML::Node outline = r.take("outline"); outline.IsDefined()) {
@@ -358,12 +362,6 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   } else if (z.IsScalar() && z.Scalar() == "part") {
     // The full part (patent (42)): from the bottom of the section's body (or of the part) to its top.
     const int body = s.body.empty() ? -1 : slicer::find_body(part, s.body);
-    if (!s.body.empty() && body < 0) {
-      std::string names;
-      for (const auto& n : part.body_names) names += (names.empty() ? "" : ", ") + n;
-      r.fail(r.take("body"), "body",
-             fmt::format("the part has no body named '{}'; its bodies are: {}", s.body, names));
-    }
     const slicer::TriangleMesh& m = body < 0 ? part : slicer::select_body(part, body);
     s.z_min_mm = m.min_corner().z();
     s.z_max_mm = m.max_corner().z();

@@ -389,4 +389,10 @@ TriangleMesh make_open_box(const Eigen::Vector3d& size, const std::vector<WallTi
   return weld(m);
 }
 
+std::string body_list(const TriangleMesh& mesh) {
+  std::string names;
+  for (const auto& n : mesh.body_names) names += (names.empty() ? "" : ", ") + n;
+  return names.empty() ? std::string("part") : names;
+}
+
 }  // namespace beadtwin::slicer

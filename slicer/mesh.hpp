@@ -67,6 +67,8 @@ TriangleMesh select_body(const TriangleMesh& mesh, int body);
 
 // The index of the body named `name`, or -1 when there is none.
 int find_body(const TriangleMesh& mesh, std::string_view name);
+// The body names, comma-separated, for messages ("part" for a mesh of one unnamed body).
+std::string body_list(const TriangleMesh& mesh);
 
 // A closed box [0,size] with its minimum corner at `origin`; one body named "part".
 TriangleMesh make_box(const Eigen::Vector3d& size, const Eigen::Vector3d& origin = Eigen::Vector3d::Zero());

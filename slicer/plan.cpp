@@ -116,29 +116,36 @@ class LayerBuilder {
     if (lead_in_mm > 0) print_segment(loop.front(), Feature::kLeadIn, pass);
     for (std::size_t i = 1; i <= loop.size(); ++i)
       print_segment(loop[i % loop.size()], Feature::kBoundary, pass);
-    // Start/stop overlap, then (unless the lead-out is tangential) the lead-out: on along the contour again.
-    const double along = overlap_mm + (tangential_lead_out ? 0.0 : lead_out_mm);
-    double left = along;
-    for (std::size_t i = 1; left > 1e-9 && i <= 2 * loop.size(); ++i) {
-      const Eigen::Vector2d& to = loop[i % loop.size()];
-      const double len = (to - head_).norm();
-      if (len <= 0.0) continue;
-      const Feature f = along - left < overlap_mm - 1e-9 ? Feature::kBoundary : Feature::kLeadOut;
-      // Split where the overlap ends and the lead-out begins.
-      const double step =
-          f == Feature::kBoundary ? std::min(left - (along - overlap_mm), len) : std::min(left, len);
-      // This retraces the bead just laid: the pump slows by the melt setting (patent (46)).
-      print_segment(step >= len ? to : Eigen::Vector2d(head_ + (to - head_) * (step / len)), f, pass,
-                    1.0 - s_.melt_reduction);
-      left -= step;
-      if (step < len) --i;  // the rest of this segment still lies ahead
-    }
+    // Start/stop overlap, then (unless the lead-out is tangential) the lead-out: on along the contour again,
+    // retracing the bead just laid, so the pump slows by the melt setting (patent (46)).
+    const double flow = 1.0 - s_.melt_reduction;
+    const std::size_t next = run_along(loop, 1, overlap_mm, Feature::kBoundary, pass, flow);
+    if (!tangential_lead_out) run_along(loop, next, lead_out_mm, Feature::kLeadOut, pass, flow);
     if (tangential_lead_out && lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
       const Move& last = tp_.moves.back();
       const Eigen::Vector2d dir = (last.end - last.start).head<2>().normalized();
       print_segment(head_ + lead_out_mm * dir, Feature::kLeadOut, pass);
     }
     event(ExtruderEvent::kMeltOff);
+  }
+
+  // Prints on along the closed `loop` from the head, which lies on the segment ending at loop[next], for
+  // `length_mm`; returns the index of the next corner ahead.
+  std::size_t run_along(const Polygon& loop, std::size_t next, double length_mm, Feature feature, int pass,
+                        double flow) {
+    // A bound on the laps, in case the loop is (nearly) a point.
+    for (std::size_t guard = 0; length_mm > 1e-9 && guard < 4 * loop.size(); ++guard) {
+      const Eigen::Vector2d to = loop[next % loop.size()];
+      const double len = (to - head_).norm();
+      if (len > length_mm) {
+        print_segment(head_ + (to - head_) * (length_mm / len), feature, pass, flow);
+        break;
+      }
+      print_segment(to, feature, pass, flow);
+      length_mm -= len;
+      next = (next + 1) % loop.size();
+    }
+    return next;
   }
 
   // An open path (AM Outline) with its lead-in along the first segment and its lead-out along the last.
@@ -524,13 +531,10 @@ void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top
 TriangleMesh section_mesh(const TriangleMesh& mesh, const SectionParams& s) {
   if (s.body.empty()) return mesh;
   const int body = find_body(mesh, s.body);
-  if (body < 0) {
-    std::string names;
-    for (const auto& n : mesh.body_names) names += (names.empty() ? "" : ", ") + n;
-    throw InputError({}, "sections." + s.name + ".body",
-                     fmt::format("the part has no body named '{}'; its bodies are: {}", s.body,
-                                 names.empty() ? "part" : names));
-  }
+  if (body < 0)
+    throw InputError(
+        {}, "sections." + s.name + ".body",
+        fmt::format("the part has no body named '{}'; its bodies are: {}", s.body, body_list(mesh)));
   return select_body(mesh, body);
 }
 

@@ -9,10 +9,4 @@ void Stages::finish(const std::string& name, double seconds) {
   if (log_) log_(fmt::format("  {:<10} {:8.2f} s", name, seconds));
 }
 
-double Stages::total_seconds() const {
-  double t = 0.0;
-  for (const auto& s : times_) t += s.seconds;
-  return t;
-}
-
 }  // namespace beadtwin

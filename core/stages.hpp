@@ -35,7 +35,6 @@ class Stages {
   }
 
   const std::vector<StageTime>& times() const { return times_; }
-  double total_seconds() const;
 
  private:
   void finish(const std::string& name, double seconds);

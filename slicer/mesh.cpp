@@ -219,10 +219,6 @@ TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale, Mes
   return mesh;
 }
 
-TriangleMesh read_stl(const std::filesystem::path& path, double unit_scale) {
-  return read_mesh(path, unit_scale);
-}
-
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path) {
   std::string out(80, '\0');
   const std::string header = "beadtwin binary STL";

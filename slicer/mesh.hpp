@@ -55,9 +55,6 @@ struct MeshReport {
 TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale = 1.0,
                        MeshReport* report = nullptr);
 
-// The same as read_mesh (kept for callers that read STL files by this name).
-TriangleMesh read_stl(const std::filesystem::path& path, double unit_scale = 1.0);
-
 // Writes a binary STL of all bodies (used by tests and to hand generated parts to other slicers).
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path);
 

@@ -1,0 +1,163 @@
+// Writes one layer's moves into a Toolpath: travels (with the clearance height), melt events, and printed
+// segments with their section, layer, feature and pass, the bead section and the flow. Every planner of a
+// layer's beads (boundary passes, fill, thin walls) lays them through one LayerBuilder.
+#pragma once
+
+#include <algorithm>
+
+#include "core/bead.hpp"
+#include "core/toolpath.hpp"
+#include "slicer/plan.hpp"
+#include "slicer/polygons.hpp"
+
+namespace beadtwin::slicer {
+
+class LayerBuilder {
+ public:
+  // `role` marks every printed move of the layer (kRaft, kStockOnTop); kUnknown keeps each move's own.
+  LayerBuilder(Toolpath& tp, const SectionParams& s, int section, int layer, double z, Eigen::Vector2d& head,
+               Feature role)
+      : tp_(tp), s_(s), section_(section), layer_(layer), z_(z), head_(head), role_(role) {
+    area_ = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
+  }
+
+  void travel_to(const Eigen::Vector2d& p) {
+    Move m = base(Feature::kTravel);
+    m.kind = MoveKind::kTravel;
+    // From wherever the head really is (the previous layer's height on a layer change).
+    // The program starts with the head at the initial clearance height (patent (45)), if one is set.
+    m.start = tp_.moves.empty()
+                  ? Eigen::Vector3d(head_.x(), head_.y(), std::max(z_, s_.initial_clearance_height_mm))
+                  : tp_.moves.back().end;
+    m.feed_mm_s = s_.travel_speed_mm_s;
+    if (m.start.z() > z_ + 1e-9 && (p - m.start.head<2>()).norm() > 1e-9) {
+      // Raised (clearance height): across at that height first, then straight down.
+      m.end = {p.x(), p.y(), m.start.z()};
+      tp_.moves.push_back(m);
+      m.start = m.end;
+    }
+    m.end = {p.x(), p.y(), z_};
+    head_ = p;
+    if ((m.end - m.start).norm() < 1e-9) return;
+    tp_.moves.push_back(m);
+  }
+
+  void event(ExtruderEvent e) {
+    Move m = base(Feature::kUnknown);
+    m.kind = MoveKind::kDwell;
+    m.event = e;
+    m.start = m.end = {head_.x(), head_.y(), z_};
+    tp_.moves.push_back(m);
+  }
+
+  // A closed boundary pass with its lead-in (a straight approach along the first segment's line, ending at
+  // the start) and lead-out (a straight run-off along the last segment's direction), both printed.
+  // `overlap_mm` runs the pass on past its start (start/stop overlap) before the lead-out.
+  void print_pass(const Polygon& loop, int pass, double lead_in_mm, double lead_out_mm, double overlap_mm,
+                  bool tangential_lead_out) {
+    if (loop.size() < 2) return;
+    const Eigen::Vector2d first_dir = (loop[1] - loop[0]).normalized();
+    travel_to(loop.front() - lead_in_mm * first_dir);
+    event(ExtruderEvent::kMeltOn);
+    if (lead_in_mm > 0) print_segment(loop.front(), Feature::kLeadIn, pass);
+    for (std::size_t i = 1; i <= loop.size(); ++i)
+      print_segment(loop[i % loop.size()], Feature::kBoundary, pass);
+    // Start/stop overlap, then (unless the lead-out is tangential) the lead-out: on along the contour again,
+    // retracing the bead just laid, so the pump slows by the melt setting (patent (46)).
+    const double flow = 1.0 - s_.melt_reduction;
+    const std::size_t next = run_along(loop, 1, overlap_mm, Feature::kBoundary, pass, flow);
+    if (!tangential_lead_out) run_along(loop, next, lead_out_mm, Feature::kLeadOut, pass, flow);
+    if (tangential_lead_out && lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
+      const Move& last = tp_.moves.back();
+      const Eigen::Vector2d dir = (last.end - last.start).head<2>().normalized();
+      print_segment(head_ + lead_out_mm * dir, Feature::kLeadOut, pass);
+    }
+    event(ExtruderEvent::kMeltOff);
+  }
+
+  // Prints on along the closed `loop` from the head, which lies on the segment ending at loop[next], for
+  // `length_mm`; returns the index of the next corner ahead.
+  std::size_t run_along(const Polygon& loop, std::size_t next, double length_mm, Feature feature, int pass,
+                        double flow) {
+    // A bound on the laps, in case the loop is (nearly) a point.
+    for (std::size_t guard = 0; length_mm > 1e-9 && guard < 4 * loop.size(); ++guard) {
+      const Eigen::Vector2d to = loop[next % loop.size()];
+      const double len = (to - head_).norm();
+      if (len > length_mm) {
+        print_segment(head_ + (to - head_) * (length_mm / len), feature, pass, flow);
+        break;
+      }
+      print_segment(to, feature, pass, flow);
+      length_mm -= len;
+      next = (next + 1) % loop.size();
+    }
+    return next;
+  }
+
+  // An open path (AM Outline) with its lead-in along the first segment and its lead-out along the last.
+  void print_open(const Polyline& path, int pass, double lead_in_mm, double lead_out_mm) {
+    if (path.size() < 2) return;
+    const Eigen::Vector2d first_dir = (path[1] - path[0]).normalized();
+    travel_to(path.front() - lead_in_mm * first_dir);
+    event(ExtruderEvent::kMeltOn);
+    if (lead_in_mm > 0) print_segment(path.front(), Feature::kLeadIn, pass);
+    for (std::size_t i = 1; i < path.size(); ++i) print_segment(path[i], Feature::kBoundary, pass);
+    if (lead_out_mm > 0)
+      print_segment(head_ + lead_out_mm * (path.back() - path[path.size() - 2]).normalized(),
+                    Feature::kLeadOut, pass);
+    event(ExtruderEvent::kMeltOff);
+  }
+
+  // One bead of its own width (a thin wall's); at least as wide as the layer is high.
+  void print_thin(const Eigen::Vector2d& to, double width_mm) {
+    const double w = std::max(width_mm, s_.layer_height_mm);
+    const std::size_t before = tp_.moves.size();
+    print_segment(to, Feature::kThinWall, -1, bead_area_mm2(w, s_.layer_height_mm) / area_);
+    if (tp_.moves.size() > before) tp_.moves.back().bead_width_mm = w;
+  }
+
+  // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another).
+  void print_segment(const Eigen::Vector2d& to, Feature feature, int pass, double flow = 1.0) {
+    const double len = (to - head_).norm();
+    if (len < 1e-6) return;
+    Move m = base(feature);
+    m.kind = MoveKind::kPrint;
+    m.pass = pass;
+    m.roller_down = true;
+    m.start = {head_.x(), head_.y(), z_};
+    m.end = {to.x(), to.y(), z_};
+    m.feed_mm_s = s_.print_speed_mm_s;
+    m.volume_mm3 = area_ * len * flow;
+    tp_.moves.push_back(m);
+    head_ = to;
+  }
+
+  const Eigen::Vector2d& head() const { return head_; }
+
+ private:
+  Move base(Feature feature) const {
+    Move m;
+    m.feature = role_ != Feature::kUnknown && feature != Feature::kTravel && feature != Feature::kUnknown
+                    ? role_
+                    : feature;
+    m.section = section_;
+    m.layer = layer_;
+    m.bead_width_mm = s_.bead_width_mm;
+    m.layer_height_mm = s_.layer_height_mm;
+    return m;
+  }
+
+  Toolpath& tp_;
+  const SectionParams& s_;
+  int section_, layer_;
+  double z_;
+  Eigen::Vector2d& head_;
+  Feature role_;
+  double area_ = 0.0;
+};
+
+// Rotates a closed contour so it starts at the point nearest `near`, moved `advance_mm` further along the
+// contour in its own direction (the seam avoidance offset); the start becomes a vertex if it is not one.
+Polygon start_at(const Polygon& poly, const Eigen::Vector2d& near, double advance_mm);
+
+}  // namespace beadtwin::slicer

@@ -23,47 +23,82 @@ json stats_json(const Stats3& s) {
   return {{"min", number_or_null(s.min)}, {"mean", number_or_null(s.mean)}, {"max", number_or_null(s.max)}};
 }
 
+// Polygons as [[[x, y], ...], ...] in mm.
+json polygons_json(const slicer::Polygons& polys) {
+  json out = json::array();
+  for (const auto& poly : polys) {
+    json pts = json::array();
+    for (const auto& p : poly) pts.push_back({p.x(), p.y()});
+    out.push_back(std::move(pts));
+  }
+  return out;
+}
+
 json parameters_json(const Variant& v) {
   json sections = json::array();
   for (const auto& s : v.sections) {
-    sections.push_back({{"name", s.name},
-                        {"z_mm", {s.z_min_mm, s.z_max_mm}},
-                        {"layer_height_mm", s.layer_height_mm},
-                        {"bead_width_mm", s.bead_width_mm},
-                        {"speed_mm_s", s.print_speed_mm_s},
-                        {"travel_speed_mm_s", s.travel_speed_mm_s},
-                        {"start_point_mm", {s.start_point_mm.x(), s.start_point_mm.y()}},
-                        {"seam_offset_mm", s.seam_offset_mm},
-                        {"chord_tolerance_mm", s.chord_tolerance_mm},
-                        {"min_polygon_area_mm2", s.min_polygon_area_mm2},
-                        {"contact_offset_mm", s.contact_offset_mm},
-                        {"shift_mm", {s.shift_mm.x(), s.shift_mm.y()}},
-                        {"outer_stock_mm", s.outer_stock_mm},
-                        {"inner_stock_mm", s.inner_stock_mm},
-                        {"merge_slices", s.merge_slices},
-                        {"ignore_inner_contours", s.ignore_inner_contours},
-                        {"layer_order", s.fill_first ? "fill_first" : "boundary_first"},
-                        {"clearance_height_mm", s.clearance_height_mm},
-                        {"initial_clearance_height_mm", s.initial_clearance_height_mm},
-                        {"melt_reduction", s.melt_reduction},
-                        {"rafts", s.rafts},
-                        {"stock_on_top", s.stock_on_top},
-                        {"boundary",
-                         {{"passes", s.boundary.passes},
-                          {"reverse_alternate", s.boundary.reverse_alternate},
-                          {"lead_in_mm", s.boundary.lead_in_mm},
-                          {"lead_out_mm", s.boundary.lead_out_mm},
-                          {"force_tangential_lead_out", s.boundary.tangential_lead_out},
-                          {"start_stop_overlap", s.boundary.start_stop_overlap},
-                          {"min_pass_length_mm", s.boundary.min_pass_length_mm},
-                          {"thin_walls", s.boundary.thin_walls},
-                          {"thin_wall_max_width_mm", s.boundary.thin_wall_max_width_mm},
-                          {"overlap", s.boundary.overlap},
-                          {"inside_out", s.boundary.inside_out}}},
-                        {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},
-                                                       {"angle_step_deg", s.fill.angle_step_deg},
-                                                       {"overlap", s.fill.overlap}}
-                                                : json("none")}});
+    sections.push_back(
+        {{"name", s.name},
+         {"z_mm", {s.z_min_mm, s.z_max_mm}},
+         {"layer_height_mm", s.layer_height_mm},
+         {"bead_width_mm", s.bead_width_mm},
+         {"speed_mm_s", s.print_speed_mm_s},
+         {"travel_speed_mm_s", s.travel_speed_mm_s},
+         {"start_point_mm", {s.start_point_mm.x(), s.start_point_mm.y()}},
+         {"seam_offset_mm", s.seam_offset_mm},
+         {"chord_tolerance_mm", s.chord_tolerance_mm},
+         {"min_polygon_area_mm2", s.min_polygon_area_mm2},
+         {"contact_offset_mm", s.contact_offset_mm},
+         {"shift_mm", {s.shift_mm.x(), s.shift_mm.y()}},
+         {"outer_stock_mm", s.outer_stock_mm},
+         {"inner_stock_mm", s.inner_stock_mm},
+         {"combine_stock_offset", s.combine_stock_offset},
+         {"containment",
+          {{"outside", polygons_json(s.containment_outside)},
+           {"inside", polygons_json(s.containment_inside)}}},
+         {"slice_plane", s.slice_plane == slicer::SlicePlane::kTop     ? "top"
+                         : s.slice_plane == slicer::SlicePlane::kFront ? "front"
+                                                                       : "side"},
+         {"shares_wall_with", s.shares_wall_with},
+         {"pull_back",
+          {{"length_mm", s.pull_back.length_mm},
+           {"extension_mm", s.pull_back.extension_mm},
+           {"min_turn_deg", s.pull_back.min_turn_deg}}},
+         {"smoothing",
+          {{"smooth_curves", s.smoothing.smooth_curves},
+           {"never_start_in_corner", s.smoothing.never_start_in_corner},
+           {"min_polygon_angle_deg", s.smoothing.min_polygon_angle_deg}}},
+         {"voids",
+          {{"detect", s.voids.detect}, {"fill", s.voids.fill}, {"min_width_mm", s.voids.min_width_mm}}},
+         {"merge_slices", s.merge_slices},
+         {"ignore_inner_contours", s.ignore_inner_contours},
+         {"layer_order", s.fill_first ? "fill_first" : "boundary_first"},
+         {"clearance_height_mm", s.clearance_height_mm},
+         {"initial_clearance_height_mm", s.initial_clearance_height_mm},
+         {"melt_reduction", s.melt_reduction},
+         {"rafts", s.rafts},
+         {"stock_on_top", s.stock_on_top},
+         {"boundary",
+          {{"passes", s.boundary.passes},
+           {"reverse_alternate", s.boundary.reverse_alternate},
+           {"lead_in_mm", s.boundary.lead_in_mm},
+           {"lead_out_mm", s.boundary.lead_out_mm},
+           {"force_tangential_lead_out", s.boundary.tangential_lead_out},
+           {"start_stop_overlap", s.boundary.start_stop_overlap},
+           {"min_pass_length_mm", s.boundary.min_pass_length_mm},
+           {"thin_walls", s.boundary.thin_walls},
+           {"thin_wall_max_width_mm", s.boundary.thin_wall_max_width_mm},
+           {"thin_wall_one_bead_width_mm", s.boundary.thin_wall_one_bead_width_mm},
+           {"thin_wall_thickness_deviation_mm", s.boundary.thin_wall_thickness_deviation_mm},
+           {"thin_wall_stitching_gap_mm", s.boundary.thin_wall_stitching_gap_mm},
+           {"thin_wall_intersection_distance_mm", s.boundary.thin_wall_intersection_distance_mm},
+           {"overlap", s.boundary.overlap},
+           {"max_overlap", s.boundary.max_overlap},
+           {"inside_out", s.boundary.inside_out}}},
+         {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},
+                                        {"angle_step_deg", s.fill.angle_step_deg},
+                                        {"overlap", s.fill.overlap}}
+                                 : json("none")}});
   }
   return {{"machine", v.machine.name}, {"material", v.material.name},
           {"part", v.part.describe()}, {"voxel_size_mm", v.output.voxel_size_mm},
@@ -116,6 +151,8 @@ json variant_json(const VariantResult& r) {
               {"min_healing", number_or_null(m.min_healing)},
               {"mean_healing", number_or_null(m.mean_healing)}}},
             {"layer_time_s", stats_json(m.layer_time_s)},
+            {"planned_voids", m.planned_voids},
+            {"planned_void_area_mm2", m.planned_void_area_mm2},
             {"deposit",
              {{"voxel_size_mm", m.voxel_size_mm},
               {"voxels", m.voxels},
@@ -318,6 +355,8 @@ details{margin:1em 0} .muted{color:#777}
     row("mass", fmt::format("{:.2f} kg", m.mass_kg));
     row("material cost", fmt::format("{:.2f}", m.material_cost));
     row("porosity", fmt::format("{:.2f} %", 100 * m.porosity));
+    row("voids found by the slicer",
+        fmt::format("{} ({:.0f} mm²)", m.planned_voids, m.planned_void_area_mm2));
     row("min stock", fmt_opt(m.min_stock_mm));
     row("voxels", fmt::format("{} at {:.2f} mm", m.voxels, m.voxel_size_mm));
     row("thermal energy balance error", fmt::format("{:.1e}", m.thermal_energy_error));

@@ -25,6 +25,9 @@ struct Metrics {
   int interfaces = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
   Stats3 layer_time_s;
+  // Void detection in the slicer (sections with voids.detect): uncovered pieces found and their area.
+  int planned_voids = 0;
+  double planned_void_area_mm2 = 0;
   // Diagnostics beyond DESIGN §6.
   double swept_volume_mm3 = 0, redistributed_volume_mm3 = 0;
   std::size_t voxels = 0;

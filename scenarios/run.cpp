@@ -21,14 +21,21 @@
 namespace beadtwin::scenarios {
 namespace {
 
-Toolpath slice_variant(const Variant& v) {
+Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
   BT_CHECK(v.part.loaded != nullptr);
-  Toolpath tp = slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion);
+  Toolpath tp = slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, stats);
   if (tp.layers.empty())
     throw InputError({}, "sections",
                      fmt::format("variant '{}': no section's Z range meets the part ({}), nothing to print",
                                  v.name, v.part.describe()));
   return tp;
+}
+
+// What the program writer needs of the sections: each one's arc chord tolerance.
+slicer::GcodeOptions gcode_options(const Variant& v) {
+  slicer::GcodeOptions o;
+  for (const auto& s : v.sections) o.arc_tolerance_mm.push_back(s.arc_chord_tolerance_mm);
+  return o;
 }
 
 // The layer stack the thermal model integrates. Toolpath layers at the same height (sections side by side,
@@ -184,10 +191,14 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
                           [&](const std::string& line) { log(fmt::format("[{}] {}", v.name, line)); })
                     : std::function<void(const std::string&)>());
 
-  const Toolpath tp = stages.run("slice", [&] { return slice_variant(v); });
+  slicer::PlanStats plan_stats;
+  const Toolpath tp = stages.run("slice", [&] { return slice_variant(v, &plan_stats); });
+  res.metrics.planned_voids = plan_stats.voids_found;
+  res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   stages.run("program", [&] {
     slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
-    write_file_atomic(dir / "program.nc", slicer::write_gcode(tp, v.machine.dialect, header));
+    write_file_atomic(dir / "program.nc",
+                      slicer::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
   });
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
   const sim::Deposit deposit = stages.run("deposit", [&] {
@@ -271,7 +282,7 @@ std::string slice_program(const Scenario& sc, const std::string& variant_name) {
     if (!variant_name.empty() && v.name != variant_name) continue;
     const Toolpath tp = slice_variant(v);
     return slicer::write_gcode(tp, v.machine.dialect,
-                               {v.name, sc.name, v.name, v.machine.name, v.material.name});
+                               {v.name, sc.name, v.name, v.machine.name, v.material.name}, gcode_options(v));
   }
   throw InputError({}, "--variant",
                    fmt::format("scenario '{}' has no variant named '{}'", sc.name, variant_name));

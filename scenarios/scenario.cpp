@@ -134,6 +134,7 @@ Machine read_machine(BlockReader& r) {
   if (units != "in" && units != "mm")
     r.fail(r.take("gcode.units"), "gcode.units", fmt::format("expected in or mm but found '{}'", units));
   m.dialect.inches = units == "in";
+  m.dialect.arcs = r.boolean(spec(t, "gcode.arcs"));
   m.dialect.melt_on = r.string(spec(t, "gcode.melt_on"));
   m.dialect.melt_off = r.string(spec(t, "gcode.melt_off"));
   r.finish(t);
@@ -324,6 +325,18 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   const auto t = section_params();
   slicer::SectionParams s;
   s.name = r.string(spec(t, "name"));
+  // A polygon [[x, y], ...] with at least `min_points` points.
+  auto points = [](BlockReader& br, const YAML::Node& node, std::string_view key, std::size_t min_points) {
+    if (!node.IsSequence() || node.size() < min_points)
+      br.fail(node, key, fmt::format("expected at least {} points [[x, y], ...]", min_points));
+    slicer::Polygon poly;
+    for (const auto& p : node) {
+      if (!p.IsSequence() || p.size() != 2) br.fail(p, key, "expected a point [x, y]");
+      poly.emplace_back(br.parse(p[0], Dimension::kLength, std::string(key)),
+                        br.parse(p[1], Dimension::kLength, std::string(key)));
+    }
+    return poly;
+  };
   if (YAML::Node body = r.take("body"); body.IsDefined()) {
     if (!body.IsScalar() || body.Scalar().empty())
       r.fail(body, "body", "expected the name of one of the part's bodies");
@@ -336,19 +349,47 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   // AM Outline (patent (39)): a 2-D path printed as it is.
   if (YAML::Node outline = r.take("outline"); outline.IsDefined()) {
     BlockReader orr(outline, r.full_key("outline"), std::make_shared<YamlSource>(r.source()));
-    YAML::Node pts = orr.take("points");
-    if (!pts.IsSequence() || pts.size() < 2)
-      orr.fail(pts, "points", "expected at least two points [[x, y], ...]");
-    for (const auto& p : pts) {
-      if (!p.IsSequence() || p.size() != 2) orr.fail(p, "points", "expected a point [x, y]");
-      s.outline_path.emplace_back(orr.parse(p[0], Dimension::kLength, "points"),
-                                  orr.parse(p[1], Dimension::kLength, "points"));
-    }
+    s.outline_path = points(orr, orr.take("points"), "points", 2);
     ParamSpec closed = spec(t, "outline.closed");
     closed.key = "closed";  // inside the outline block
     s.outline_closed = orr.boolean(closed);
     static constexpr std::string_view kOutlineKeys[] = {"points", "closed"};
     orr.finish({}, kOutlineKeys);
+  }
+  // Containment boundaries (patent (41)): one outside polygon, and one or more inside polygons.
+  if (YAML::Node c = r.take("containment"); c.IsDefined()) {
+    BlockReader cr(c, r.full_key("containment"), std::make_shared<YamlSource>(r.source()));
+    if (YAML::Node out = cr.take("outside"); out.IsDefined())
+      s.containment_outside = slicer::union_nonzero({points(cr, out, "outside", 3)});
+    if (YAML::Node in = cr.take("inside"); in.IsDefined()) {
+      const bool many =
+          in.IsSequence() && in.size() > 0 && in[0].IsSequence() && in[0].size() > 0 && in[0][0].IsSequence();
+      slicer::Polygons polys;
+      if (many)
+        for (const auto& one : in) polys.push_back(points(cr, one, "inside", 3));
+      else
+        polys.push_back(points(cr, in, "inside", 3));
+      s.containment_inside = slicer::union_nonzero(polys);
+    }
+    static constexpr std::string_view kContainmentKeys[] = {"outside", "inside"};
+    cr.finish({}, kContainmentKeys);
+  }
+  {
+    const std::string plane = r.string(spec(t, "slice_plane"));
+    if (plane == "top")
+      s.slice_plane = slicer::SlicePlane::kTop;
+    else if (plane == "front")
+      s.slice_plane = slicer::SlicePlane::kFront;
+    else if (plane == "side")
+      s.slice_plane = slicer::SlicePlane::kSide;
+    else
+      r.fail(r.take("slice_plane"), "slice_plane",
+             fmt::format("expected top, front or side but found '{}'", plane));
+  }
+  if (YAML::Node w = r.take("shares_wall_with"); w.IsDefined()) {
+    if (!w.IsScalar() || w.Scalar().empty())
+      r.fail(w, "shares_wall_with", "expected the name of another section");
+    s.shares_wall_with = w.Scalar();
   }
   YAML::Node z = r.take("z");
   YAML::Node layers = r.take("layers");
@@ -362,7 +403,8 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   } else if (z.IsScalar() && z.Scalar() == "part") {
     // The full part (patent (42)): from the bottom of the section's body (or of the part) to its top.
     const int body = s.body.empty() ? -1 : slicer::find_body(part, s.body);
-    const slicer::TriangleMesh& m = body < 0 ? part : slicer::select_body(part, body);
+    const slicer::TriangleMesh m =
+        slicer::lay_down(body < 0 ? part : slicer::select_body(part, body), s.slice_plane);
     s.z_min_mm = m.min_corner().z();
     s.z_max_mm = m.max_corner().z();
   } else {
@@ -451,8 +493,29 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.boundary.min_pass_length_mm = r.quantity(spec(t, "boundary.min_pass_length"));
   s.boundary.thin_walls = r.boolean(spec(t, "boundary.thin_walls"));
   s.boundary.thin_wall_max_width_mm = r.quantity(spec(t, "boundary.thin_wall_max_width"));
+  s.boundary.thin_wall_one_bead_width_mm = r.quantity(spec(t, "boundary.thin_wall_one_bead_width"));
+  s.boundary.thin_wall_thickness_deviation_mm = r.quantity(spec(t, "boundary.thin_wall_thickness_deviation"));
+  s.boundary.thin_wall_stitching_gap_mm = r.quantity(spec(t, "boundary.thin_wall_stitching_gap"));
+  s.boundary.thin_wall_intersection_distance_mm =
+      r.quantity(spec(t, "boundary.thin_wall_intersection_distance"));
   s.boundary.passes = r.integer(spec(t, "boundary.passes"));
   s.boundary.overlap = r.quantity(spec(t, "boundary.overlap"));
+  s.boundary.max_overlap = r.quantity(spec(t, "boundary.max_overlap"));
+  if (s.boundary.max_overlap < s.boundary.overlap)
+    r.fail(r.take("boundary.max_overlap"), "boundary.max_overlap",
+           fmt::format("maximum pass overlap {:.0f} % is below the pass overlap {:.0f} %",
+                       100 * s.boundary.max_overlap, 100 * s.boundary.overlap));
+  s.combine_stock_offset = r.boolean(spec(t, "combine_stock_offset"));
+  s.arc_chord_tolerance_mm = r.quantity(spec(t, "arc_chord_tolerance"));
+  s.pull_back.length_mm = r.quantity(spec(t, "pull_back.length"));
+  s.pull_back.extension_mm = r.quantity(spec(t, "pull_back.extension"));
+  s.pull_back.min_turn_deg = r.quantity(spec(t, "pull_back.min_turn"));
+  s.smoothing.smooth_curves = r.boolean(spec(t, "smoothing.smooth_curves"));
+  s.smoothing.never_start_in_corner = r.boolean(spec(t, "smoothing.never_start_in_corner"));
+  s.smoothing.min_polygon_angle_deg = r.quantity(spec(t, "smoothing.min_polygon_angle"));
+  s.voids.detect = r.boolean(spec(t, "voids.detect"));
+  s.voids.fill = r.boolean(spec(t, "voids.fill"));
+  s.voids.min_width_mm = r.quantity(spec(t, "voids.min_width"));
   s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));
   // fill: none | {angle, angle_step, overlap}. The keys are read (with defaults) either way.
   YAML::Node fill = r.take("fill");

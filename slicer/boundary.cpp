@@ -4,81 +4,106 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Eigenvalues>
+#include "slicer/centre_beads.hpp"
 
 namespace beadtwin::slicer {
-namespace {
 
-// The thin walls of a region: the parts a bead's centre cannot reach (what an opening by w/2 removes),
-// each as its centre line and width, when no wider than the limit. A piece's width is 2·area/perimeter (exact
-// for a long strip) and its centre line runs along its principal axis.
-struct ThinWall {
-  Eigen::Vector2d a, b;
-  double width_mm = 0.0;
-};
-
-std::vector<ThinWall> thin_walls(const Polygons& region, double w, double max_width) {
-  std::vector<ThinWall> out;
-  // The opening leaves numerical slivers along edges it does not quite restore: a second, small opening
-  // (a tenth of the bead) drops anything too narrow to take a bead anyway.
-  const double sliver = 0.1 * w;
-  const Polygons thin =
-      offset(offset(difference(region, offset(offset(region, -0.5 * w), 0.5 * w)), -sliver), sliver);
-  for (const Polygon& piece : thin) {
-    const double area = std::abs(area_mm2({piece}));
-    const double perimeter = perimeter_mm({piece});
-    if (area <= 0 || perimeter <= 0) continue;
-    const double width = 2.0 * area / perimeter;
-    // Slivers (a bead corner's worth) are not walls; wide pieces are not thin.
-    if (width > max_width || area < 0.25 * w * w) continue;
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (const auto& p : piece) mean += p;
-    mean /= static_cast<double>(piece.size());
-    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-    for (const auto& p : piece) cov += (p - mean) * (p - mean).transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-    const Eigen::Vector2d axis = eig.eigenvectors().col(1);
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& p : piece) {
-      lo = std::min(lo, (p - mean).dot(axis));
-      hi = std::max(hi, (p - mean).dot(axis));
-    }
-    // The centre line spans the whole piece: a bead's free ends are square (as the deposit lays them), so it
-    // meets the passes at one end and the wall's tip at the other.
-    out.push_back({mean + lo * axis, mean + hi * axis, width});
+BoundaryPlan plan_boundary(const SectionParams& s, const Polygons& region, const Polygons& shared_wall,
+                           bool fill) {
+  const double w = s.bead_width_mm;
+  const double pitch = w * (1.0 - s.boundary.overlap);
+  Polygons host = region, keep_out;
+  if (!shared_wall.empty()) {
+    // The two sections as one region (a closing bridges a seam narrower than w/2 between them); pass pieces
+    // end overlap·w deep in the neighbour, on the bead its wall lays there.
+    const double g = 0.25 * w;
+    host = offset(offset(unite(region, shared_wall), g), -g);
+    keep_out = offset(shared_wall, -s.boundary.overlap * w);
   }
-  return out;
+  // Where a pass's own sides come closer than w·(1 − max overlap) the pass is opened away.
+  const double open_by = s.boundary.max_overlap < 1.0 ? 0.5 * w * (1.0 - s.boundary.max_overlap) : 0.0;
+  auto centres = [&](int k) {
+    Polygons r = offset(host, -(0.5 * w + k * pitch));
+    return open_by > 0 ? offset(offset(r, -open_by), open_by) : r;
+  };
+  BoundaryPlan plan;
+  plan.reach = offset(centres(0), 0.5 * w);
+  for (int k = 0; k < s.boundary.passes; ++k) {
+    Polygons loops = centres(k);
+    if (loops.empty()) break;
+    if (s.smoothing.min_polygon_angle_deg > 0)
+      for (Polygon& loop : loops) loop = blunt_corners(loop, s.smoothing.min_polygon_angle_deg, 0.5 * w);
+    Polygons closed;
+    std::vector<Polyline> open;
+    for (const Polygon& loop : loops) {
+      Polyline ring = loop;
+      ring.push_back(loop.front());
+      if (keep_out.empty() || clip_lines({ring}, keep_out, true).empty()) {
+        closed.push_back(loop);
+        continue;
+      }
+      for (Polyline& piece : clip_lines({ring}, keep_out, false)) open.push_back(std::move(piece));
+    }
+    plan.loops.push_back(std::move(closed));
+    plan.pieces.push_back(std::move(open));
+  }
+  if (fill) {
+    // The fill's bead centres stay w/2 − overlap·w inside the last pass's inner edge: the offset the next
+    // pass would have had. Against a shared wall they stop the same distance from the neighbour's edge.
+    plan.fill_region = offset(host, -(0.5 * w + static_cast<double>(plan.loops.size()) * pitch));
+    if (!shared_wall.empty())
+      plan.fill_region = difference(plan.fill_region, offset(shared_wall, 0.5 * w - s.fill.overlap * w));
+  }
+  return plan;
 }
 
-}  // namespace
-
-void lay_boundary(LayerBuilder& b, const SectionParams& s, const std::vector<Polygons>& passes,
-                  int layer_in_section) {
-  const int laid = static_cast<int>(passes.size());
+void lay_boundary(LayerBuilder& b, const SectionParams& s, const BoundaryPlan& plan, int layer_in_section) {
+  const int laid = static_cast<int>(plan.loops.size());
   const bool reversed = s.boundary.reverse_alternate && layer_in_section % 2 == 1;
   const double advance = layer_in_section * s.seam_offset_mm;
+  const double corner_clear = s.smoothing.never_start_in_corner ? s.bead_width_mm : 0.0;
   for (int i = 0; i < laid; ++i) {
-    const int k = s.boundary.inside_out ? laid - 1 - i : i;
-    for (Polygon loop : passes[static_cast<std::size_t>(k)]) {
+    const auto k = static_cast<std::size_t>(s.boundary.inside_out ? laid - 1 - i : i);
+    for (Polygon loop : plan.loops[k]) {
       if (s.boundary.min_pass_length_mm > 0 && perimeter_mm({loop}) < s.boundary.min_pass_length_mm) continue;
       if (reversed) std::reverse(loop.begin(), loop.end());
-      b.print_pass(start_at(loop, s.start_point_mm, advance), k, s.boundary.lead_in_mm,
-                   s.boundary.lead_out_mm, s.boundary.start_stop_overlap * s.bead_width_mm,
-                   s.boundary.tangential_lead_out);
+      b.print_pass(start_at(loop, s.start_point_mm, advance, corner_clear), static_cast<int>(k),
+                   s.boundary.lead_in_mm, s.boundary.lead_out_mm,
+                   s.boundary.start_stop_overlap * s.bead_width_mm, s.boundary.tangential_lead_out);
+    }
+    // Pieces ending against a shared wall: no lead-in or lead-out (they would print into the neighbour).
+    for (Polyline piece : plan.pieces[k]) {
+      double length = 0.0;
+      for (std::size_t j = 1; j < piece.size(); ++j) length += (piece[j] - piece[j - 1]).norm();
+      if (length < std::max(s.boundary.min_pass_length_mm, 1e-6)) continue;
+      const bool from_far_end =
+          (piece.back() - s.start_point_mm).norm() < (piece.front() - s.start_point_mm).norm();
+      if (from_far_end != reversed) std::reverse(piece.begin(), piece.end());
+      b.print_open(piece, static_cast<int>(k), 0.0, 0.0);
     }
   }
 }
 
-void lay_thin_walls(LayerBuilder& b, const SectionParams& s, const Polygons& region) {
-  const double max_width =
-      s.boundary.thin_wall_max_width_mm > 0 ? s.boundary.thin_wall_max_width_mm : s.bead_width_mm;
-  for (const ThinWall& t : thin_walls(region, s.bead_width_mm, max_width)) {
-    if ((t.b - t.a).norm() < 1e-6) continue;
-    b.travel_to(t.a);
-    b.event(ExtruderEvent::kMeltOn);
-    b.print_thin(t.b, t.width_mm);
-    b.event(ExtruderEvent::kMeltOff);
-  }
+CentreBeadRules thin_wall_rules(const SectionParams& s) {
+  const double w = s.bead_width_mm;
+  CentreBeadRules r;
+  r.min_width_mm = 0.1 * w;
+  r.max_width_mm = s.boundary.thin_wall_max_width_mm > 0 ? s.boundary.thin_wall_max_width_mm : w;
+  r.one_bead_width_mm =
+      s.boundary.thin_wall_one_bead_width_mm > 0 ? s.boundary.thin_wall_one_bead_width_mm : w;
+  r.thickness_deviation_mm = s.boundary.thin_wall_thickness_deviation_mm;
+  r.stitching_gap_mm = s.boundary.thin_wall_stitching_gap_mm;
+  r.intersection_distance_mm = s.boundary.thin_wall_intersection_distance_mm;
+  return r;
+}
+
+void lay_thin_walls(LayerBuilder& b, const SectionParams& s, const Polygons& region,
+                    const BoundaryPlan& plan) {
+  // What the outer pass cannot reach, less the numerical slivers along edges the offsets do not quite
+  // restore (a small opening, a tenth of the bead: anything that narrow cannot take a bead anyway).
+  const double sliver = 0.1 * s.bead_width_mm;
+  const Polygons thin = offset(offset(difference(region, plan.reach), -sliver), sliver);
+  lay_centre_beads(b, centre_beads(thin, plan.reach, thin_wall_rules(s)), Feature::kThinWall);
 }
 
 }  // namespace beadtwin::slicer

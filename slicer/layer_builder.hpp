@@ -43,12 +43,21 @@ class LayerBuilder {
   }
 
   void event(ExtruderEvent e) {
+    // A bead runs from melt on to melt off; its corners get the pull-back when it ends.
+    if (e == ExtruderEvent::kMeltOff && s_.pull_back.length_mm + s_.pull_back.extension_mm > 0)
+      pull_back_corners(tp_.moves, bead_start_, s_.pull_back);
     Move m = base(Feature::kUnknown);
     m.kind = MoveKind::kDwell;
     m.event = e;
     m.start = m.end = {head_.x(), head_.y(), z_};
     tp_.moves.push_back(m);
+    if (e == ExtruderEvent::kMeltOn) bead_start_ = tp_.moves.size();
   }
+
+  // Corner pull-back (patent (47)) on the print moves from `first` on: at every turn of at least the
+  // minimum angle the roller lifts `length_mm` before the corner and re-engages `extension_mm` after it
+  // (moves are split there; material stays with the length it belongs to).
+  static void pull_back_corners(std::vector<Move>& moves, std::size_t first, const PullBackParams& p);
 
   // A closed boundary pass with its lead-in (a straight approach along the first segment's line, ending at
   // the start) and lead-out (a straight run-off along the last segment's direction), both printed.
@@ -109,10 +118,10 @@ class LayerBuilder {
   }
 
   // One bead of its own width (a thin wall's); at least as wide as the layer is high.
-  void print_thin(const Eigen::Vector2d& to, double width_mm) {
+  void print_thin(const Eigen::Vector2d& to, double width_mm, Feature feature = Feature::kThinWall) {
     const double w = std::max(width_mm, s_.layer_height_mm);
     const std::size_t before = tp_.moves.size();
-    print_segment(to, Feature::kThinWall, -1, bead_area_mm2(w, s_.layer_height_mm) / area_);
+    print_segment(to, feature, -1, bead_area_mm2(w, s_.layer_height_mm) / area_);
     if (tp_.moves.size() > before) tp_.moves.back().bead_width_mm = w;
   }
 
@@ -154,10 +163,18 @@ class LayerBuilder {
   Eigen::Vector2d& head_;
   Feature role_;
   double area_ = 0.0;
+  std::size_t bead_start_ = 0;
 };
 
 // Rotates a closed contour so it starts at the point nearest `near`, moved `advance_mm` further along the
 // contour in its own direction (the seam avoidance offset); the start becomes a vertex if it is not one.
-Polygon start_at(const Polygon& poly, const Eigen::Vector2d& near, double advance_mm);
+// With `corner_clear_mm` > 0 (never start in a corner, patent (47)) the start moves on until it is at
+// least that far from every corner.
+Polygon start_at(const Polygon& poly, const Eigen::Vector2d& near, double advance_mm,
+                 double corner_clear_mm = 0.0);
+
+// Minimum polygon angle (patent (47)): corners of the material whose interior angle is below
+// `min_interior_deg` are cut back by `cut_mm` along both edges, so the bead never turns that sharply.
+Polygon blunt_corners(const Polygon& loop, double min_interior_deg, double cut_mm);
 
 }  // namespace beadtwin::slicer

@@ -263,6 +263,18 @@ TriangleMesh select_body(const TriangleMesh& mesh, int body) {
   return out;
 }
 
+TriangleMesh lay_down(const TriangleMesh& mesh, SlicePlane plane) {
+  if (plane == SlicePlane::kTop || mesh.vertices.empty()) return mesh;
+  const Eigen::Vector3d before = mesh.min_corner();
+  TriangleMesh out = mesh;
+  for (Eigen::Vector3d& v : out.vertices)
+    v = plane == SlicePlane::kFront ? Eigen::Vector3d(v.x(), -v.z(), v.y())   // +90° about X
+                                    : Eigen::Vector3d(-v.z(), v.y(), v.x());  // −90° about Y
+  const Eigen::Vector3d shift = before - out.min_corner();
+  for (Eigen::Vector3d& v : out.vertices) v += shift;
+  return out;
+}
+
 int find_body(const TriangleMesh& mesh, std::string_view name) {
   const auto it = std::find(mesh.body_names.begin(), mesh.body_names.end(), name);
   return it == mesh.body_names.end() ? -1 : static_cast<int>(it - mesh.body_names.begin());

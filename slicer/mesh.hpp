@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -61,6 +62,14 @@ void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path);
 // The triangles of one body (0 <= body < body_names.size(), or body 0 of a mesh without body tags) as a mesh
 // of its own with that one body.
 TriangleMesh select_body(const TriangleMesh& mesh, int body);
+
+// Slice plane (patent (44)): which of the part's planes its layers lie in. kTop slices the part as modelled
+// (layers parallel to XY); kFront lays it down so layers are parallel to its XZ plane (the part's +Y
+// becomes up), kSide so they are parallel to its YZ plane (+X becomes up).
+enum class SlicePlane : std::uint8_t { kTop, kFront, kSide };
+// The part turned (a proper rotation: the faces keep their outward winding) so `plane` lies horizontal,
+// and moved so its bounding box keeps its minimum corner.
+TriangleMesh lay_down(const TriangleMesh& mesh, SlicePlane plane);
 
 // The index of the body named `name`, or -1 when there is none.
 int find_body(const TriangleMesh& mesh, std::string_view name);

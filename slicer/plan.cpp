@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "slicer/boundary.hpp"
+#include "slicer/centre_beads.hpp"
 #include "slicer/fill.hpp"
 #include "slicer/layer_builder.hpp"
 #include "slicer/polygons.hpp"
@@ -31,69 +32,82 @@ Polygons layer_region(const TriangleMesh& mesh, const SectionParams& s, double z
       if (area_mm2(other) > area_mm2(region)) region = std::move(other);
     }
   }
-  region = drop_small(simplify(region, s.chord_tolerance_mm), s.min_polygon_area_mm2);
+  region =
+      drop_small(simplify(region, s.chord_tolerance_mm, s.smoothing.smooth_curves), s.min_polygon_area_mm2);
+  // Containment boundaries: the section's share of the part in the plane.
+  if (!s.containment_outside.empty()) region = intersection(region, s.containment_outside);
+  if (!s.containment_inside.empty()) region = difference(region, s.containment_inside);
   if (s.shift_mm != Eigen::Vector2d::Zero())
     for (Polygon& poly : region)
       for (Eigen::Vector2d& p : poly) p += s.shift_mm;
   Polygons outers, holes;
   split_contours(region, outers, holes);
   if (s.ignore_inner_contours) holes.clear();
-  if (s.outer_stock_mm != 0.0) outers = offset(outers, s.outer_stock_mm);
+  // Stock to leave: combined with the toolpath offset, one sharp-cornered offset; otherwise the stock
+  // envelope at constant distance from the part (round at its convex corners), which the passes follow.
+  auto stock = [&](const Polygons& p, double d) {
+    return s.combine_stock_offset ? offset(p, d) : offset_round(p, d, 0.01 * s.bead_width_mm);
+  };
+  if (s.outer_stock_mm != 0.0) outers = stock(outers, s.outer_stock_mm);
   if (!holes.empty()) {
     // Holes as regions of their own (counter-clockwise), shrunk by the inner stock, cut out of the outers.
     for (Polygon& h : holes) std::reverse(h.begin(), h.end());
-    if (s.inner_stock_mm != 0.0) holes = offset(holes, -s.inner_stock_mm);
+    if (s.inner_stock_mm != 0.0) holes = stock(holes, -s.inner_stock_mm);
     return difference(outers, holes);
   }
   return union_nonzero(outers);
 }
 
-// One layer: the boundary passes and (where enabled, or forced for rafts) the fill, in the section's layer
-// order. `role` marks raft and stock-on-top layers. `angle_index` turns the fill and moves the seam.
-void lay_layer(Toolpath& tp, const SectionParams& s, int section, const Polygons& region, double z_top,
-               int angle_index, Feature role, bool fill, Eigen::Vector2d& head) {
-  const int layer = static_cast<int>(tp.layers.size());
-  ToolpathLayer info;
-  info.z_mm = z_top;
-  info.height_mm = s.layer_height_mm;
-  info.section = section;
-  info.outline_area_mm2 = area_mm2(region);
-  info.outline_perimeter_mm = perimeter_mm(region);
-  tp.layers.push_back(info);
-
-  const double w = s.bead_width_mm;
-  const double pitch = w * (1.0 - s.boundary.overlap);
-  if (s.clearance_height_mm > 0 && !tp.moves.empty()) {
-    // Clearance between layers: straight up, then across at the clearance height.
-    const double zc = std::max(s.clearance_height_mm, z_top);
-    const Eigen::Vector3d from = tp.moves.back().end;
-    Move up;
-    up.kind = MoveKind::kTravel;
-    up.feature = Feature::kTravel;
-    up.section = section;
-    up.layer = layer;
-    up.feed_mm_s = s.travel_speed_mm_s;
-    up.start = from;
-    up.end = {from.x(), from.y(), std::max(zc, from.z())};
-    if ((up.end - up.start).norm() > 1e-9) tp.moves.push_back(up);
+// Beads laid since move `first`, as chains of equal width, in the plane.
+std::vector<std::pair<std::vector<Polyline>, double>> laid_beads(const Toolpath& tp, std::size_t first) {
+  std::vector<std::pair<std::vector<Polyline>, double>> out;
+  Polyline chain;
+  double width = 0.0;
+  auto flush = [&] {
+    if (chain.size() >= 2) {
+      auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.second == width; });
+      if (it == out.end()) it = out.insert(out.end(), {{}, width});
+      it->first.push_back(chain);
+    }
+    chain.clear();
+  };
+  for (std::size_t i = first; i < tp.moves.size(); ++i) {
+    const Move& m = tp.moves[i];
+    if (m.kind != MoveKind::kPrint || !m.deposits()) {
+      flush();
+      continue;
+    }
+    const Eigen::Vector2d a = m.start.head<2>(), b = m.end.head<2>();
+    if (chain.empty() || m.bead_width_mm != width || (chain.back() - a).norm() > 1e-6) {
+      flush();
+      chain.push_back(a);
+      width = m.bead_width_mm;
+    }
+    chain.push_back(b);
   }
-  LayerBuilder b(tp, s, section, layer, z_top, head, role);
+  flush();
+  return out;
+}
 
-  // Boundary passes: pass k runs along the outline offset inward by w/2 + k·pitch.
-  std::vector<Polygons> passes;
-  for (int k = 0; k < s.boundary.passes; ++k) {
-    Polygons loops = offset(region, -(0.5 * w + k * pitch));
-    if (loops.empty()) break;
-    passes.push_back(std::move(loops));
-  }
-  // The fill's bead centres stay w/2 − overlap·w inside the last boundary bead's inner edge, which works out
-  // to the offset the next boundary pass would have had.
-  const Polygons fill_region =
-      fill ? offset(region, -(0.5 * w + static_cast<double>(passes.size()) * pitch)) : Polygons{};
-  if (s.fill_first) lay_fill(b, s, fill_region, angle_index);
-  lay_boundary(b, s, passes, angle_index);
-  if (s.boundary.thin_walls) lay_thin_walls(b, s, region);
-  if (!s.fill_first) lay_fill(b, s, fill_region, angle_index);
+// Void detection (patent (46)): the parts of `region` the beads laid since move `first` leave uncovered,
+// wider than the section's minimum void width; counted in `stats` and, when asked, filled.
+void find_voids(LayerBuilder& b, const SectionParams& s, const Polygons& region, std::size_t first,
+                const Toolpath& tp, PlanStats& stats) {
+  Polygons covered;
+  for (const auto& [chains, width] : laid_beads(tp, first)) covered = unite(covered, sweep(chains, width));
+  const double min_width = s.voids.min_width_mm > 0 ? s.voids.min_width_mm : 0.25 * s.bead_width_mm;
+  const Polygons voids = offset(offset(difference(region, covered), -0.5 * min_width), 0.5 * min_width);
+  for (const Polygon& v : voids)
+    if (area_mm2({v}) > 0) ++stats.voids_found;
+  stats.void_area_mm2 += std::abs(area_mm2(voids));
+  if (!s.voids.fill) return;
+  // A void gets beads of its own width down its middle: one up to the bead width, two side by side up to
+  // twice it; wider voids are reported, not filled (they want fill passes, not a bead).
+  CentreBeadRules rules;
+  rules.min_width_mm = min_width;
+  rules.max_width_mm = 2.0 * s.bead_width_mm;
+  rules.one_bead_width_mm = s.bead_width_mm;
+  stats.void_beads += lay_centre_beads(b, centre_beads(voids, covered, rules), Feature::kFill);
 }
 
 // One layer to lay: where, for which section, with what outline and role.
@@ -106,11 +120,58 @@ struct LayerJob {
   Feature role = Feature::kUnknown;
   bool fill = false;
   bool outline = false;  // an AM Outline layer: the section's own path, not a slice
+  Polygons shared_wall;  // the region of the section whose wall this one shares, at this height
 };
 
-// Every layer of one section, with its rafts below and its stock on top, shifted up by `z_shift_mm`.
+// One layer: the boundary passes and (where enabled, or forced for rafts) the fill, in the section's layer
+// order, then the thin walls and void fill.
+void lay_layer(Toolpath& tp, const SectionParams& s, const LayerJob& job, Eigen::Vector2d& head,
+               PlanStats& stats) {
+  const Polygons& region = job.region;
+  const double z_top = job.z_top_mm;
+  const int layer = static_cast<int>(tp.layers.size());
+  ToolpathLayer info;
+  info.z_mm = z_top;
+  info.height_mm = s.layer_height_mm;
+  info.section = job.section;
+  info.outline_area_mm2 = area_mm2(region);
+  info.outline_perimeter_mm = perimeter_mm(region);
+  tp.layers.push_back(info);
+
+  if (s.clearance_height_mm > 0 && !tp.moves.empty()) {
+    // Clearance between layers: straight up, then across at the clearance height.
+    const double zc = std::max(s.clearance_height_mm, z_top);
+    const Eigen::Vector3d from = tp.moves.back().end;
+    Move up;
+    up.kind = MoveKind::kTravel;
+    up.feature = Feature::kTravel;
+    up.section = job.section;
+    up.layer = layer;
+    up.feed_mm_s = s.travel_speed_mm_s;
+    up.start = from;
+    up.end = {from.x(), from.y(), std::max(zc, from.z())};
+    if ((up.end - up.start).norm() > 1e-9) tp.moves.push_back(up);
+  }
+  const std::size_t first = tp.moves.size();
+  LayerBuilder b(tp, s, job.section, layer, z_top, head, job.role);
+  const BoundaryPlan plan = plan_boundary(s, region, job.shared_wall, job.fill);
+  if (s.fill_first) lay_fill(b, s, plan.fill_region, job.angle_index);
+  lay_boundary(b, s, plan, job.angle_index);
+  if (s.boundary.thin_walls) lay_thin_walls(b, s, region, plan);
+  if (!s.fill_first) lay_fill(b, s, plan.fill_region, job.angle_index);
+  if (s.voids.detect || s.voids.fill) find_voids(b, s, region, first, tp, stats);
+}
+
+// A section as the planner slices it: its parameters and the mesh it slices.
+struct Sliced {
+  const SectionParams* params = nullptr;
+  TriangleMesh mesh;
+};
+
+// Every layer of one section, with its rafts below and its stock on top, shifted up by `z_shift_mm`. With
+// `wall` (the section whose wall this one shares), each layer carries that section's region at its height.
 void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section, int order, double z_shift_mm,
-                  std::vector<LayerJob>& jobs, PlanStats& stats) {
+                  const Sliced* wall, std::vector<LayerJob>& jobs, PlanStats& stats) {
   const int layers = static_cast<int>(std::floor((s.z_max_mm - s.z_min_mm) / s.layer_height_mm + 1e-6));
   const double h = s.layer_height_mm;
   int index = 0;
@@ -125,11 +186,29 @@ void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section,
     if (index == 0) {
       // Rafts: solid layers with the first layer's outline; the part sits on them (z_shift_mm includes them).
       for (int r = 0; r < s.rafts; ++r)
-        jobs.push_back(
-            {z_cad - (s.rafts - r) * h + z_shift_mm, section, order, region, index++, Feature::kRaft, true});
+        jobs.push_back({z_cad - (s.rafts - r) * h + z_shift_mm,
+                        section,
+                        order,
+                        region,
+                        index++,
+                        Feature::kRaft,
+                        true,
+                        false,
+                        {}});
     }
-    jobs.push_back(
-        {z_cad + z_shift_mm, section, order, std::move(region), index++, Feature::kUnknown, s.fill.enabled});
+    jobs.push_back({z_cad + z_shift_mm,
+                    section,
+                    order,
+                    std::move(region),
+                    index++,
+                    Feature::kUnknown,
+                    s.fill.enabled,
+                    false,
+                    {}});
+    if (wall) {
+      PlanStats ignored;  // the other section counts its own slices
+      jobs.back().shared_wall = layer_region(wall->mesh, *wall->params, z_cad - 0.5 * h, ignored);
+    }
     last_at = jobs.size() - 1;
   }
   // Stock on top: solid layers on the section's top layer, with its outline.
@@ -137,7 +216,8 @@ void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section,
   const Polygons top = jobs[*last_at].region;
   const double top_z = jobs[*last_at].z_top_mm;
   for (int t = 0; t < s.stock_on_top; ++t)
-    jobs.push_back({top_z + (t + 1) * h, section, order, top, index++, Feature::kStockOnTop, true});
+    jobs.push_back(
+        {top_z + (t + 1) * h, section, order, top, index++, Feature::kStockOnTop, true, false, {}});
 }
 
 // AM Outline: every layer of the section prints its 2-D path (patent (39)).
@@ -185,15 +265,37 @@ void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top
   b.print_open(path, 0, s.boundary.lead_in_mm, s.boundary.lead_out_mm);
 }
 
-// The mesh a section slices: the whole part, or the one body it names.
+// The mesh a section slices: the whole part, or the one body it names, laid down on its slice plane.
 TriangleMesh section_mesh(const TriangleMesh& mesh, const SectionParams& s) {
-  if (s.body.empty()) return mesh;
+  if (s.body.empty()) return lay_down(mesh, s.slice_plane);
   const int body = find_body(mesh, s.body);
   if (body < 0)
     throw InputError(
         {}, "sections." + s.name + ".body",
         fmt::format("the part has no body named '{}'; its bodies are: {}", s.body, body_list(mesh)));
-  return select_body(mesh, body);
+  return lay_down(select_body(mesh, body), s.slice_plane);
+}
+
+// The index of the section whose wall `s` shares, checked: another sliced section at the same layer height,
+// with layers at the same heights.
+std::optional<std::size_t> wall_provider(const std::vector<SectionParams>& sections, const SectionParams& s) {
+  if (s.shares_wall_with.empty()) return std::nullopt;
+  const std::string key = "sections." + s.name + ".shares_wall_with";
+  const auto it = std::find_if(sections.begin(), sections.end(),
+                               [&](const SectionParams& o) { return o.name == s.shares_wall_with; });
+  if (it == sections.end() || &*it == &s)
+    throw InputError({}, key,
+                     fmt::format("expected the name of another section, found '{}'", s.shares_wall_with));
+  if (!it->outline_path.empty() || !s.outline_path.empty())
+    throw InputError({}, key, "walls are shared between sliced sections, not AM Outline sections");
+  const double h = s.layer_height_mm, steps = (s.z_min_mm - it->z_min_mm) / h;
+  if (std::abs(it->layer_height_mm - h) > 1e-9 || std::abs(steps - std::round(steps)) > 1e-6)
+    throw InputError(
+        {}, key,
+        fmt::format("section '{}' lays its layers at other heights ({} mm layers from {} mm; this "
+                    "section {} mm from {} mm): a shared wall needs the same layers",
+                    it->name, it->layer_height_mm, it->z_min_mm, h, s.z_min_mm));
+  return static_cast<std::size_t>(it - sections.begin());
 }
 
 void validate(const std::vector<SectionParams>& sections) {
@@ -222,8 +324,11 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   validate(sections);
   std::vector<std::size_t> order(sections.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return sections[a].z_min_mm < sections[b].z_min_mm; });
+  // By height; at one height a section that shares another's wall comes after it (it lays against it).
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (sections[a].z_min_mm != sections[b].z_min_mm) return sections[a].z_min_mm < sections[b].z_min_mm;
+    return sections[a].shares_wall_with.empty() && !sections[b].shares_wall_with.empty();
+  });
   if (sections.empty()) throw InputError({}, "sections", "there is no section to plan");
   for (std::size_t i = 1; i < order.size(); ++i)
     if (sections[order[i]].rafts > 0)
@@ -238,14 +343,20 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   // Rafts under the lowest section lift the whole part.
   const SectionParams& lowest = sections[order.front()];
   const double z_shift = lowest.rafts * lowest.layer_height_mm;
+  std::vector<Sliced> sliced(sections.size());
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    sliced[i].params = &sections[i];
+    if (sections[i].outline_path.empty()) sliced[i].mesh = section_mesh(mesh, sections[i]);
+  }
   std::vector<LayerJob> jobs;
   for (std::size_t i = 0; i < order.size(); ++i) {
     const SectionParams& s = sections[order[i]];
+    const std::optional<std::size_t> wall = wall_provider(sections, s);
     if (!s.outline_path.empty())
       outline_jobs(s, static_cast<int>(order[i]), static_cast<int>(i), z_shift + s.contact_offset_mm, jobs);
     else
-      section_jobs(section_mesh(mesh, s), s, static_cast<int>(order[i]), static_cast<int>(i),
-                   z_shift + s.contact_offset_mm, jobs, local);
+      section_jobs(sliced[order[i]].mesh, s, static_cast<int>(order[i]), static_cast<int>(i),
+                   z_shift + s.contact_offset_mm, wall ? &sliced[*wall] : nullptr, jobs, local);
   }
   // AM Z merge (patent (14), (39)): the layers of all sections in one program, by height, so sections side
   // by side rise together and an elevated section starts when the build reaches it (patent (16)).
@@ -259,8 +370,7 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
                   head);
       continue;
     }
-    lay_layer(tp, sections[static_cast<std::size_t>(j.section)], j.section, j.region, j.z_top_mm,
-              j.angle_index, j.role, j.fill, head);
+    lay_layer(tp, sections[static_cast<std::size_t>(j.section)], j, head, local);
   }
   time_toolpath(tp, motion);
   if (stats) *stats = local;

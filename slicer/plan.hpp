@@ -10,12 +10,16 @@
 
 #include "core/toolpath.hpp"
 #include "slicer/mesh.hpp"
+#include "slicer/polygons.hpp"
 
 namespace beadtwin::slicer {
 
 struct BoundaryParams {
-  int passes = 1;                  // beads laid along each contour, outermost first (patent (49))
-  double overlap = 0.10;           // overlap between neighbouring passes, fraction of the bead width
+  int passes = 1;         // beads laid along each contour, outermost first (patent (49))
+  double overlap = 0.10;  // least overlap between neighbouring passes, fraction of the bead width
+  // Most that two passes may overlap (patent (50)): where passes offset from opposite sides of a narrow part
+  // would overlap more, the inner one is left out there (its narrow remainder is a thin wall).
+  double max_overlap = 1.0;
   bool inside_out = false;         // lay the innermost pass first (patent (49))
   bool reverse_alternate = false;  // run every other layer's passes the opposite way round (patent (49))
   double lead_in_mm = 0.0;         // bead laid on a straight approach before each pass starts (patent (50))
@@ -26,11 +30,20 @@ struct BoundaryParams {
   double start_stop_overlap =
       0.0;  // a closed pass runs on past its start by this fraction of w (patent (50))
   double min_pass_length_mm = 0.0;
-  // Thin walls (patent (50)): parts of the outline too narrow for a bead's centre to reach, no wider than
-  // thin_wall_max_width_mm, get one bead of their own width down their centre line.
+  // Thin walls (patent (50)): parts of the outline too narrow for the passes (a bead's centre cannot reach
+  // them), no wider than thin_wall_max_width_mm (0: the bead width), are filled down their centre lines.
   bool thin_walls = false;
-  double thin_wall_max_width_mm =
-      0.0;  // 0: the bead width  // closed passes shorter than this are left out (patent (49))
+  double thin_wall_max_width_mm = 0.0;
+  // Walls up to this width (0: the bead width) get one bead of the wall's own width; wider ones get two
+  // beads side by side.
+  double thin_wall_one_bead_width_mm = 0.0;
+  // A centre line's bead keeps one width while the wall's thickness stays within this of it; where the
+  // thickness strays further, a new bead width starts (0: the bead width follows the wall point by point).
+  double thin_wall_thickness_deviation_mm = 0.0;
+  // Centre-line pieces whose ends are closer than this are stitched into one bead.
+  double thin_wall_stitching_gap_mm = 0.0;
+  // Centre lines that end closer than this to a pass are extended to meet it.
+  double thin_wall_intersection_distance_mm = 0.0;
 };
 
 struct FillParams {
@@ -38,6 +51,29 @@ struct FillParams {
   double angle_deg = 45.0;       // fill direction of the section's first layer (patent (63))
   double angle_step_deg = 90.0;  // change in fill angle from one layer to the next (patent (63))
   double overlap = 0.10;         // overlap between fill passes, and between fill and boundary, fraction of w
+};
+
+// Corner pull-back (patent (47)): the roller cannot follow a sharp corner; it lifts this long before the
+// corner and the bead runs on past the corner by the extension, so the roller re-engages away from it
+// instead of ploughing material out of the corner.
+struct PullBackParams {
+  double length_mm = 0.0;      // 0: no pull-back
+  double extension_mm = 0.0;   // run-on past the corner
+  double min_turn_deg = 60.0;  // a corner is a turn at least this sharp
+};
+
+// Smoothing (patent (47)); "remove small polygons" is SectionParams::min_polygon_area_mm2.
+struct SmoothingParams {
+  bool smooth_curves = false;          // simplification keeps curves smooth (no facets the part lacks)
+  bool never_start_in_corner = false;  // pass starts move off corners onto a straight run
+  double min_polygon_angle_deg = 0.0;  // corners sharper than this (interior angle) are blunted
+};
+
+// Void detection (patent (46)): after a layer is planned, the parts of its outline no bead covers.
+struct VoidParams {
+  bool detect = false;        // find and count them
+  bool fill = false;          // and lay a bead down each one wide enough to take one
+  double min_width_mm = 0.0;  // narrower voids are left (the roller squeezes them shut); 0: w/4
 };
 
 struct SectionParams {
@@ -63,11 +99,26 @@ struct SectionParams {
   // Moves the section's toolpath in the plane, so beads of neighbouring sections overlap where the sections
   // must fuse (patent (15), (67)).
   Eigen::Vector2d shift_mm = Eigen::Vector2d::Zero();
+  // Containment boundaries (patent (41)): the section prints only inside the outside boundary (when given)
+  // and outside the inside boundaries; their edges become contours of the section's layers.
+  Polygons containment_outside, containment_inside;
+  // Slice plane (patent (44)): top slices the part as it is modelled; front and side lay it down first, so
+  // layers are parallel to its XZ (front) or YZ (side) plane.
+  SlicePlane slice_plane = SlicePlane::kTop;
+  // A section whose wall this one uses as its own (patent (17)): where this section's outline meets that
+  // one's, it lays no wall of its own; its passes end against the other's wall and its fill runs up to it.
+  std::string shares_wall_with;
   double contact_offset_mm =
       0.0;  // the section prints this much above (below, negative) its Z limits (patent (45))
   // Toolpath parameters (patent (44)-(45)).
-  double outer_stock_mm = 0.0;         // the outline's outer contours grow by this (stock to machine off)
-  double inner_stock_mm = 0.0;         // the outline's holes shrink by this
+  double outer_stock_mm = 0.0;  // the outline's outer contours grow by this (stock to machine off)
+  double inner_stock_mm = 0.0;  // the outline's holes shrink by this
+  // Combine stock offset with toolpath offset (patent (45)): one offset of w/2 − stock from the outline
+  // (corners stay sharp), instead of the stock envelope first (constant distance, round at convex
+  // corners) and the passes offset from it.
+  bool combine_stock_offset = false;
+  // Arc chord tolerance (patent (45)): the program writer fits G2/G3 arcs within this of the moves.
+  double arc_chord_tolerance_mm = 0.0;
   bool merge_slices = false;           // use the largest of the previous, this and the next layer's outline
   bool ignore_inner_contours = false;  // fill holes in: print every outline as solid
   bool fill_first = false;             // layer order: fill before the boundary passes
@@ -78,6 +129,9 @@ struct SectionParams {
   double melt_reduction = 0.0;  // pump slows by this fraction where a bead is laid over one just laid
   int rafts = 0;                // layers printed under the section's first layer (the part sits on them)
   int stock_on_top = 0;         // layers printed on the section's top layer with its outline
+  PullBackParams pull_back;
+  SmoothingParams smoothing;
+  VoidParams voids;
   BoundaryParams boundary;
   FillParams fill;
 };
@@ -85,6 +139,10 @@ struct SectionParams {
 struct PlanStats {
   int empty_layers = 0;  // layers whose slice was empty (nothing to print there)
   int open_chains = 0;   // slice loops that did not close (mesh holes), summed over layers
+  // Void detection: uncovered pieces wider than the section's minimum void width, before any void fill.
+  int voids_found = 0;
+  double void_area_mm2 = 0.0;
+  int void_beads = 0;  // beads laid in them (void fill)
 };
 
 // Plans every section and merges their layers by height into one Toolpath (times from `motion`). Sections

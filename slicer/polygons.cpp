@@ -74,6 +74,27 @@ Polygons offset(const Polygons& polygons, double delta_mm) {
   return to_polygons(out);
 }
 
+Polygons offset_round(const Polygons& polygons, double delta_mm, double arc_tolerance_mm) {
+  ClipperLib::ClipperOffset co(2.0, std::max(arc_tolerance_mm, 0.001) * kScale);
+  co.AddPaths(to_paths(polygons), ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  ClipperLib::Paths out;
+  co.Execute(out, delta_mm * kScale);
+  return to_polygons(out);
+}
+
+Polygons sweep(const std::vector<Polyline>& paths, double width_mm) {
+  ClipperLib::ClipperOffset co(2.0, 0.005 * kScale);
+  for (const Polyline& path : paths) {
+    if (path.size() < 2) continue;
+    const bool closed = path.size() > 2 && (path.front() - path.back()).norm() < 1e-6;
+    co.AddPaths(to_paths({closed ? Polyline(path.begin(), path.end() - 1) : path}), ClipperLib::jtRound,
+                closed ? ClipperLib::etClosedLine : ClipperLib::etOpenButt);
+  }
+  ClipperLib::Paths out;
+  co.Execute(out, 0.5 * width_mm * kScale);
+  return to_polygons(out);
+}
+
 Polygons union_nonzero(const Polygons& loops) {
   ClipperLib::Clipper c;
   c.AddPaths(to_paths(loops), ClipperLib::ptSubject, true);
@@ -108,7 +129,43 @@ void rdp(const Polygon& poly, std::size_t first, std::size_t last, double tol, s
 
 }  // namespace
 
-Polygons simplify(const Polygons& polygons, double tolerance_mm) {
+namespace {
+
+// Turn (radians, unsigned) at point b between the segments a→b and b→c.
+double turn_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d u = b - a, v = c - b;
+  return std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)));
+}
+
+// Puts original points back (the middle one of a skipped run) next to kept points where the simplified
+// contour turns much more sharply than the original did there.
+void keep_curves_smooth(const Polygon& closed, std::vector<bool>& keep) {
+  const double limit = kSmoothTurnDeg * 3.14159265358979323846 / 180.0;
+  const std::size_t n = closed.size() - 1;  // closed.back() repeats closed.front()
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<std::size_t> kept;
+    for (std::size_t i = 0; i < n; ++i)
+      if (keep[i]) kept.push_back(i);
+    const std::size_t m = kept.size();
+    if (m < 3) return;
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t prev = kept[(k + m - 1) % m], at = kept[k], next = kept[(k + 1) % m];
+      const double simplified = turn_at(closed[prev], closed[at], closed[next]);
+      const double original = turn_at(closed[(at + n - 1) % n], closed[at], closed[(at + 1) % n]);
+      if (simplified <= limit || simplified <= 1.5 * original) continue;
+      // The middles of the skipped runs on both sides, when there are points to put back.
+      const std::size_t before = prev < at ? at - prev : at + n - prev;
+      const std::size_t after = at < next ? next - at : next + n - at;
+      if (before > 1) keep[(prev + before / 2) % n] = changed = true;
+      if (after > 1) keep[(at + after / 2) % n] = changed = true;
+    }
+  }
+}
+
+}  // namespace
+
+Polygons simplify(const Polygons& polygons, double tolerance_mm, bool smooth_curves) {
   if (tolerance_mm <= 0) return polygons;
   Polygons out;
   for (const Polygon& poly : polygons) {
@@ -126,6 +183,7 @@ Polygons simplify(const Polygons& polygons, double tolerance_mm) {
     keep[0] = keep[far] = keep.back() = true;
     rdp(closed, 0, far, tolerance_mm, keep);
     rdp(closed, far, closed.size() - 1, tolerance_mm, keep);
+    if (smooth_curves) keep_curves_smooth(closed, keep);
     Polygon simple;
     for (std::size_t i = 0; i + 1 < closed.size(); ++i)
       if (keep[i]) simple.push_back(closed[i]);
@@ -142,13 +200,27 @@ Polygons drop_small(const Polygons& polygons, double min_area_mm2) {
   return out;
 }
 
-Polygons difference(const Polygons& a, const Polygons& b) {
+namespace {
+
+Polygons boolean(ClipperLib::ClipType op, const Polygons& a, const Polygons& b) {
   ClipperLib::Clipper c;
   c.AddPaths(to_paths(a), ClipperLib::ptSubject, true);
   c.AddPaths(to_paths(b), ClipperLib::ptClip, true);
   ClipperLib::Paths out;
-  c.Execute(ClipperLib::ctDifference, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  c.Execute(op, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   return to_polygons(out);
+}
+
+}  // namespace
+
+Polygons difference(const Polygons& a, const Polygons& b) {
+  return boolean(ClipperLib::ctDifference, a, b);
+}
+Polygons intersection(const Polygons& a, const Polygons& b) {
+  return boolean(ClipperLib::ctIntersection, a, b);
+}
+Polygons unite(const Polygons& a, const Polygons& b) {
+  return boolean(ClipperLib::ctUnion, a, b);
 }
 
 void split_contours(const Polygons& region, Polygons& outers, Polygons& holes) {
@@ -157,12 +229,13 @@ void split_contours(const Polygons& region, Polygons& outers, Polygons& holes) {
   for (const Polygon& p : region) (area_mm2({p}) >= 0 ? outers : holes).push_back(p);
 }
 
-std::vector<Polyline> clip_lines(const std::vector<Polyline>& lines, const Polygons& region) {
+std::vector<Polyline> clip_lines(const std::vector<Polyline>& lines, const Polygons& region, bool inside) {
   ClipperLib::Clipper c;
   c.AddPaths(to_paths(lines), ClipperLib::ptSubject, false);
   c.AddPaths(to_paths(region), ClipperLib::ptClip, true);
   ClipperLib::PolyTree tree;
-  c.Execute(ClipperLib::ctIntersection, tree, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  c.Execute(inside ? ClipperLib::ctIntersection : ClipperLib::ctDifference, tree, ClipperLib::pftNonZero,
+            ClipperLib::pftNonZero);
   ClipperLib::Paths open;
   ClipperLib::OpenPathsFromPolyTree(tree, open);
   std::vector<Polyline> out;

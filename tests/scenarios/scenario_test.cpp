@@ -1,12 +1,16 @@
 #include "scenarios/scenario.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+
+#include <fmt/format.h>
 
 #include <gtest/gtest.h>
 
 #include "core/units.hpp"
 #include "scenarios/run.hpp"
+#include "slicer/polygons.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -349,6 +353,75 @@ TEST(Scenario, OutlineSectionsNeedNoPart) {
   EXPECT_NE(std::string(e.what()).find("no part"), std::string::npos);
   EXPECT_THROW((void)load_scenario_text(replace(text, "layers: 12", "layers: 12\n    z: [0, 10]"), "o"),
                InputError);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+// The general and process parameters of patent (41)-(47) read from a scenario, and their mistakes named.
+TEST(Scenario, ContainmentSlicePlaneSharedWallSmoothingAndVoids) {
+  const std::string text = replace(kGood, "    boundary: {passes: 1}\n    fill: none\n",
+                                   "    boundary: {passes: 1, max_overlap: 40 %}\n    fill: none\n"
+                                   "    containment: {outside: [[0, 0], [100, 0], [100, 150], [0, 150]],\n"
+                                   "                  inside: [[[10, 10], [20, 10], [20, 20]], [[30, 30], "
+                                   "[40, 30], [40, 40]]]}\n"
+                                   "    slice_plane: top\n    shares_wall_with: floor\n"
+                                   "    combine_stock_offset: true\n    arc_chord_tolerance: 0.5\n"
+                                   "    pull_back: {length: 30, extension: 10}\n"
+                                   "    smoothing: {smooth_curves: true, never_start_in_corner: true, "
+                                   "min_polygon_angle: 45 deg}\n"
+                                   "    voids: {detect: true, fill: true, min_width: 4}\n");
+  const Scenario sc = load_scenario_text(text, "t.yaml");
+  const slicer::SectionParams& s = sc.variants[0].sections[1];
+  EXPECT_NEAR(slicer::area_mm2(s.containment_outside), 100.0 * 150, 1e-9);
+  EXPECT_EQ(s.containment_inside.size(), 2u);
+  EXPECT_EQ(s.shares_wall_with, "floor");
+  EXPECT_TRUE(s.combine_stock_offset);
+  EXPECT_DOUBLE_EQ(s.arc_chord_tolerance_mm, 0.5);
+  EXPECT_DOUBLE_EQ(s.boundary.max_overlap, 0.4);
+  EXPECT_DOUBLE_EQ(s.pull_back.length_mm, 30);
+  EXPECT_DOUBLE_EQ(s.pull_back.extension_mm, 10);
+  EXPECT_TRUE(s.smoothing.smooth_curves && s.smoothing.never_start_in_corner);
+  EXPECT_DOUBLE_EQ(s.smoothing.min_polygon_angle_deg, 45);
+  EXPECT_TRUE(s.voids.detect && s.voids.fill);
+  EXPECT_DOUBLE_EQ(s.voids.min_width_mm, 4);
+
+  EXPECT_EQ(load_error(replace(text, "slice_plane: top", "slice_plane: diagonal")).key(),
+            "sections.walls.slice_plane");
+  EXPECT_EQ(load_error(replace(text, "max_overlap: 40 %", "max_overlap: 5 %")).key(),
+            "sections.walls.boundary.max_overlap");
+  EXPECT_EQ(load_error(replace(text, "inside: [[[10, 10]", "inside: [[[10]")).key(),
+            "sections.walls.containment.inside");
+  EXPECT_EQ(load_error(replace(text, "extension: 10}", "extension: 10, angle: 3}")).key(),
+            "sections.walls.pull_back.angle");
+}
+
+// Arc chord tolerance (patent (45)): with a dialect that takes arcs, a round outline is written as G2/G3.
+TEST(Scenario, ArcChordToleranceWritesArcs) {
+  std::string text =
+      "name: o\nmachine: lsam-ph15\nmaterial: cf-abs-20\nunits: {length: mm}\nsections:\n"
+      "  - name: ring\n    layers: 2\n    layer_height: 5\n    bead_width: 20\n"
+      "    arc_chord_tolerance: 0.05\n    outline: {points: [";
+  for (int i = 0; i < 360; ++i)
+    text += fmt::format("{}[{:.4f}, {:.4f}]", i ? ", " : "", 300 + 200 * std::cos(i * kPi / 180),
+                        300 + 200 * std::sin(i * kPi / 180));
+  text += "]}\nvariants:\n  - name: lines\n  - name: arcs\n    set: {machine.gcode.arcs: true}\n";
+  const Scenario sc = load_scenario_text(text, "ring.yaml");
+  auto count = [](const std::string& program, const std::string& code) {
+    std::size_t n = 0;
+    for (std::size_t at = program.find("\n" + code + " "); at != std::string::npos;
+         at = program.find("\n" + code + " ", at + 1))
+      ++n;
+    return n;
+  };
+  const std::string lines = slice_program(sc, "lines"), arcs = slice_program(sc, "arcs");
+  EXPECT_EQ(count(lines, "G3") + count(lines, "G2"), 0u);
+  EXPECT_GE(count(lines, "G1"), 2u * 359);
+  EXPECT_GE(count(arcs, "G3"), 2u * 2);  // at most 180 degrees an arc
+  EXPECT_LT(count(arcs, "G1") + count(arcs, "G3"), count(lines, "G1") / 10);
 }
 
 }  // namespace

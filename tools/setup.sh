@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
-  libtbb-dev libopenvdb-dev libboost-iostreams-dev libblosc-dev
+  libtbb-dev libopenvdb-dev libboost-dev libboost-iostreams-dev libblosc-dev
   libembree-dev libopenimageio-dev libsundials-dev libpolyclipping-dev libassimp-dev
   libgtest-dev libgmock-dev
 )

@@ -34,6 +34,9 @@ target_link_libraries(OpenImageIO::OpenImageIO INTERFACE ${OIIO_LIBRARY} ${OIIO_
 # SUNDIALS 6: CVODE with the serial vector and the dense/band/Krylov solvers.
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 
+# Boost, header-only: Boost.Polygon's segment Voronoi diagram for the medial axis (slicer/medial_axis.cpp).
+find_package(Boost 1.74 REQUIRED)
+
 # Clipper (polyclipping) through pkg-config.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)

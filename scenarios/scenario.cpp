@@ -135,6 +135,14 @@ Machine read_machine(BlockReader& r) {
     r.fail(r.take("gcode.units"), "gcode.units", fmt::format("expected in or mm but found '{}'", units));
   m.dialect.inches = units == "in";
   m.dialect.arcs = r.boolean(spec(t, "gcode.arcs"));
+  m.dialect.roller_down = r.string(spec(t, "gcode.roller_down"));
+  m.dialect.roller_up = r.string(spec(t, "gcode.roller_up"));
+  if (m.dialect.roller_down == "none") m.dialect.roller_down.clear();
+  if (m.dialect.roller_up == "none") m.dialect.roller_up.clear();
+  if (m.dialect.roller_down.empty() != m.dialect.roller_up.empty())
+    r.fail(r.take(m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down"),
+           m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down",
+           "give both roller codes (down and up), or neither");
   m.dialect.melt_on = r.string(spec(t, "gcode.melt_on"));
   m.dialect.melt_off = r.string(spec(t, "gcode.melt_off"));
   r.finish(t);

@@ -7,6 +7,24 @@
 #include "slicer/centre_beads.hpp"
 
 namespace beadtwin::slicer {
+namespace {
+
+// Clipping a closed ring cuts it at its first point too: pieces that meet end to end are one pass again.
+std::vector<Polyline> join_pieces(std::vector<Polyline> pieces) {
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (std::size_t i = 0; i < pieces.size() && !joined; ++i)
+      for (std::size_t j = 0; j < pieces.size() && !joined; ++j) {
+        if (i == j || (pieces[i].back() - pieces[j].front()).norm() > 1e-6) continue;
+        pieces[i].insert(pieces[i].end(), pieces[j].begin() + 1, pieces[j].end());
+        pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(j));
+        joined = true;
+      }
+  }
+  return pieces;
+}
+
+}  // namespace
 
 BoundaryPlan plan_boundary(const SectionParams& s, const Polygons& region, const Polygons& shared_wall,
                            bool fill) {
@@ -42,7 +60,8 @@ BoundaryPlan plan_boundary(const SectionParams& s, const Polygons& region, const
         closed.push_back(loop);
         continue;
       }
-      for (Polyline& piece : clip_lines({ring}, keep_out, false)) open.push_back(std::move(piece));
+      for (Polyline& piece : join_pieces(clip_lines({ring}, keep_out, false)))
+        open.push_back(std::move(piece));
     }
     plan.loops.push_back(std::move(closed));
     plan.pieces.push_back(std::move(open));

@@ -104,8 +104,8 @@ void subdivide(CentreLine& l, double step_mm) {
   l = std::move(out);
 }
 
-// The line as one bead (constant-width runs within the deviation) or, where wider than one bead may be, as
-// two beads side by side, each half as wide, a quarter of the width either side of the centre line.
+// The line as beads: constant-width runs within the deviation; one bead where one may be that wide, two
+// side by side where it is wider.
 std::vector<CentreBead> to_beads(const CentreLine& l, const CentreBeadRules& rules) {
   const std::size_t n = l.points.size();
   std::vector<double> seg(n - 1);
@@ -123,20 +123,37 @@ std::vector<CentreBead> to_beads(const CentreLine& l, const CentreBeadRules& rul
       start = end;
     }
   }
-  const double widest = *std::max_element(seg.begin(), seg.end());
-  if (widest <= rules.one_bead_width_mm) return {{l.points, seg}};
-  // Two beads: each point moves a quarter of its width along the line's normal there.
-  CentreBead left, right;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d t = (l.points[std::min(i + 1, n - 1)] - l.points[i == 0 ? 0 : i - 1]).normalized();
-    const Eigen::Vector2d normal(-t.y(), t.x());
-    left.points.push_back(l.points[i] + 0.25 * l.width_mm[i] * normal);
-    right.points.push_back(l.points[i] - 0.25 * l.width_mm[i] * normal);
+  // Runs of segments that take one bead, and runs too wide for one: those get two, each half as wide, a
+  // quarter of the width either side of the centre line (one out along one side, back along the other).
+  std::vector<CentreBead> out;
+  for (std::size_t start = 0; start < seg.size();) {
+    const bool two = seg[start] > rules.one_bead_width_mm;
+    std::size_t end = start + 1;
+    while (end < seg.size() && (seg[end] > rules.one_bead_width_mm) == two) ++end;
+    if (!two) {
+      out.push_back({{l.points.begin() + static_cast<std::ptrdiff_t>(start),
+                      l.points.begin() + static_cast<std::ptrdiff_t>(end + 1)},
+                     {seg.begin() + static_cast<std::ptrdiff_t>(start),
+                      seg.begin() + static_cast<std::ptrdiff_t>(end)}});
+    } else {
+      CentreBead left, right;
+      for (std::size_t i = start; i <= end; ++i) {
+        const Eigen::Vector2d t =
+            (l.points[std::min(i + 1, n - 1)] - l.points[i == 0 ? 0 : i - 1]).normalized();
+        const Eigen::Vector2d normal(-t.y(), t.x());
+        left.points.push_back(l.points[i] + 0.25 * l.width_mm[i] * normal);
+        right.points.push_back(l.points[i] - 0.25 * l.width_mm[i] * normal);
+      }
+      for (std::size_t i = start; i < end; ++i)
+        left.widths_mm.push_back(0.5 * seg[i]), right.widths_mm.push_back(0.5 * seg[i]);
+      std::reverse(right.points.begin(), right.points.end());
+      std::reverse(right.widths_mm.begin(), right.widths_mm.end());
+      out.push_back(std::move(left));
+      out.push_back(std::move(right));
+    }
+    start = end;
   }
-  for (const double w : seg) left.widths_mm.push_back(0.5 * w), right.widths_mm.push_back(0.5 * w);
-  std::reverse(right.points.begin(), right.points.end());  // back along the other side
-  std::reverse(right.widths_mm.begin(), right.widths_mm.end());
-  return {left, right};
+  return out;
 }
 
 }  // namespace

@@ -424,5 +424,30 @@ TEST(Scenario, ArcChordToleranceWritesArcs) {
   EXPECT_LT(count(arcs, "G1") + count(arcs, "G3"), count(lines, "G1") / 10);
 }
 
+// Corner pull-back (patent (47)) in the program: the machine's roller codes around every corner.
+TEST(Scenario, PullBackWritesTheMachinesRollerCodes) {
+  const std::string text =
+      "name: o\nmachine: lsam-ph15\nmaterial: cf-abs-20\nunits: {length: mm}\nsections:\n"
+      "  - name: square\n    layers: 1\n    layer_height: 5\n    bead_width: 20\n    start_point: [100, 0]\n"
+      "    pull_back: {length: 30, extension: 10}\n"
+      "    outline: {points: [[0, 0], [200, 0], [200, 200], [0, 200]]}\n"
+      "variants:\n  - name: plain\n  - name: codes\n"
+      "    set: {machine.gcode.roller_down: M60, machine.gcode.roller_up: M61}\n";
+  const Scenario sc = load_scenario_text(text, "sq.yaml");
+  auto count = [](const std::string& program, const std::string& code) {
+    std::size_t n = 0;
+    for (std::size_t at = program.find("\n" + code + "\n"); at != std::string::npos;
+         at = program.find("\n" + code + "\n", at + 1))
+      ++n;
+    return n;
+  };
+  const std::string codes = slice_program(sc, "codes");
+  EXPECT_EQ(count(codes, "M61"), 4u);  // up before each of the four corners
+  EXPECT_EQ(count(codes, "M60"), 5u);  // down at the start and after each corner
+  EXPECT_EQ(slice_program(sc, "plain").find("M61"), std::string::npos);
+  EXPECT_EQ(load_error(replace(text, "roller_up: M61", "roller_up: none")).key(),
+            "machine.gcode.roller_down");
+}
+
 }  // namespace
 }  // namespace beadtwin::scenarios

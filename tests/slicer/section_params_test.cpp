@@ -98,6 +98,14 @@ TEST(SectionParams, SharedWallIsPrintedOnce) {
   EXPECT_NEAR(min_fill_x, 400 + 0.5 * w - 0.1 * w,
               0.5 * w * 0.9 + 0.05);  // fill lines meet the region's edge
   EXPECT_LT(min_fill_x, 400 + 0.5 * w);
+  // Each of b's passes is one U-shaped bead per layer: 2 layers × 2 passes.
+  int beads = 0;
+  const Move* prev = nullptr;
+  for (const Move* m : prints(shared, 0, Feature::kBoundary)) {
+    if (!prev || (prev->end - m->start).norm() > 1e-6) ++beads;
+    prev = m;
+  }
+  EXPECT_EQ(beads, 4);
   // Each layer: a's layer comes before b's at the same height.
   ASSERT_EQ(shared.layers.size(), 4u);
   EXPECT_EQ(shared.sections[static_cast<std::size_t>(shared.layers[0].section)], "a");

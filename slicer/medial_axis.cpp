@@ -1,17 +1,20 @@
 // The medial axis comes from the Voronoi diagram of the outline's segments. We build that diagram with
 // Boost.Polygon's voronoi (header-only) because it is a well-kept, robust segment Voronoi: its predicates
 // are exact on integer input, so near-degenerate outlines (parallel walls, cocircular corners) give a
-// consistent diagram instead of a crash. Its price is int32 input, hence the integer frame below.
+// consistent diagram instead of a crash. Its price is int32 input, hence the integer frame below, and
+// segments that meet only at their ends, hence the clean-up of the outline first.
 //
-// From the diagram we keep the edges inside the region, drop the secondary edges (between a segment and its
-// own end point) and the branches running into convex corners, cut each edge where its width leaves the
-// asked range, and chain the pieces through the vertices where exactly two of them meet.
+// From the diagram we keep the primary edges inside the region (not the secondary ones, between a segment
+// and its own end point) across which the outline faces itself, which leaves out the branches running into
+// blunt convex corners. We cut each edge where its width leaves the asked range and chain the pieces
+// through the vertices where exactly two of them meet.
 #include "slicer/medial_axis.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -20,14 +23,9 @@
 
 #include <clipper.hpp>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#include <boost/polygon/point_data.hpp>
-#include <boost/polygon/segment_data.hpp>
+#include <boost/polygon/polygon.hpp>  // before segment_utils.hpp, which needs it but does not include it
+#include <boost/polygon/segment_utils.hpp>
 #include <boost/polygon/voronoi.hpp>
-#pragma GCC diagnostic pop
 
 #include "core/error.hpp"
 
@@ -44,13 +42,17 @@ constexpr double kUnitsPerMm = 1000.0;
 constexpr double kMaxUnits = 1073741824.0;  // 2^30
 // Points nearer the outline than this (units) are on it.
 constexpr double kOnOutline = 1e-3;
-constexpr double kWidthSlack = 1e-6;  // units
+// Slack on the width limits (units), so a wall exactly as wide as a limit is not lost to rounding.
+constexpr double kWidthSlack = 1e-6;
 // Edges shorter than this (units) are where Boost splits a degenerate vertex (four or more sites on one
 // circle) into two: their ends are one junction.
 constexpr double kSameVertex = 1e-3;
-// Curved edges are split until the polyline is within this fraction of the local width of the curve.
+// Curved edges are split until the polyline is within this fraction of the local width of the curve, and
+// the width linear between samples to the same tolerance; no finer than kMinCurveTolerance (units), and
+// at most kMaxSplits halvings deep.
 constexpr double kCurveTolerance = 0.005;
-constexpr double kMinCurveTolerance = 1e-3;  // units
+constexpr double kMinCurveTolerance = 1e-3;
+constexpr int kMaxSplits = 20;
 // An edge is kept where the outline points nearest it face each other across it: somewhere along it they
 // make at least this angle at the edge. Across a wall with parallel sides it is 180°; where the wall bends
 // round a chamfer it stays above 135°; on the branch into a corner of angle α it is 180° − α, so the
@@ -94,21 +96,28 @@ Frame frame_for(const Polygons& region) {
   return f;
 }
 
-// The region's outline on the integer grid, cleaned so Boost's precondition holds (segments meet only at
-// their ends): merged, strictly simple, no repeated or collinear points. The interior is on the left of
-// every contour, outer ones and holes alike.
-struct Outline {
-  ClipperLib::Paths paths;
-  std::vector<std::pair<std::size_t, std::size_t>> segments;  // (contour, i): from point i to point i + 1
+using Segment = bp::segment_data<int>;
+using Point = bp::point_data<int>;
 
-  Vec point(std::size_t contour, std::size_t i) const {
-    const ClipperLib::Path& path = paths[contour];
-    const ClipperLib::IntPoint& p = path[i % path.size()];
-    return {static_cast<double>(p.X), static_cast<double>(p.Y)};
-  }
+Vec vec(const Point& p) {
+  return {static_cast<double>(p.x()), static_cast<double>(p.y())};
+}
+
+// The region's outline on the integer grid as segments with the interior on their left, cleaned so Boost's
+// precondition holds (segments meet only at their ends): Clipper merges overlaps and removes crossings,
+// repeated and collinear points; Boost's own intersect_segments then splits a segment where another's end
+// touches it, which Clipper leaves (a hole touching the outline at a point, say).
+struct Outline {
+  // A boundary segment leaving or reaching a point, as its direction from the point.
+  struct Ray {
+    Vec direction;
+    bool leaving;  // the region is on its counter-clockwise side if it leaves, on its clockwise side if not
+  };
+  std::vector<Segment> segments;
+  std::map<std::pair<int, int>, std::vector<Ray>> rays;  // at each end point of a segment
 };
 
-Outline outline_of(const Polygons& region, const Frame& f) {
+ClipperLib::Paths merged(const Polygons& region, const Frame& f) {
   ClipperLib::Paths in;
   for (const Polygon& poly : region) {
     ClipperLib::Path path;
@@ -120,59 +129,77 @@ Outline outline_of(const Polygons& region, const Frame& f) {
     if (path.size() >= 3) in.push_back(std::move(path));
   }
   ClipperLib::Clipper c;
-  c.StrictlySimple(true);
   c.AddPaths(in, ClipperLib::ptSubject, true);
+  ClipperLib::Paths out;
+  c.Execute(ClipperLib::ctUnion, out, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return out;
+}
+
+Outline outline_of(const Polygons& region, const Frame& f) {
+  std::vector<Segment> joined;
+  for (const ClipperLib::Path& path : merged(region, f)) {
+    if (path.size() < 3) continue;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const ClipperLib::IntPoint& a = path[i];
+      const ClipperLib::IntPoint& b = path[(i + 1) % path.size()];
+      joined.emplace_back(Point(static_cast<int>(a.X), static_cast<int>(a.Y)),
+                          Point(static_cast<int>(b.X), static_cast<int>(b.Y)));
+    }
+  }
+  std::vector<std::pair<std::size_t, Segment>> split;
+  bp::intersect_segments(split, joined.begin(), joined.end());
   Outline o;
-  c.Execute(ClipperLib::ctUnion, o.paths, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
-  std::erase_if(o.paths, [](const ClipperLib::Path& p) { return p.size() < 3; });
-  for (std::size_t k = 0; k < o.paths.size(); ++k)
-    for (std::size_t i = 0; i < o.paths[k].size(); ++i) o.segments.emplace_back(k, i);
+  for (const auto& [from, piece] : split) {
+    Point a = bp::low(piece), b = bp::high(piece);
+    if (a == b) continue;
+    // The pieces come out in sweep order: give each its segment's direction back.
+    if ((vec(b) - vec(a)).dot(vec(bp::high(joined[from])) - vec(bp::low(joined[from]))) < 0) std::swap(a, b);
+    o.segments.emplace_back(a, b);
+    o.rays[{a.x(), a.y()}].push_back({vec(b) - vec(a), true});
+    o.rays[{b.x(), b.y()}].push_back({vec(a) - vec(b), false});
+  }
   return o;
 }
 
-void build_diagram(const Outline& o, Diagram& vd) {
-  std::vector<bp::segment_data<int>> segments;
-  segments.reserve(o.segments.size());
-  const auto to_point = [](const Vec& p) {
-    return bp::point_data<int>(static_cast<int>(p.x()), static_cast<int>(p.y()));
-  };
-  for (const auto& [contour, i] : o.segments)
-    segments.emplace_back(to_point(o.point(contour, i)), to_point(o.point(contour, i + 1)));
-  bp::construct_voronoi(segments.begin(), segments.end(), &vd);
-}
-
-// What a Voronoi cell is the cell of: a segment a→b of the outline, or one of its points (at a).
+// What a Voronoi cell is the cell of: a segment a→b of the outline, or one of its end points (at a).
 struct Site {
   bool is_point = false;
   Vec a = Vec::Zero(), b = Vec::Zero();
-  std::size_t contour = 0, index = 0;  // the point's place in the outline
 
   double distance(const Vec& p) const { return is_point ? (p - a).norm() : distance_to_segment(p, a, b); }
 };
 
 Site site_of(const Diagram::cell_type& cell, const Outline& o) {
-  const auto [contour, i] = o.segments[cell.source_index()];
+  const Segment& seg = o.segments[cell.source_index()];
   Site s;
-  s.contour = contour;
-  s.index = i;
-  if (cell.contains_segment()) {
-    s.a = o.point(contour, i);
-    s.b = o.point(contour, i + 1);
-    return s;
+  s.a = vec(bp::low(seg));
+  s.b = vec(bp::high(seg));
+  if (cell.contains_point()) {
+    s.is_point = true;
+    if (cell.source_category() == bp::SOURCE_CATEGORY_SEGMENT_END_POINT) s.a = s.b;
+    s.b = s.a;
   }
-  s.is_point = true;
-  if (cell.source_category() == bp::SOURCE_CATEGORY_SEGMENT_END_POINT)
-    s.index = (i + 1) % o.paths[contour].size();
-  s.a = s.b = o.point(contour, s.index);
   return s;
 }
 
-// A concave corner of the region (the outline turns right, the interior being on its left).
-bool is_concave(const Site& point, const Outline& o) {
-  const std::size_t n = o.paths[point.contour].size();
-  const Vec prev = o.point(point.contour, point.index + n - 1);
-  const Vec next = o.point(point.contour, point.index + 1);
-  return cross(point.a - prev, next - point.a) < 0;
+// Whether the region lies in direction d from a point of the outline: it does if the first boundary ray
+// met turning clockwise from d leaves the point (the region being on a leaving ray's counter-clockwise
+// side). This holds at plain corners, convex or concave, and where the outline touches itself.
+bool region_towards(const Site& point, const Vec& d, const Outline& o) {
+  const auto found = o.rays.find({static_cast<int>(point.a.x()), static_cast<int>(point.a.y())});
+  if (found == o.rays.end()) return false;
+  double nearest = std::numeric_limits<double>::infinity();
+  bool leaving = false;
+  for (const Outline::Ray& r : found->second) {
+    double turn = std::atan2(cross(r.direction, d), r.direction.dot(d));  // clockwise from d to r
+    if (turn < 0) turn += 2.0 * std::numbers::pi;
+    if (turn < nearest) nearest = turn, leaving = r.leaving;
+  }
+  return leaving;
+}
+
+void build_diagram(const Outline& o, Diagram& vd) {
+  bp::construct_voronoi(o.segments.begin(), o.segments.end(), &vd);
 }
 
 // One finite Voronoi edge between two sites as a curve x(t), t in [0, 1] from vertex0 to vertex1. It is
@@ -195,7 +222,7 @@ class EdgeCurve {
     focus_u_ = (near_.a - base_).dot(along_);
     focus_v_ = (near_.a - base_).dot(up_);
     // A focus on the directrix's line has no parabola; Boost then gives a straight edge in effect.
-    parabola_ = focus_v_ > kMinCurveTolerance;
+    parabola_ = focus_v_ > kOnOutline;
     u0_ = (v0_ - base_).dot(along_);
     u1_ = (v1_ - base_).dot(along_);
   }
@@ -222,7 +249,6 @@ class EdgeCurve {
     if (t > 0 && t < 1) return t;
     return std::nullopt;
   }
-  bool curved() const { return parabola_; }
 
  private:
   Vec v0_, v1_;
@@ -234,12 +260,12 @@ class EdgeCurve {
 
 // Whether a primary, finite edge lies inside the region. Edges never cross the outline (a point on a
 // segment is a site's own point), so one point of the edge off the outline decides: beside a segment site
-// by the side of the segment it is on, between two point sites by whether the points are concave corners
-// (a concave corner's cell lies inside the region, a convex corner's outside).
+// by the side of the segment it is on, between two point sites by the side of the outline it is on at one
+// of the points.
 bool is_inside(const EdgeCurve& c, const Site& s0, const Site& s1, const Outline& o) {
-  if (s0.is_point && s1.is_point) return is_concave(s0, o);
-  const Site& seg = s0.is_point ? s1 : s0;
   const Vec p = c.width(0) > c.width(1) ? c.at(0) : c.at(1);
+  if (s0.is_point && s1.is_point) return region_towards(s0, p - s0.a, o);
+  const Site& seg = s0.is_point ? s1 : s0;
   return cross(seg.b - seg.a, p - seg.a) > 0;
 }
 
@@ -264,7 +290,7 @@ bool faces_across(const EdgeCurve& c, const Site& s0, const Site& s1) {
   return most >= kMinFacingAngleRad;
 }
 
-// A kept edge of the diagram.
+// An edge of the diagram that is part of the medial axis, with the indices of its vertices.
 struct KeptEdge {
   EdgeCurve curve;
   std::size_t vertex0, vertex1;
@@ -285,6 +311,7 @@ std::vector<KeptEdge> kept_edges(const Diagram& vd, const Outline& o) {
   return out;
 }
 
+// A point of an edge: its parameter, where it is and the width there (units).
 struct Sample {
   double t = 0;
   Vec p = Vec::Zero();
@@ -302,7 +329,7 @@ void refine(const EdgeCurve& c, const Sample& a, const Sample& b, int depth, std
   const double tolerance = std::max(kCurveTolerance * m.width, kMinCurveTolerance);
   const double off_chord = (m.p - 0.5 * (a.p + b.p)).norm();
   const double off_width = std::abs(m.width - 0.5 * (a.width + b.width));
-  if (depth >= 20 || (off_chord <= tolerance && off_width <= tolerance)) return;
+  if (depth >= kMaxSplits || (off_chord <= tolerance && off_width <= tolerance)) return;
   refine(c, a, m, depth + 1, out);
   out.push_back(m);
   refine(c, m, b, depth + 1, out);
@@ -410,14 +437,20 @@ std::vector<Piece> pieces_of(const std::vector<KeptEdge>& edges, std::size_t ver
   return out;
 }
 
-// Chains the pieces into lines through the nodes where exactly two meet; what is left after the open lines
-// are closed loops.
+// Chains the pieces into lines through the nodes where exactly two meet, unless that is on the outline (two
+// sharp corners meeting at a point where the outline touches itself); what is left after the open lines are
+// closed loops.
 std::vector<std::vector<Sample>> chain(const std::vector<Piece>& pieces, std::size_t nodes) {
   std::vector<std::vector<std::size_t>> at(nodes);
+  std::vector<bool> end(nodes, false);
   for (std::size_t k = 0; k < pieces.size(); ++k) {
-    at[pieces[k].from].push_back(k);
-    at[pieces[k].to].push_back(k);
+    const Piece& p = pieces[k];
+    at[p.from].push_back(k);
+    at[p.to].push_back(k);
+    if (p.samples.front().width < 2 * kOnOutline) end[p.from] = true;
+    if (p.samples.back().width < 2 * kOnOutline) end[p.to] = true;
   }
+  for (std::size_t n = 0; n < nodes; ++n) end[n] = end[n] || at[n].size() != 2;
   std::vector<bool> used(pieces.size(), false);
   const auto walk = [&](std::size_t node, std::size_t k) {
     std::vector<Sample> line;
@@ -429,14 +462,14 @@ std::vector<std::vector<Sample>> chain(const std::vector<Piece>& pieces, std::si
       if (!forward) std::reverse(s.begin(), s.end());
       line.insert(line.end(), s.begin() + (line.empty() ? 0 : 1), s.end());
       node = forward ? p.to : p.from;
-      if (at[node].size() != 2) break;
+      if (end[node]) break;
       k = at[node][0] == k ? at[node][1] : at[node][0];
     }
     return line;
   };
   std::vector<std::vector<Sample>> lines;
   for (std::size_t n = 0; n < nodes; ++n)
-    if (at[n].size() != 2)
+    if (end[n])
       for (std::size_t k : at[n])
         if (!used[k]) lines.push_back(walk(n, k));
   for (std::size_t k = 0; k < pieces.size(); ++k)
@@ -459,7 +492,6 @@ std::vector<CentreLine> medial_axis(const Polygons& region, double min_width_mm,
   if (outline.segments.empty()) return {};
   Diagram vd;
   build_diagram(outline, vd);
-  // A picometre of slack, so a wall exactly as wide as a limit is not lost to rounding.
   const double lo = min_width_mm * frame.scale - kWidthSlack, hi = max_width_mm * frame.scale + kWidthSlack;
   std::size_t nodes = 0;
   const std::vector<Piece> pieces = pieces_of(kept_edges(vd, outline), vd.vertices().size(), lo, hi, nodes);

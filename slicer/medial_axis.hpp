@@ -22,18 +22,19 @@ struct CentreLine {
 //
 // `region`: closed contours in mm, outer ones counter-clockwise and holes clockwise (as slicing gives them);
 // overlaps are merged (non-zero winding) and self-touching or degenerate contours are cleaned up first.
-// Coordinates are snapped to 1 µm (coarser only for parts over a kilometre across).
+// Coordinates are snapped to 1 µm (coarser only for regions over two kilometres across).
 // `min_width_mm` >= 0; `max_width_mm` >= `min_width_mm` (infinity for no upper limit).
 //
 // The lines are the interior medial axis, split where three or more branches meet (the lines of a
-// junction all end at the same point) and cut where the thickness leaves the range. Branches running into
-// convex corners are left out, so a strip's line stops half its width short of a square end; a corner
-// sharper than 45° keeps its branch, since there the branch is the wall narrowing to a point. Curved parts
-// (beside a concave corner) are split finely enough that the polyline stays within 0.5% of the width of the
-// true curve, and every point's width is exact, not interpolated.
+// junction all end at the same point) and cut where the thickness leaves the range. Only the stretches
+// across which the outline faces itself are kept: the branches into square or blunter convex corners are
+// left out, so a strip's line stops half its width short of a square end, while a corner sharper than 70°
+// keeps its branch (there it is the wall narrowing to a point). Curved stretches (beside a concave corner)
+// are split finely enough that the polyline stays within 0.5% of the width of the true curve; every
+// point's width is exact, not interpolated.
 //
-// Empty or degenerate input gives no lines. Throws InternalError if a coordinate or width is not a number,
-// or if the width range is empty.
+// Input without area (empty, collinear, smaller than the grid) gives no lines. Throws InternalError if a
+// coordinate or width is not a number, or if the width range is empty.
 std::vector<CentreLine> medial_axis(const Polygons& region, double min_width_mm, double max_width_mm);
 
 }  // namespace beadtwin::slicer

@@ -99,6 +99,34 @@ TEST(MedialAxis, CurvedWallFollowsItsMeanRadius) {
   EXPECT_GT(c.points.size(), 360u);
 }
 
+// Distance from p to the nearest contour of a region.
+double distance_to_outline(const Polygons& region, const Eigen::Vector2d& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Polygon& poly : region)
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      const Eigen::Vector2d a = poly[i], ab = poly[(i + 1) % poly.size()] - a;
+      const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      d = std::min(d, (a + t * ab - p).norm());
+    }
+  return d;
+}
+
+TEST(MedialAxis, CurvesAreSplitWithinTolerance) {
+  // An L of two 10-wide legs: round the inner corner the centre line is two parabolas (focus the corner,
+  // directrix an outer side), 2% off their chord. Halfway along each piece of polyline, twice the distance to
+  // the outline must match the width there to 1%.
+  const Polygons ell{{{0, 0}, {100, 0}, {100, 10}, {10, 10}, {10, 100}, {0, 100}}};
+  const auto lines = medial_axis(ell, 0, 20);
+  ASSERT_EQ(lines.size(), 1u);
+  const CentreLine& c = lines[0];
+  for (std::size_t k = 1; k < c.points.size(); ++k) {
+    const double w = 0.5 * (c.width_mm[k - 1] + c.width_mm[k]);
+    const Eigen::Vector2d m = 0.5 * (c.points[k - 1] + c.points[k]);
+    EXPECT_NEAR(2.0 * distance_to_outline(ell, m), w, 0.01 * w) << "at " << m.transpose();
+  }
+  EXPECT_GT(c.points.size(), 6u);  // the parabolas are split
+}
+
 TEST(MedialAxis, TeeGivesThreeLinesMeetingAtTheJunction) {
   // A bar [-100, 100] x [90, 100] on a stem [-5, 5] x [0, 90]: both 10 wide, centre lines meeting at (0, 95).
   const Polygon tee{{-5, 0}, {5, 0}, {5, 90}, {100, 90}, {100, 100}, {-100, 100}, {-100, 90}, {-5, 90}};
@@ -174,13 +202,16 @@ TEST(MedialAxis, EmptyInputGivesNoLines) {
 
 TEST(MedialAxis, DegenerateInputGivesNoLinesOrValidOnes) {
   const std::vector<Polygons> cases{
-      {rectangle(0, 0, 1e-5, 1e-5)},                         // below the 1 µm grid
-      {{{0, 0}, {10, 0}, {20, 0}}},                          // collinear
-      {{{0, 0}, {10, 0}}},                                   // two points
-      {rectangle(0, 0, 10, 10), rectangle(10, 10, 20, 20)},  // touching at a corner
-      {{{0, 0}, {20, 10}, {20, 0}, {0, 10}}},                // a bow tie, crossing itself
-      {rectangle(0, 0, 10, 10), rectangle(0, 0, 10, 10)},    // the same square twice
-      {rectangle(0, 0, 30, 10), rectangle(10, 0, 20, 10)},   // overlapping
+      {rectangle(0, 0, 1e-5, 1e-5)},                              // below the 1 µm grid
+      {{{0, 0}, {10, 0}, {20, 0}}},                               // collinear
+      {{{0, 0}, {10, 0}}},                                        // two points
+      {rectangle(0, 0, 10, 10), rectangle(10, 10, 20, 20)},       // touching at a corner
+      {{{0, 0}, {20, 10}, {20, 0}, {0, 10}}},                     // a bow tie, crossing itself
+      {rectangle(0, 0, 10, 10), rectangle(0, 0, 10, 10)},         // the same square twice
+      {rectangle(0, 0, 30, 10), rectangle(10, 0, 20, 10)},        // overlapping
+      {rectangle(0, 0, 10, 10), {{5, 10}, {10, 20}, {0, 20}}},    // a corner touching an edge
+      {rectangle(0, 0, 30, 30), {{10, 10}, {10, 20}, {30, 15}}},  // a hole touching the outline
+      {rectangle(0, 0, 1e-3, 100)},                               // one grid step wide
   };
   for (const Polygons& region : cases) {
     std::vector<CentreLine> lines;
@@ -195,7 +226,8 @@ TEST(MedialAxis, DegenerateInputGivesNoLinesOrValidOnes) {
       }
     }
   }
-  // Squares touching at a corner: each has its own medial axis, and nothing crosses over at the touch.
+  // Squares touching at a corner: their medial axes are all branches into square corners, and nothing is
+  // made up across the touch.
   EXPECT_TRUE(medial_axis({rectangle(0, 0, 10, 10), rectangle(10, 10, 20, 20)}, 0, kNoLimit).empty());
 }
 

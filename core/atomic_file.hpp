@@ -1,4 +1,4 @@
-// Files written atomically (DESIGN §6): content goes to a temporary name beside the target and is renamed
+// Files written atomically: content goes to a temporary name beside the target and is renamed
 // into place only when complete, so an interrupted run never leaves a half-written output.
 #pragma once
 

@@ -1,6 +1,7 @@
-// The flattened bead's cross-section (DESIGN §4.1): after the roller or tamper flattens a bead to height h,
-// its section is a rectangle with semicircular sides, A = h (w − h) + π h² / 4, so w = A / h + h (1 − π/4).
-// The model conserves A = Q / v (flow over travel speed), never the nozzle's area.
+// The flattened bead's cross-section (docs/physics.md, bead cross-section): after the roller or tamper
+// flattens a bead to height h, its section is a rectangle with semicircular sides, A = h (w − h) + π h² / 4,
+// so w = A / h + h (1 − π/4). The model conserves A = Q / v (flow over travel speed), never the nozzle's
+// area.
 #pragma once
 
 namespace beadtwin {

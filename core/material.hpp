@@ -1,4 +1,4 @@
-// Material and machine data as the physics reads them: typed, in internal units (DESIGN §3), already
+// Material and machine data as the physics reads them: typed, in internal units, already
 // validated. The scenario loader fills them from scenarios/materials/*.yaml and scenarios/machines/*.yaml.
 #pragma once
 
@@ -17,7 +17,7 @@ struct Material {
   double emissivity = 0.85;
   double deposition_temp_c = 200.0;  // temperature of the bead as it leaves the nozzle
   double glass_transition_c = 110.0;
-  // Fusion window (DESIGN §4.4).
+  // Fusion window (docs/physics.md, fusion window).
   double support_limit_c = 120.0;     // substrate hotter than this at deposition: too hot (slump, squash-out)
   double healing_ref_temp_c = 200.0;  // T_ref of the reptation time
   double reptation_time_ref_s = 1.0;  // t_w at T_ref

@@ -1,4 +1,4 @@
-// The Toolpath IR (DESIGN §2): the contract between every producer of motion (slicer, G-code reader) and
+// The Toolpath IR: the contract between every producer of motion (slicer, G-code reader) and
 // every consumer (print-program writers, deposition, thermal, reports).
 //
 // A toolpath is a flat sequence of straight moves in the machine frame (mm). Arcs are linearised within

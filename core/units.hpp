@@ -1,4 +1,4 @@
-// Quantities with units (DESIGN §3, STYLE.md rule 5).
+// Quantities with units (units at the edge: converted when read, one system inside).
 //
 // Inside beadtwin there is one unit system: mm, s, kg, °C (K only inside formulas), W, degrees for angles,
 // plain fractions for ratios. Text such as "0.83 in", "240 C", "150 lb/h", "45 deg" or "10 %" is converted

@@ -1,6 +1,6 @@
 // Cameras of the render stage: the standard views of a part, framed automatically on its bounding box.
 //
-// The machine frame is z up (DESIGN §2). The isometric view looks from the (+x, -y, +z) corner at the
+// The machine frame is z up. The isometric view looks from the (+x, -y, +z) corner at the
 // centre of the box; the top view looks down -z with +y up the image; the front view looks along +y with
 // +z up the image. Framing fits the box's eight corners into the image with a margin on every side.
 #pragma once

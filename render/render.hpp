@@ -1,4 +1,4 @@
-// The render stage (DESIGN §1): headless images of the deposited part.
+// The render stage: headless images of the deposited part.
 //
 // render_deposit() takes the deposit's fill-fraction isosurface (the part as printed, with the ridges the
 // beads leave), ray traces it with Embree from one of the standard views (camera.hpp) and colours every

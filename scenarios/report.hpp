@@ -1,4 +1,4 @@
-// Reports (DESIGN §6): report.json for machines, report.html for people, junit.xml for CI systems and
+// Reports: report.json for machines, report.html for people, junit.xml for CI systems and
 // summary.md for a pull-request comment. All written atomically.
 #pragma once
 

@@ -1,4 +1,4 @@
-// What a run produces for each variant: metrics (DESIGN §6), the per-layer table, gate results, and the
+// What a run produces for each variant: metrics, the per-layer table, gate results, and the
 // files written. The report writers read only these types.
 #pragma once
 
@@ -28,7 +28,7 @@ struct Metrics {
   // Void detection in the slicer (sections with voids.detect): uncovered pieces found and their area.
   int planned_voids = 0;
   double planned_void_area_mm2 = 0;
-  // Diagnostics beyond DESIGN §6.
+  // Diagnostics beyond the gate metrics.
   double swept_volume_mm3 = 0, redistributed_volume_mm3 = 0;
   std::size_t voxels = 0;
   double voxel_size_mm = 0;

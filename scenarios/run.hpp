@@ -1,4 +1,4 @@
-// The runner: the whole pipeline for every variant of a scenario (DESIGN §1), reading like the pipeline —
+// The runner: the whole pipeline for every variant of a scenario, reading like the pipeline —
 // part → slice → program → deposit → thermal → render → metrics and gates — then the reports.
 #pragma once
 

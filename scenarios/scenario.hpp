@@ -1,4 +1,4 @@
-// Scenarios (DESIGN §7): a part, a machine, a material, sections with their print parameters, variants that
+// Scenarios: a part, a machine, a material, sections with their print parameters, variants that
 // override parameters, and gates. Loading validates everything before any heavy work starts and reports
 // problems with file, line, column and key.
 #pragma once
@@ -97,7 +97,7 @@ Scenario load_scenario_text(const std::string& text, const std::string& file);
 // The built-in default scenario (embedded in the binary).
 Scenario load_default_scenario();
 
-// Metric names a gate may use (DESIGN §6 metrics).
+// Metric names a gate may use (the report's metrics).
 const std::vector<std::string>& gate_metrics();
 
 }  // namespace beadtwin::scenarios

@@ -1,4 +1,5 @@
-// The cross-section a depositing move lays (DESIGN §4.1), in the form the sweep needs.
+// The cross-section a depositing move lays (docs/physics.md, bead cross-section), in the form the sweep
+// needs.
 //
 // Every bead profile here is the set of points within `radius_mm` of a horizontal core segment of
 // half-width `core_half_width_mm`, whose centre lies `radius_mm` below the bead's top (the roller):

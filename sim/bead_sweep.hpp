@@ -1,4 +1,5 @@
-// The solid one depositing move sweeps, and its rasterisation into voxel coverage fractions (DESIGN §4.2).
+// The solid one depositing move sweeps, and its rasterisation into voxel coverage fractions (docs/physics.md,
+// deposition).
 //
 // A moving bead is its profile (sim/bead_section.hpp) swept along the move: a point belongs to it when its
 // horizontal distance d to the move's segment (its plan projection clamped to the segment) and its height

@@ -1,4 +1,4 @@
-// Voxel deposition (DESIGN §4.1-4.2), first cut.
+// Voxel deposition (docs/physics.md, bead cross-section and deposition), first cut.
 //
 // Every print move sweeps its flattened bead cross-section — a rectangle with semicircular sides, height h
 // = the move's layer height, width w from A = Q/v = h (w - h) + π h²/4 — into sparse OpenVDB grids in the

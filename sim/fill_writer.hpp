@@ -1,4 +1,4 @@
-// Material into the deposit's grids, conserved (DESIGN §4.2).
+// Material into the deposit's grids, conserved (docs/physics.md, deposition).
 //
 // A move's material is spread over the voxels its bead covers, in proportion to the covered fraction. No
 // voxel holds more than its own volume: what would overfill one is pushed on, and kept local — first into

@@ -1,4 +1,5 @@
-// Porosity of a deposit: the void fraction inside the printed envelope (DESIGN §4.2), first cut.
+// Porosity of a deposit: the void fraction inside the printed envelope (docs/physics.md, deposition), first
+// cut.
 //
 // The envelope is found slab by slab (one voxel layer of constant z), in plan:
 //  - a voxel at least half full is solid;

@@ -1,5 +1,5 @@
-// From a toolpath's depositing moves to bead sweeps (DESIGN §4.2): each move's bead cross-section and how
-// its ends meet its neighbours.
+// From a toolpath's depositing moves to bead sweeps (docs/physics.md, deposition): each move's bead
+// cross-section and how its ends meet its neighbours.
 //
 // Consecutive depositing moves form one continuous bead when the first ends where the second starts
 // (within 1 µm), only moves without length (events, dry dwells) lie between them, and the path turns by

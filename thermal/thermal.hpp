@@ -1,4 +1,5 @@
-// Thermal history and interlayer fusion of a printed wall (DESIGN §4.3-4.4), first cut.
+// Thermal history and interlayer fusion of a printed wall (docs/physics.md, cooling and fusion window), first
+// cut.
 //
 // The part is modelled as a 1-D stack of layers in the spirit of Compton et al. 2017 (Additive Manufacturing
 // 17:77-86): each layer is `nodes_per_layer` control volumes through its thickness, with its footprint area
@@ -9,7 +10,8 @@
 // really waits before being covered is represented by the layer-to-layer period, not bead by bead.
 //
 // Integrated with SUNDIALS CVODE (BDF, banded direct solver), restarted at every birth. The healing of every
-// interface follows the non-isothermal reptation model of Yang & Pitchumani 2002 (DESIGN §4.4).
+// interface follows the non-isothermal reptation model of Yang & Pitchumani 2002 (docs/physics.md, fusion
+// window).
 #pragma once
 
 #include <span>

@@ -1,5 +1,5 @@
-// beadtwin: the command-line program (DESIGN §5). A thin main: parse the command line, call the scenario
-// engine, print errors, map outcomes to exit codes:
+// beadtwin: the command-line program (README, command line). A thin main: parse the command line, call the
+// scenario engine, print errors, map outcomes to exit codes:
 //   0 ran and every gate passed · 1 ran and a gate failed · 2 bad input or usage · 3 internal error.
 #include <cstdio>
 #include <cstdlib>

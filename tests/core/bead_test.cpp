@@ -24,7 +24,7 @@ TEST(Bead, WidthIsTheInverseOfArea) {
 }
 
 TEST(Bead, PatentRoundBeadFlattenedToTwoTenths) {
-  // DESIGN §4.1 check of the patent's numbers: a 0.5 in round bead (A = 0.196 in²) flattened by the
+  // Check of the patent's numbers: a 0.5 in round bead (A = 0.196 in²) flattened by the
   // roller to 0.20 in is about 1.02 in wide (conserving A, not the nozzle shape).
   const double d = 0.5 * kMmPerInch;
   const double area = kPi * d * d / 4;

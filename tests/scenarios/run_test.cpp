@@ -1,4 +1,4 @@
-// The whole pipeline on a small scenario: every stage runs for real and the reports hold the DESIGN §6 keys.
+// The whole pipeline on a small scenario: every stage runs for real and the reports hold the documented keys.
 #include "scenarios/run.hpp"
 
 #include <filesystem>

@@ -109,8 +109,8 @@ TEST(StadiumSection, WidthIsTheInverseOfArea) {
 }
 
 TEST(StadiumSection, PatentRoundBeadFlattenedToAFifthOfAnInch) {
-  // Patent check (DESIGN §4.1): a 0.5 in round bead, A = π·0.25² = 0.196 in², flattened to 0.20 in is
-  // about 1.02 in wide; and 0.83 in × 0.20 in means A ≈ 0.157 in².
+  // Patent check (docs/physics.md, bead cross-section): a 0.5 in round bead, A = π·0.25² = 0.196 in²,
+  // flattened to 0.20 in is about 1.02 in wide; and 0.83 in × 0.20 in means A ≈ 0.157 in².
   const double area_mm2 = kPi * std::pow(0.25 * kMmPerInch, 2);
   EXPECT_NEAR(area_mm2 / (kMmPerInch * kMmPerInch), 0.196, 0.001);
   const double width_mm = bead_width_mm(area_mm2, kBeadHeight);

@@ -299,8 +299,8 @@ TEST(ThermalTest, ShortLayersAreTooHotAndLongOnesTooCold) {
 }
 
 TEST(ThermalTest, A150LayerComptonWallSolvesInUnderTwoSeconds) {
-  // Compton et al. 2017 set-up (DESIGN §4.5): 150 layers of 4.064 mm, 20 mm wall (1 m long here), 40 s per
-  // layer, 100 min of printing plus 10 min of cooldown.
+  // Compton et al. 2017 set-up (docs/physics.md, cooling): 150 layers of 4.064 mm, 20 mm wall (1 m long
+  // here), 40 s per layer, 100 min of printing plus 10 min of cooldown.
   const std::vector<LayerInput> layers = straight_wall(150, 40.0);
   const auto t0 = std::chrono::steady_clock::now();
   const ThermalResult result = solve_thermal(layers, Material{}, Environment{});

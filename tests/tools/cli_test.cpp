@@ -1,4 +1,4 @@
-// The beadtwin program as a user runs it: exit codes and messages (DESIGN §5).
+// The beadtwin program as a user runs it: exit codes and messages (README, command line).
 #include <sys/wait.h>
 
 #include <cstdio>

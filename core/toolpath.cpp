@@ -147,17 +147,28 @@ void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
     const double cap = m.kind == MoveKind::kTravel ? limits.max_travel_mm_s : limits.max_feed_mm_s;
     cruise[i] = m.kind == MoveKind::kDwell ? 0.0 : std::min(m.feed_mm_s > 0 ? m.feed_mm_s : cap, cap);
   }
-  // Junction speed between consecutive motion moves (junction-deviation model).
+  // Junction speed between consecutive motion moves (junction-deviation model). Instantaneous events (dwells
+  // of no duration) stop the head, except before a coast: the pump stops and the head moves on.
+  const auto instant = [&](std::size_t i) {
+    return moves[i].kind == MoveKind::kDwell && !(moves[i].duration_s > 0.0);
+  };
   for (std::size_t i = 1; i < n; ++i) {
-    const Move& p = moves[i - 1];
-    const Move& m = moves[i];
+    std::size_t before = i - 1, after = i;
+    while (before > 0 && instant(before)) --before;
+    while (after + 1 < n && instant(after)) ++after;
+    const bool into_coast = moves[before].kind == MoveKind::kPrint &&
+                            moves[after].feature == Feature::kCoast && moves[after].kind == MoveKind::kPrint;
+    const std::size_t pi = into_coast ? before : i - 1;
+    const std::size_t mi = into_coast ? after : i;
+    const Move& p = moves[pi];
+    const Move& m = moves[mi];
     if (p.length_mm() <= 0 || m.length_mm() <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell)
       continue;
     const Eigen::Vector3d u = (p.end - p.start).normalized();
     const Eigen::Vector3d w = (m.end - m.start).normalized();
     const double cos_theta =
         std::clamp(-u.dot(w), -1.0, 1.0);  // angle between reversed incoming and outgoing
-    double vj = std::min(cruise[i - 1], cruise[i]);
+    double vj = std::min(cruise[pi], cruise[mi]);
     if (cos_theta > -0.999999) {
       const double sin_half = std::sqrt(std::max(0.0, 0.5 * (1.0 - cos_theta)));
       if (sin_half < 0.999999) {

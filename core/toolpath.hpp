@@ -108,6 +108,8 @@ struct Toolpath {
 
 // Acceleration-limited timing (trapezoidal velocity profiles with a junction-deviation corner model, as
 // motion controllers plan them). Sets start_s and duration_s of every move; dwells keep their duration.
+// Instantaneous events (dwells of no duration) stop the head, except between a print move and the coast after
+// it (the pump stops, the head moves on).
 struct MotionLimits {
   double max_feed_mm_s = 500.0;
   double max_travel_mm_s = 500.0;

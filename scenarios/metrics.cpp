@@ -36,6 +36,7 @@ const MetricDef kMetrics[] = {
     {"layer_time_s.min", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.min; }},
     {"layer_time_s.mean", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.mean; }},
     {"layer_time_s.max", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.max; }},
+    {"extruder_demand", [](const Metrics& m) -> std::optional<double> { return m.extruder_demand; }},
     {"planned_voids", [](const Metrics& m) -> std::optional<double> { return m.planned_voids; }},
     {"planned_void_area_mm2",
      [](const Metrics& m) -> std::optional<double> { return m.planned_void_area_mm2; }},

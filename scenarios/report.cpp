@@ -34,6 +34,37 @@ json polygons_json(const slicer::Polygons& polys) {
   return out;
 }
 
+json fill_json(const slicer::FillParams& f) {
+  static constexpr const char* kStyle[] = {"one_way",       "simple_zigzag",
+                                           "smart_zigzag",  "smart_zigzag_constant_overlap",
+                                           "sparse_zigzag", "variable_bead_regions"};
+  return {{"style", kStyle[static_cast<int>(f.style)]},
+          {"angle_deg", f.angle_deg},
+          {"angle_step_deg", f.angle_step_deg},
+          {"overlap", f.overlap},
+          {"max_overlap", f.max_overlap},
+          {"max_sparse_spacing_mm", f.max_sparse_spacing_mm},
+          {"sparse_fill_gaps", f.sparse_fill_gaps},
+          {"boundary_overlap", f.boundary_overlap},
+          {"boundary_side_overlap", f.boundary_side_overlap},
+          {"max_end_overlap_mm", f.max_end_overlap_mm},
+          {"max_side_overlap_mm", f.max_side_overlap_mm},
+          {"optimize_to_surface", f.optimize_to_surface},
+          {"link_with_rapids", f.link_with_rapids},
+          {"min_length_mm", f.min_length_mm},
+          {"lead_in_mm", f.lead_in_mm},
+          {"lead_out_mm", f.lead_out_mm},
+          {"force_tangential_lead_out", f.tangential_lead_out},
+          {"fillet_radius", f.fillet_radius},
+          {"corner_melt_reduction", f.corner_melt_reduction},
+          {"corner_speed_mm_s", f.corner_speed_mm_s},
+          {"turns_outside", f.turns_outside},
+          {"line_matching_limit_mm", f.line_matching_limit_mm},
+          {"line_extension_mm", f.line_extension_mm},
+          {"step_tolerance_mm", f.step_tolerance_mm},
+          {"angle_tolerance_deg", f.angle_tolerance_deg}};
+}
+
 json parameters_json(const Variant& v) {
   json sections = json::array();
   for (const auto& s : v.sections) {
@@ -95,10 +126,7 @@ json parameters_json(const Variant& v) {
            {"overlap", s.boundary.overlap},
            {"max_overlap", s.boundary.max_overlap},
            {"inside_out", s.boundary.inside_out}}},
-         {"fill", s.fill.enabled ? json{{"angle_deg", s.fill.angle_deg},
-                                        {"angle_step_deg", s.fill.angle_step_deg},
-                                        {"overlap", s.fill.overlap}}
-                                 : json("none")}});
+         {"fill", s.fill.enabled ? fill_json(s.fill) : json("none")}});
   }
   return {{"machine", v.machine.name}, {"material", v.material.name},
           {"part", v.part.describe()}, {"voxel_size_mm", v.output.voxel_size_mm},
@@ -152,6 +180,7 @@ json variant_json(const VariantResult& r) {
               {"mean_healing", number_or_null(m.mean_healing)}}},
             {"layer_time_s", stats_json(m.layer_time_s)},
             {"planned_voids", m.planned_voids},
+            {"extruder_demand", m.extruder_demand},
             {"planned_void_area_mm2", m.planned_void_area_mm2},
             {"deposit",
              {{"voxel_size_mm", m.voxel_size_mm},
@@ -355,6 +384,8 @@ details{margin:1em 0} .muted{color:#777}
     row("mass", fmt::format("{:.2f} kg", m.mass_kg));
     row("material cost", fmt::format("{:.2f}", m.material_cost));
     row("porosity", fmt::format("{:.2f} %", 100 * m.porosity));
+    row("extruder demand (of its limit)", fmt::format("{:.0f} %{}", 100 * m.extruder_demand,
+                                                      m.extruder_demand > 1 ? " — more than it gives" : ""));
     row("voids found by the slicer",
         fmt::format("{} ({:.0f} mm²)", m.planned_voids, m.planned_void_area_mm2));
     row("min stock", fmt_opt(m.min_stock_mm));

@@ -28,6 +28,9 @@ struct Metrics {
   // Void detection in the slicer (sections with voids.detect): uncovered pieces found and their area.
   int planned_voids = 0;
   double planned_void_area_mm2 = 0;
+  // The most any move asks of the extruder, as a fraction of its limit (max flow or max RPM); above 1 the
+  // program needs more than the extruder gives (reported, never clipped).
+  double extruder_demand = 0;
   // Diagnostics beyond the gate metrics.
   double swept_volume_mm3 = 0, redistributed_volume_mm3 = 0;
   std::size_t voxels = 0;

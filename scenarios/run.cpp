@@ -23,7 +23,8 @@ namespace {
 
 Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
   BT_CHECK(v.part.loaded != nullptr);
-  Toolpath tp = slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, stats);
+  Toolpath tp =
+      slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, stats, &v.machine.extruder);
   if (tp.layers.empty())
     throw InputError({}, "sections",
                      fmt::format("variant '{}': no section's Z range meets the part ({}), nothing to print",
@@ -31,10 +32,16 @@ Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
   return tp;
 }
 
-// What the program writer needs of the sections: each one's arc chord tolerance.
+// What the program writer needs of the sections (arc chord tolerance, melt settings) and of the extruder.
 slicer::GcodeOptions gcode_options(const Variant& v) {
   slicer::GcodeOptions o;
-  for (const auto& s : v.sections) o.arc_tolerance_mm.push_back(s.arc_chord_tolerance_mm);
+  for (const auto& s : v.sections) {
+    o.arc_tolerance_mm.push_back(s.arc_chord_tolerance_mm);
+    o.melt.push_back(s.melt);
+  }
+  // Speed words need the pump's displacement; E words the filament's diameter.
+  if (v.machine.extruder.has_rpm() || v.machine.extruder.kind == ExtruderKind::kFilament)
+    o.extruder = &v.machine.extruder;
   return o;
 }
 
@@ -193,8 +200,6 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
 
   slicer::PlanStats plan_stats;
   const Toolpath tp = stages.run("slice", [&] { return slice_variant(v, &plan_stats); });
-  res.metrics.planned_voids = plan_stats.voids_found;
-  res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   stages.run("program", [&] {
     slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
     write_file_atomic(dir / "program.nc",
@@ -249,6 +254,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   stages.run("vdb", [&] { write_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
   res.metrics = measure(v, tp, deposit, th);
+  res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;
+  res.metrics.planned_voids = plan_stats.voids_found;
+  res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   res.layers = layer_rows(tp, stack, th);
   res.gates = evaluate_gates(sc.gates, res.metrics);
   res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });

@@ -122,6 +122,24 @@ Machine read_machine(BlockReader& r) {
   m.motion.junction_deviation_mm = r.quantity(spec(t, "junction_deviation"));
   m.extruder_output_kg_s = r.quantity(spec(t, "extruder.output"));
   m.extruder_max_output_kg_s = r.quantity(spec(t, "extruder.max_output"));
+  {
+    const std::string kind = r.string(spec(t, "extruder.kind"));
+    if (kind == "gear_pump")
+      m.extruder.kind = ExtruderKind::kGearPump;
+    else if (kind == "screw")
+      m.extruder.kind = ExtruderKind::kScrew;
+    else if (kind == "filament")
+      m.extruder.kind = ExtruderKind::kFilament;
+    else
+      r.fail(r.take("extruder.kind"), "extruder.kind",
+             fmt::format("expected gear_pump, screw or filament but found '{}'", kind));
+  }
+  m.extruder.displacement_mm3_per_rev = r.quantity(spec(t, "extruder.displacement"));
+  m.extruder.filament_diameter_mm = r.quantity(spec(t, "extruder.filament_diameter"));
+  m.extruder.max_rpm = r.quantity(spec(t, "extruder.max_rpm"));
+  if (m.extruder.kind == ExtruderKind::kFilament && !(m.extruder.filament_diameter_mm > 0))
+    r.fail(r.take("extruder.filament_diameter"), "extruder.filament_diameter",
+           "a filament extruder needs its filament diameter");
   if (m.extruder_output_kg_s > m.extruder_max_output_kg_s)
     r.fail(r.take("extruder.output"), "extruder.output",
            "nominal output is above the extruder's maximum output");
@@ -137,6 +155,14 @@ Machine read_machine(BlockReader& r) {
   m.dialect.arcs = r.boolean(spec(t, "gcode.arcs"));
   m.dialect.roller_down = r.string(spec(t, "gcode.roller_down"));
   m.dialect.roller_up = r.string(spec(t, "gcode.roller_up"));
+  auto code = [&](std::string_view key) {
+    std::string c = r.string(spec(t, key));
+    return c == "none" ? std::string() : c;
+  };
+  m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
+  m.dialect.prime_code = code("gcode.prime_code");
+  m.dialect.reverse_on = code("gcode.reverse_on");
+  m.dialect.reverse_off = code("gcode.reverse_off");
   if (m.dialect.roller_down == "none") m.dialect.roller_down.clear();
   if (m.dialect.roller_up == "none") m.dialect.roller_up.clear();
   if (m.dialect.roller_down.empty() != m.dialect.roller_up.empty())
@@ -515,6 +541,25 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
                        100 * s.boundary.max_overlap, 100 * s.boundary.overlap));
   s.combine_stock_offset = r.boolean(spec(t, "combine_stock_offset"));
   s.arc_chord_tolerance_mm = r.quantity(spec(t, "arc_chord_tolerance"));
+  s.melt.prime = r.boolean(spec(t, "melt_on.prime"));
+  s.melt.delay_during_prime = r.boolean(spec(t, "melt_on.delay_during_prime"));
+  s.melt.prime_time_s = r.quantity(spec(t, "melt_on.prime_time"));
+  s.melt.prime_rpm = r.quantity(spec(t, "melt_on.prime_rpm"));
+  s.melt.coast = r.boolean(spec(t, "melt_off.coast"));
+  s.melt.coast_distance_mm = r.quantity(spec(t, "melt_off.coast_distance"));
+  s.melt.reverse = r.boolean(spec(t, "melt_off.reverse"));
+  s.melt.reverse_during_coast = r.boolean(spec(t, "melt_off.reverse_during_coast"));
+  s.melt.delay_during_reverse = r.boolean(spec(t, "melt_off.delay_during_reverse"));
+  s.melt.reverse_time_s = r.quantity(spec(t, "melt_off.reverse_time"));
+  s.melt.reverse_rpm = r.quantity(spec(t, "melt_off.reverse_rpm"));
+  s.melt.set_at_control = r.boolean(spec(t, "melt_set_at_control"));
+  if ((s.melt.prime && s.melt.prime_rpm > 0) || (s.melt.reverse && s.melt.reverse_rpm > 0))
+    if (!machine.extruder.has_rpm())
+      r.fail(r.take(s.melt.prime ? "melt_on.prime_rpm" : "melt_off.reverse_rpm"),
+             s.melt.prime ? "melt_on.prime_rpm" : "melt_off.reverse_rpm",
+             fmt::format("machine '{}' gives no extruder displacement (extruder.displacement), so a speed in "
+                         "rev/min means no flow",
+                         machine.name));
   s.pull_back.length_mm = r.quantity(spec(t, "pull_back.length"));
   s.pull_back.extension_mm = r.quantity(spec(t, "pull_back.extension"));
   s.pull_back.min_turn_deg = r.quantity(spec(t, "pull_back.min_turn"));
@@ -525,12 +570,12 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   s.voids.fill = r.boolean(spec(t, "voids.fill"));
   s.voids.min_width_mm = r.quantity(spec(t, "voids.min_width"));
   s.boundary.inside_out = r.boolean(spec(t, "boundary.inside_out"));
-  // fill: none | {angle, angle_step, overlap}. The keys are read (with defaults) either way.
+  // fill: none | {style, angle, ...}. The keys are read (with defaults) either way.
   YAML::Node fill = r.take("fill");
   const bool fill_off =
       fill.IsDefined() && fill.IsScalar() && (fill.Scalar() == "none" || fill.Scalar() == "off");
   if (fill.IsDefined() && !fill.IsMap() && !fill_off)
-    r.fail(fill, "fill", "expected 'none' or a map {angle, angle_step, overlap}");
+    r.fail(fill, "fill", "expected 'none' or a map {style, angle, angle_step, overlap, ...}");
   s.fill.enabled = fill.IsDefined() && fill.IsMap();
   BlockReader fr(fill.IsMap() ? fill : YAML::Node(YAML::NodeType::Map), r.full_key("fill"),
                  std::make_shared<YamlSource>(r.source()));
@@ -539,10 +584,79 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     q.key = p.key.substr(5);  // "fill.angle" is "angle" inside the fill block
     return q;
   };
-  static constexpr std::string_view kFillKeys[] = {"angle", "angle_step", "overlap"};
-  s.fill.angle_deg = fr.quantity(sub(spec(t, "fill.angle")));
-  s.fill.angle_step_deg = fr.quantity(sub(spec(t, "fill.angle_step")));
-  s.fill.overlap = fr.quantity(sub(spec(t, "fill.overlap")));
+  static constexpr std::string_view kFillKeys[] = {"style",
+                                                   "angle",
+                                                   "angle_step",
+                                                   "overlap",
+                                                   "max_overlap",
+                                                   "max_sparse_spacing",
+                                                   "sparse_fill_gaps",
+                                                   "boundary_overlap",
+                                                   "boundary_side_overlap",
+                                                   "max_end_overlap",
+                                                   "max_side_overlap",
+                                                   "optimize_to_surface",
+                                                   "link_with_rapids",
+                                                   "min_length",
+                                                   "lead_in",
+                                                   "lead_out",
+                                                   "force_tangential_lead_out",
+                                                   "fillet_radius",
+                                                   "corner_melt_reduction",
+                                                   "corner_speed",
+                                                   "turns_outside",
+                                                   "line_matching_limit",
+                                                   "line_extension",
+                                                   "step_tolerance",
+                                                   "angle_tolerance"};
+  slicer::FillParams& f = s.fill;
+  {
+    static constexpr std::pair<std::string_view, slicer::FillStyleKind> kStyles[] = {
+        {"one_way", slicer::FillStyleKind::kOneWay},
+        {"simple_zigzag", slicer::FillStyleKind::kSimpleZigzag},
+        {"smart_zigzag", slicer::FillStyleKind::kSmartZigzag},
+        {"smart_zigzag_constant_overlap", slicer::FillStyleKind::kSmartZigzagConstantOverlap},
+        {"sparse_zigzag", slicer::FillStyleKind::kSparseZigzag},
+        {"variable_bead_regions", slicer::FillStyleKind::kVariableBeadRegions}};
+    const std::string style = fr.string(sub(spec(t, "fill.style")));
+    const auto it =
+        std::find_if(std::begin(kStyles), std::end(kStyles), [&](const auto& k) { return k.first == style; });
+    if (it == std::end(kStyles))
+      fr.fail(fr.take("style"), "style",
+              fmt::format("expected one_way, simple_zigzag, smart_zigzag, smart_zigzag_constant_overlap, "
+                          "sparse_zigzag or variable_bead_regions but found '{}'",
+                          style));
+    f.style = it->second;
+  }
+  f.angle_deg = fr.quantity(sub(spec(t, "fill.angle")));
+  f.angle_step_deg = fr.quantity(sub(spec(t, "fill.angle_step")));
+  f.overlap = fr.quantity(sub(spec(t, "fill.overlap")));
+  f.max_overlap = fr.quantity(sub(spec(t, "fill.max_overlap")));
+  if (f.max_overlap < f.overlap)
+    fr.fail(fr.take("max_overlap"), "max_overlap",
+            fmt::format("maximum pass overlap {:.0f} % is below the pass overlap {:.0f} %",
+                        100 * f.max_overlap, 100 * f.overlap));
+  f.max_sparse_spacing_mm = fr.quantity(sub(spec(t, "fill.max_sparse_spacing")));
+  f.sparse_fill_gaps = fr.boolean(sub(spec(t, "fill.sparse_fill_gaps")));
+  f.boundary_overlap = fr.optional_quantity(sub(spec(t, "fill.boundary_overlap"))).value_or(f.overlap);
+  f.boundary_side_overlap =
+      fr.optional_quantity(sub(spec(t, "fill.boundary_side_overlap"))).value_or(f.overlap);
+  f.max_end_overlap_mm = fr.quantity(sub(spec(t, "fill.max_end_overlap")));
+  f.max_side_overlap_mm = fr.quantity(sub(spec(t, "fill.max_side_overlap")));
+  f.optimize_to_surface = fr.boolean(sub(spec(t, "fill.optimize_to_surface")));
+  f.link_with_rapids = fr.boolean(sub(spec(t, "fill.link_with_rapids")));
+  f.min_length_mm = fr.quantity(sub(spec(t, "fill.min_length")));
+  f.lead_in_mm = fr.quantity(sub(spec(t, "fill.lead_in")));
+  f.lead_out_mm = fr.quantity(sub(spec(t, "fill.lead_out")));
+  f.tangential_lead_out = fr.boolean(sub(spec(t, "fill.force_tangential_lead_out")));
+  f.fillet_radius = fr.quantity(sub(spec(t, "fill.fillet_radius")));
+  f.corner_melt_reduction = fr.quantity(sub(spec(t, "fill.corner_melt_reduction")));
+  f.corner_speed_mm_s = fr.optional_quantity(sub(spec(t, "fill.corner_speed"))).value_or(0.0);
+  f.turns_outside = fr.boolean(sub(spec(t, "fill.turns_outside")));
+  f.line_matching_limit_mm = fr.quantity(sub(spec(t, "fill.line_matching_limit")));
+  f.line_extension_mm = fr.quantity(sub(spec(t, "fill.line_extension")));
+  f.step_tolerance_mm = fr.quantity(sub(spec(t, "fill.step_tolerance")));
+  f.angle_tolerance_deg = fr.quantity(sub(spec(t, "fill.angle_tolerance")));
   fr.finish({}, kFillKeys);
   r.finish(t, std::array<std::string_view, 1>{"fill"});
   return s;
@@ -648,6 +762,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.machine = read_machine(machine_r);
   BlockReader material_r(tree.material, "material", tree.material_src, &tree.overridden);
   v.material = read_material(material_r);
+  v.machine.extruder.max_flow_mm3_s = v.machine.extruder_max_output_kg_s / v.material.density_kg_m3 * 1e9;
   BlockReader part_r(tree.root["part"], "part", tree.scenario_src, &tree.overridden);
   // No part is fine when every section prints an AM Outline (checked with the sections below).
   if (tree.root["part"])

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/flow.hpp"
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
 #include "slicer/gcode_writer.hpp"
@@ -25,6 +26,7 @@ struct Machine {
   MotionLimits motion;
   double extruder_output_kg_s = 0.0;
   double extruder_max_output_kg_s = 0.0;
+  Extruder extruder;  // its max flow is set from max_output once the material's density is known
   Environment environment;
   slicer::GcodeDialect dialect;
 };

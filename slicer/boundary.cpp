@@ -67,11 +67,11 @@ BoundaryPlan plan_boundary(const SectionParams& s, const Polygons& region, const
     plan.pieces.push_back(std::move(open));
   }
   if (fill) {
-    // The fill's bead centres stay w/2 − overlap·w inside the last pass's inner edge: the offset the next
-    // pass would have had. Against a shared wall they stop the same distance from the neighbour's edge.
-    plan.fill_region = offset(host, -(0.5 * w + static_cast<double>(plan.loops.size()) * pitch));
+    plan.fill = fill_regions(s, host, static_cast<int>(plan.loops.size()));
+    // Against a shared wall the fill's sides stop where they would beside a boundary bead of its own.
     if (!shared_wall.empty())
-      plan.fill_region = difference(plan.fill_region, offset(shared_wall, 0.5 * w - s.fill.overlap * w));
+      plan.fill.centres =
+          difference(plan.fill.centres, offset(shared_wall, 0.5 * w - s.fill.boundary_side_overlap * w));
   }
   return plan;
 }

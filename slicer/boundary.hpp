@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "slicer/centre_beads.hpp"
+#include "slicer/fill.hpp"
 #include "slicer/layer_builder.hpp"
 
 namespace beadtwin::slicer {
@@ -12,7 +13,7 @@ namespace beadtwin::slicer {
 struct BoundaryPlan {
   std::vector<Polygons> loops;                // closed loops of pass k (0 = outermost)
   std::vector<std::vector<Polyline>> pieces;  // open pieces of pass k that end against a shared wall
-  Polygons fill_region;                       // where fill bead centres may go (empty: no fill)
+  FillRegions fill;                           // where the fill goes (empty centres: no fill)
   Polygons reach;                             // what the outermost pass's beads can cover
 };
 

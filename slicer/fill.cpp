@@ -7,97 +7,127 @@
 #include "core/units.hpp"
 
 namespace beadtwin::slicer {
+
 namespace {
 
-Eigen::Vector2d rotate(const Eigen::Vector2d& p, double angle_rad) {
-  const double c = std::cos(angle_rad), s = std::sin(angle_rad);
-  return {c * p.x() - s * p.y(), s * p.x() + c * p.y()};
+FillStyle style_for(FillStyleKind k, bool solid) {
+  switch (k) {
+    case FillStyleKind::kOneWay:
+      return FillStyle::kOneWay;
+    case FillStyleKind::kSimpleZigzag:
+      return FillStyle::kSimpleZigzag;
+    case FillStyleKind::kSmartZigzagConstantOverlap:
+      return FillStyle::kSmartZigzagConstantOverlap;
+    case FillStyleKind::kSparseZigzag:
+      return solid ? FillStyle::kSmartZigzag : FillStyle::kSparseZigzag;
+    case FillStyleKind::kSmartZigzag:
+    case FillStyleKind::kVariableBeadRegions:
+      return FillStyle::kSmartZigzag;
+  }
+  return FillStyle::kSmartZigzag;
 }
 
-Polygons rotate(const Polygons& polys, double angle_rad) {
-  Polygons out = polys;
-  for (auto& poly : out)
-    for (auto& p : poly) p = rotate(p, angle_rad);
-  return out;
-}
-
-// Zigzag (serpentine) fill lines: parallel lines at `pitch` across `region` in direction `angle_rad`,
-// clipped to the region and chained so each line starts near where the previous one ended.
-std::vector<Polyline> zigzag_lines(const Polygons& region, double angle_rad, double pitch) {
-  const Polygons local = rotate(region, -angle_rad);
-  double y_min = std::numeric_limits<double>::infinity(), y_max = -y_min;
-  double x_min = y_min, x_max = -y_min;
-  for (const auto& poly : local)
-    for (const auto& p : poly) {
-      y_min = std::min(y_min, p.y());
-      y_max = std::max(y_max, p.y());
-      x_min = std::min(x_min, p.x());
-      x_max = std::max(x_max, p.x());
-    }
-  if (!(y_max > y_min)) return {};
-  // Centre the lines in the region so the leftover gap splits evenly on both sides.
-  const double span = y_max - y_min;
-  const int count = static_cast<int>(std::floor(span / pitch)) + 1;
-  const double first = y_min + 0.5 * (span - (count - 1) * pitch);
-  std::vector<Polyline> lines;
-  for (int i = 0; i < count; ++i) {
-    const double y = first + i * pitch;
-    lines.push_back({{x_min - 1.0, y}, {x_max + 1.0, y}});
+// Runs the free ends of a path on along their passes by `by`: the path's own start and end, and the ends
+// beside a hole it crosses without depositing (they meet the passes around the hole). Ends that turn into
+// the next pass stay where they are: the turn runs beside the boundary.
+void extend_free_ends(FillPath& path, double by) {
+  auto& seg = path.segments;
+  if (by <= 0 || seg.empty()) return;
+  auto from = [&](std::size_t i) { return i == 0 ? path.start : seg[i - 1].to; };
+  auto dir = [&](std::size_t i) -> Eigen::Vector2d {
+    const Eigen::Vector2d d = seg[i].to - from(i);
+    return d.norm() > 1e-9 ? Eigen::Vector2d(d.normalized()) : Eigen::Vector2d::Zero();
+  };
+  std::vector<Eigen::Vector2d> ends(seg.size());  // new end of each segment
+  for (std::size_t i = 0; i < seg.size(); ++i) ends[i] = seg[i].to;
+  Eigen::Vector2d start = path.start;
+  for (std::size_t i = 0; i < seg.size(); ++i) {
+    if (!seg[i].print) continue;
+    const bool free_start = i == 0 || !seg[i - 1].print;
+    const bool free_end = i + 1 == seg.size() || !seg[i + 1].print;
+    if (free_start) (i == 0 ? start : ends[i - 1]) -= by * dir(i);
+    if (free_end) ends[i] += by * dir(i);
   }
-  std::vector<Polyline> clipped = clip_lines(lines, local);
-  // Order by scan line, then along it, and rotate back.
-  for (auto& l : clipped) {
-    if (l.front().x() > l.back().x()) std::reverse(l.begin(), l.end());
-  }
-  std::sort(clipped.begin(), clipped.end(), [](const Polyline& a, const Polyline& b) {
-    if (std::abs(a.front().y() - b.front().y()) > 1e-6) return a.front().y() < b.front().y();
-    return a.front().x() < b.front().x();
-  });
-  for (auto& l : clipped)
-    for (auto& p : l) p = rotate(p, angle_rad);
-  return clipped;
+  path.start = start;
+  for (std::size_t i = 0; i < seg.size(); ++i) seg[i].to = ends[i];
 }
 
 }  // namespace
 
-void lay_fill(LayerBuilder& b, const SectionParams& s, const Polygons& fill_region, int layer_in_section) {
+FillRegions fill_regions(const SectionParams& s, const Polygons& host, int passes_laid) {
+  const FillParams& f = s.fill;
   const double w = s.bead_width_mm;
-  const double fill_pitch = w * (1.0 - s.fill.overlap);
-  if (fill_region.empty()) return;
-  const double angle = (s.fill.angle_deg + layer_in_section * s.fill.angle_step_deg) * kPi / 180.0;
-  std::vector<Polyline> lines = zigzag_lines(fill_region, angle, fill_pitch);
-  // Serpentine: take the nearest remaining line end each time; link with a printed turn when the turn is
-  // short and stays inside the region, otherwise lift and travel.
-  std::vector<bool> used(lines.size(), false);
-  const Polygons turn_region = offset(fill_region, 0.5 * w);
-  bool printing = false;
-  for (std::size_t count = 0; count < lines.size(); ++count) {
-    std::size_t best = 0;
-    bool reverse = false;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < lines.size(); ++i) {
-      if (used[i]) continue;
-      const double d0 = (lines[i].front() - b.head()).squaredNorm();
-      const double d1 = (lines[i].back() - b.head()).squaredNorm();
-      if (d0 < best_d) best_d = d0, best = i, reverse = false;
-      if (d1 < best_d) best_d = d1, best = i, reverse = true;
-    }
-    used[best] = true;
-    Polyline line = lines[best];
-    if (reverse) std::reverse(line.begin(), line.end());
-    const Eigen::Vector2d mid = 0.5 * (line.front() + b.head());
-    const bool link = printing && std::sqrt(best_d) <= 1.5 * fill_pitch && contains(turn_region, mid);
-    if (!link) {
-      if (printing) b.event(ExtruderEvent::kMeltOff);
-      b.travel_to(line.front());
-      b.event(ExtruderEvent::kMeltOn);
-      printing = true;
-    } else {
-      b.print_segment(line.front(), Feature::kFill, -1);
-    }
-    for (std::size_t i = 1; i < line.size(); ++i) b.print_segment(line[i], Feature::kFill, -1);
+  FillRegions out;
+  if (passes_laid == 0) {
+    // No boundary: bead centres half a bead inside the outline, ends out to it.
+    out.centres = offset(host, -0.5 * w);
+    out.end_reach_mm = 0.5 * w;
+    return out;
   }
-  if (printing) b.event(ExtruderEvent::kMeltOff);
+  // The boundary beads' inner edge, then the sides' overlap with it and how far pass ends reach into it.
+  const double pitch = w * (1.0 - s.boundary.overlap);
+  const double inner = w + (passes_laid - 1) * pitch;
+  double side = f.boundary_side_overlap * w;
+  if (f.max_side_overlap_mm > 0) side = std::min(side, f.max_side_overlap_mm);
+  double end =
+      f.optimize_to_surface ? (f.max_end_overlap_mm > 0 ? f.max_end_overlap_mm : w) : f.boundary_overlap * w;
+  if (f.max_end_overlap_mm > 0) end = std::min(end, f.max_end_overlap_mm);
+  out.centres = offset(host, -(inner + 0.5 * w - side));
+  out.end_reach_mm = 0.5 * w - side + end;
+  return out;
+}
+
+int lay_fill(LayerBuilder& b, const SectionParams& s, const FillRegions& regions, int layer_in_section,
+             bool solid) {
+  const FillParams& f = s.fill;
+  if (regions.centres.empty()) return 0;
+  FillPattern p;
+  p.style = style_for(f.style, solid);
+  p.angle_rad = (f.angle_deg + layer_in_section * f.angle_step_deg) * kPi / 180.0;
+  p.bead_width_mm = s.bead_width_mm;
+  p.overlap = f.overlap;
+  p.max_overlap = f.max_overlap;
+  p.max_sparse_spacing_mm = f.max_sparse_spacing_mm;
+  p.sparse_fill_gaps = f.sparse_fill_gaps;
+  p.min_fill_length_mm = f.min_length_mm;
+  p.link_with_rapids = f.link_with_rapids;
+  p.fillet_radius_mm = f.fillet_radius * 0.5 * s.bead_width_mm;
+  p.turns_outside = f.turns_outside;
+  p.line_extension_mm = f.line_extension_mm;
+  p.line_matching_limit_mm = f.line_matching_limit_mm;
+  const double corner_flow = 1.0 - f.corner_melt_reduction;
+  int beads = 0;
+  for (FillPath path : plan_fill(regions.centres, p)) {
+    if (path.segments.empty()) continue;
+    // Free ends (the path's own, and those beside a hole it crosses) reach into the boundary beads; ends
+    // that turn into the next pass stay where they are (the turn runs beside the boundary).
+    extend_free_ends(path, regions.end_reach_mm);
+    const Eigen::Vector2d first_dir = (path.segments.front().to - path.start).normalized();
+    b.travel_to(path.start - f.lead_in_mm * first_dir);
+    b.event(ExtruderEvent::kMeltOn);
+    ++beads;
+    if (f.lead_in_mm > 0) b.print_segment(path.start, Feature::kLeadIn, -1);
+    bool melting = true;
+    for (const FillSegment& seg : path.segments) {
+      if (!seg.print) {
+        // Over a hole: stop depositing, cross, resume (patent (58)).
+        if (melting) b.event(ExtruderEvent::kMeltOff);
+        melting = false;
+        b.travel_to(seg.to);
+        continue;
+      }
+      if (!melting) {
+        b.event(ExtruderEvent::kMeltOn);
+        ++beads;
+        melting = true;
+      }
+      b.print_segment(seg.to, Feature::kFill, -1, seg.corner ? corner_flow : 1.0,
+                      seg.corner ? f.corner_speed_mm_s : 0.0);
+    }
+    if (melting && f.lead_out_mm > 0) b.lead_out(f.lead_out_mm, f.tangential_lead_out);
+    if (melting) b.event(ExtruderEvent::kMeltOff);
+  }
+  return beads;
 }
 
 }  // namespace beadtwin::slicer

@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "core/flow.hpp"
 #include "core/toolpath.hpp"
+#include "slicer/melt_events.hpp"
 
 namespace beadtwin::slicer {
 
@@ -19,6 +21,11 @@ struct GcodeDialect {
   int decimals = 3;
   bool arcs =
       false;  // the controller takes G2/G3 in the XY plane (G17) with I/J centre offsets from the start
+  // Written only with an extruder (GcodeOptions::extruder):
+  std::string rpm_word = "S";    // pump or screw speed, rev/min; empty: never written
+  std::string prime_code = "";   // starts a prime (patent (51)); empty: a comment
+  std::string reverse_on = "";   // pump or screw turns backwards (patent (52)); empty: a comment
+  std::string reverse_off = "";  // it stops turning backwards; empty: a comment
 };
 
 struct GcodeHeader {
@@ -35,6 +42,15 @@ struct GcodeOptions {
   // GcodeDialect::arcs, runs of print moves are written as G2/G3 arcs that stay within this distance of the
   // moves (slicer/arc_fit.hpp). A missing entry, 0 or a dialect without arcs writes straight moves only.
   std::vector<double> arc_tolerance_mm;
+  // The machine's extruder. Without it (nullptr) the program carries no extruder words: melt events are the
+  // dialect's codes, other timed dwells plain G4 blocks. With a gear pump or screw, the speed word
+  // (dialect.rpm_word, rev/min) goes with every melt on and every print move where the speed changes; with
+  // a filament extruder, every print move gets its E length (M83, relative extrusion, eq. 3). Coast moves
+  // get neither: the pump is off.
+  const Extruder* extruder = nullptr;
+  // Melt settings per section (indexed by Move::section), as given to apply_melt_settings: the reverse RPM
+  // and set at control. A missing entry: the defaults.
+  std::vector<MeltSettings> melt;
 };
 
 // The whole program as text. Feeds are per minute (F in mm/min or in/min). Melt events become the dialect's
@@ -44,6 +60,18 @@ struct GcodeOptions {
 // moves that share Z, section, layer, feature, pass, feed, bead width, roller state and volume per length;
 // travel, dwells and extruder events end a run. Each arc block writes X and Y, then I and J (the centre
 // relative to the arc's start, in the program's units), and F when the feed changes.
+//
+// Prime and reverse (slicer/melt_events.hpp), with an extruder:
+//   prime    The melt on starts the pump at the priming speed; the prime code (if any), then G4 P<prime
+//            time>; the first print move sets the bead's speed. A filament machine feeds the prime's length
+//            in place, G1 E<length> F<feed>.
+//   reverse  The reverse code with the reverse speed, G4 P<reverse time> and the reverse-off code; without
+//            the delay (duration 0) the reverse goes on while the head moves on (coast and travel) and is
+//            turned off before the next melt on or print move. A filament machine with a displacement draws
+//            the filament back in place, G1 E-<length> F<feed>, instead of the dwell.
+//   set at control
+//            Only the prime code or reverse code: the controller supplies times and speeds.
+// Codes left empty in the dialect are written as comments.
 std::string write_gcode(const Toolpath& toolpath, const GcodeDialect& dialect, const GcodeHeader& header,
                         const GcodeOptions& options = {});
 

@@ -117,6 +117,19 @@ class LayerBuilder {
     event(ExtruderEvent::kMeltOff);
   }
 
+  // A printed lead-out after the bead just laid: straight on along its last move (tangential), or back
+  // along that move over the bead just laid (the pump slowed by the melt setting).
+  void lead_out(double length_mm, bool tangential) {
+    if (length_mm <= 0 || tp_.moves.empty() || tp_.moves.back().kind != MoveKind::kPrint) return;
+    const Move last = tp_.moves.back();
+    const Eigen::Vector2d d = (last.end - last.start).head<2>().normalized();
+    if (tangential)
+      print_segment(head_ + length_mm * d, Feature::kLeadOut, last.pass);
+    else
+      print_segment(head_ - std::min(length_mm, last.length_mm()) * d, Feature::kLeadOut, last.pass,
+                    1.0 - s_.melt_reduction);
+  }
+
   // One bead of its own width (a thin wall's); at least as wide as the layer is high.
   void print_thin(const Eigen::Vector2d& to, double width_mm, Feature feature = Feature::kThinWall) {
     const double w = std::max(width_mm, s_.layer_height_mm);
@@ -125,8 +138,10 @@ class LayerBuilder {
     if (tp_.moves.size() > before) tp_.moves.back().bead_width_mm = w;
   }
 
-  // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another).
-  void print_segment(const Eigen::Vector2d& to, Feature feature, int pass, double flow = 1.0) {
+  // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another, or the
+  // fill's corner reduction); `feed_mm_s` > 0 replaces the print speed (the fill's corner speed).
+  void print_segment(const Eigen::Vector2d& to, Feature feature, int pass, double flow = 1.0,
+                     double feed_mm_s = 0.0) {
     const double len = (to - head_).norm();
     if (len < 1e-6) return;
     Move m = base(feature);
@@ -135,7 +150,7 @@ class LayerBuilder {
     m.roller_down = true;
     m.start = {head_.x(), head_.y(), z_};
     m.end = {to.x(), to.y(), z_};
-    m.feed_mm_s = s_.print_speed_mm_s;
+    m.feed_mm_s = feed_mm_s > 0 ? feed_mm_s : s_.print_speed_mm_s;
     m.volume_mm3 = area_ * len * flow;
     tp_.moves.push_back(m);
     head_ = to;

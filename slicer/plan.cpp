@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 
 #include "core/bead.hpp"
 #include "core/error.hpp"
@@ -92,7 +93,7 @@ std::vector<std::pair<std::vector<Polyline>, double>> laid_beads(const Toolpath&
 // Void detection (patent (46)): the parts of `region` the beads laid since move `first` leave uncovered,
 // wider than the section's minimum void width; counted in `stats` and, when asked, filled.
 void find_voids(LayerBuilder& b, const SectionParams& s, const Polygons& region, std::size_t first,
-                const Toolpath& tp, PlanStats& stats) {
+                const Toolpath& tp, PlanStats& stats, bool fill) {
   Polygons covered;
   for (const auto& [chains, width] : laid_beads(tp, first)) covered = unite(covered, sweep(chains, width));
   const double min_width = s.voids.min_width_mm > 0 ? s.voids.min_width_mm : 0.25 * s.bead_width_mm;
@@ -100,7 +101,7 @@ void find_voids(LayerBuilder& b, const SectionParams& s, const Polygons& region,
   for (const Polygon& v : voids)
     if (area_mm2({v}) > 0) ++stats.voids_found;
   stats.void_area_mm2 += std::abs(area_mm2(voids));
-  if (!s.voids.fill) return;
+  if (!fill) return;
   // A void gets beads of its own width down its middle: one up to the bead width, two side by side up to
   // twice it; wider voids are reported, not filled (they want fill passes, not a bead).
   CentreBeadRules rules;
@@ -121,6 +122,7 @@ struct LayerJob {
   bool fill = false;
   bool outline = false;  // an AM Outline layer: the section's own path, not a slice
   Polygons shared_wall;  // the region of the section whose wall this one shares, at this height
+  bool solid = false;    // a top or bottom surface layer: a sparse fill is laid solid
 };
 
 // One layer: the boundary passes and (where enabled, or forced for rafts) the fill, in the section's layer
@@ -155,11 +157,35 @@ void lay_layer(Toolpath& tp, const SectionParams& s, const LayerJob& job, Eigen:
   const std::size_t first = tp.moves.size();
   LayerBuilder b(tp, s, job.section, layer, z_top, head, job.role);
   const BoundaryPlan plan = plan_boundary(s, region, job.shared_wall, job.fill);
-  if (s.fill_first) lay_fill(b, s, plan.fill_region, job.angle_index);
+  if (s.fill_first) lay_fill(b, s, plan.fill, job.angle_index, job.solid);
   lay_boundary(b, s, plan, job.angle_index);
   if (s.boundary.thin_walls) lay_thin_walls(b, s, region, plan);
-  if (!s.fill_first) lay_fill(b, s, plan.fill_region, job.angle_index);
-  if (s.voids.detect || s.voids.fill) find_voids(b, s, region, first, tp, stats);
+  if (!s.fill_first) lay_fill(b, s, plan.fill, job.angle_index, job.solid);
+  // Variable bead regions (patent (62)): the voids the fill leaves against the boundary get beads.
+  const bool vbr = job.fill && s.fill.style == FillStyleKind::kVariableBeadRegions;
+  if (s.voids.detect || s.voids.fill || vbr) find_voids(b, s, region, first, tp, stats, s.voids.fill || vbr);
+}
+
+// Whether the layer between z0 and z1 holds a top or bottom surface of the part (patent (65)): faces within
+// the fill's angle tolerance of horizontal, in that height band, wider than the step tolerance across.
+bool surface_layer(const TriangleMesh& mesh, const SectionParams& s, double z0, double z1) {
+  const double cos_tol = std::cos(s.fill.angle_tolerance_deg * kPi / 180.0);
+  Polygons flat;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.vertices[static_cast<std::size_t>(t[0])];
+    const Eigen::Vector3d b = mesh.vertices[static_cast<std::size_t>(t[1])];
+    const Eigen::Vector3d c = mesh.vertices[static_cast<std::size_t>(t[2])];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    if (n.norm() <= 0 || std::abs(n.z()) < cos_tol * n.norm()) continue;
+    const double zc = (a.z() + b.z() + c.z()) / 3.0;
+    if (zc < z0 - 1e-6 || zc > z1 + 1e-6) continue;
+    Polygon tri = {a.head<2>(), b.head<2>(), c.head<2>()};
+    if (area_mm2({tri}) < 0) std::reverse(tri.begin(), tri.end());
+    flat.push_back(std::move(tri));
+  }
+  if (flat.empty()) return false;
+  const double step = s.fill.step_tolerance_mm > 0 ? s.fill.step_tolerance_mm : s.bead_width_mm;
+  return !offset(offset(union_nonzero(flat), -0.5 * step), 0.5 * step).empty();
 }
 
 // A section as the planner slices it: its parameters and the mesh it slices.
@@ -183,28 +209,27 @@ void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section,
       ++stats.empty_layers;
       continue;
     }
+    // A layer of the section; rafts and stock on top are solid layers with an outline of the section's.
+    auto job = [&](double z_top, Polygons outline, Feature role, bool fill) {
+      LayerJob j;
+      j.z_top_mm = z_top;
+      j.section = section;
+      j.order = order;
+      j.region = std::move(outline);
+      j.angle_index = index++;
+      j.role = role;
+      j.fill = fill;
+      j.solid = role != Feature::kUnknown;
+      return j;
+    };
     if (index == 0) {
       // Rafts: solid layers with the first layer's outline; the part sits on them (z_shift_mm includes them).
       for (int r = 0; r < s.rafts; ++r)
-        jobs.push_back({z_cad - (s.rafts - r) * h + z_shift_mm,
-                        section,
-                        order,
-                        region,
-                        index++,
-                        Feature::kRaft,
-                        true,
-                        false,
-                        {}});
+        jobs.push_back(job(z_cad - (s.rafts - r) * h + z_shift_mm, region, Feature::kRaft, true));
     }
-    jobs.push_back({z_cad + z_shift_mm,
-                    section,
-                    order,
-                    std::move(region),
-                    index++,
-                    Feature::kUnknown,
-                    s.fill.enabled,
-                    false,
-                    {}});
+    jobs.push_back(job(z_cad + z_shift_mm, std::move(region), Feature::kUnknown, s.fill.enabled));
+    if (s.fill.enabled && s.fill.style == FillStyleKind::kSparseZigzag && !s.fill.sparse_fill_gaps)
+      jobs.back().solid = surface_layer(mesh, s, z_cad - h, z_cad);
     if (wall) {
       PlanStats ignored;  // the other section counts its own slices
       jobs.back().shared_wall = layer_region(wall->mesh, *wall->params, z_cad - 0.5 * h, ignored);
@@ -215,9 +240,18 @@ void section_jobs(const TriangleMesh& mesh, const SectionParams& s, int section,
   if (!last_at) return;
   const Polygons top = jobs[*last_at].region;
   const double top_z = jobs[*last_at].z_top_mm;
-  for (int t = 0; t < s.stock_on_top; ++t)
-    jobs.push_back(
-        {top_z + (t + 1) * h, section, order, top, index++, Feature::kStockOnTop, true, false, {}});
+  for (int t = 0; t < s.stock_on_top; ++t) {
+    LayerJob j;
+    j.z_top_mm = top_z + (t + 1) * h;
+    j.section = section;
+    j.order = order;
+    j.region = top;
+    j.angle_index = index++;
+    j.role = Feature::kStockOnTop;
+    j.fill = true;
+    j.solid = true;
+    jobs.push_back(std::move(j));
+  }
 }
 
 // AM Outline: every layer of the section prints its 2-D path (patent (39)).
@@ -320,7 +354,7 @@ void validate(const std::vector<SectionParams>& sections) {
 }  // namespace
 
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
-                       const MotionLimits& motion, PlanStats* stats) {
+                       const MotionLimits& motion, PlanStats* stats, const Extruder* extruder) {
   validate(sections);
   std::vector<std::size_t> order(sections.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -371,6 +405,18 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
       continue;
     }
     lay_layer(tp, sections[static_cast<std::size_t>(j.section)], j, head, local);
+  }
+  // Melt on / melt off (patent (51)-(53)): prime, coast and reverse around every bead.
+  std::vector<MeltSettings> melt;
+  bool any_melt = false;
+  for (const SectionParams& s : sections) {
+    melt.push_back(s.melt);
+    any_melt |= s.melt.prime || s.melt.coast || s.melt.reverse;
+  }
+  if (any_melt) {
+    if (!extruder)
+      throw InputError({}, "sections", "melt on / melt off settings need the machine's extruder");
+    apply_melt_settings(tp, melt, *extruder);
   }
   time_toolpath(tp, motion);
   if (stats) *stats = local;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/toolpath.hpp"
+#include "slicer/melt_events.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/polygons.hpp"
 
@@ -46,11 +47,46 @@ struct BoundaryParams {
   double thin_wall_intersection_distance_mm = 0.0;
 };
 
+// The fill styles of patent (56)-(62), FIGS. 15-19.
+enum class FillStyleKind : std::uint8_t {
+  kOneWay,                      // FIG. 15: every line the same way, back to the start side between lines
+  kSimpleZigzag,                // FIG. 16: serpentine; over a hole it stops depositing, crosses, resumes
+  kSmartZigzag,                 // FIG. 17: serpentine that never crosses a hole (cell by cell)
+  kSmartZigzagConstantOverlap,  // FIG. 18: smart zigzag with one overlap throughout each cell
+  kSparseZigzag,                // FIG. 19: a serpentine with gaps, then serpentines that fill the gaps
+  kVariableBeadRegions,         // (62): smart zigzag, then beads down the voids left against the boundary
+};
+
 struct FillParams {
   bool enabled = false;
+  FillStyleKind style = FillStyleKind::kSmartZigzag;
   double angle_deg = 45.0;       // fill direction of the section's first layer (patent (63))
   double angle_step_deg = 90.0;  // change in fill angle from one layer to the next (patent (63))
-  double overlap = 0.10;         // overlap between fill passes, and between fill and boundary, fraction of w
+  double overlap = 0.10;     // least overlap between fill passes, fraction of w (patent (63) pass overlap)
+  double max_overlap = 0.5;  // most overlap between fill passes (constant-overlap style)
+  double max_sparse_spacing_mm = 0.0;  // sparse zigzag: first serpentine's line spacing (0: twice the pitch)
+  bool sparse_fill_gaps = true;  // sparse zigzag: then the passes in its gaps (false: the fill stays sparse)
+  double boundary_overlap = 0.10;       // fill line ends reach into the boundary beads by this fraction of w
+  double boundary_side_overlap = 0.10;  // fill lines beside the boundary overlap it by this fraction of w
+  double max_end_overlap_mm = 0.0;      // caps on those two distances (0: no cap)
+  double max_side_overlap_mm = 0.0;
+  bool optimize_to_surface = false;  // ends reach as far into the boundary as the caps allow (accuracy first)
+  bool link_with_rapids = false;     // every line its own bead: melt off, rapid, melt on between lines
+  double min_length_mm = 0.0;        // fill lines shorter than this are left out
+  double lead_in_mm = 0.0;           // straight approach printed before each fill bead
+  double lead_out_mm = 0.0;          // printed run-off after each fill bead
+  bool tangential_lead_out = true;
+  // Fill style parameters (patent (64)-(65)).
+  double fillet_radius = 0.0;           // turn corners rounded by this fraction of the bead's radius (w/2)
+  double corner_melt_reduction = 0.0;   // the pump slows by this fraction on the turns
+  double corner_speed_mm_s = 0.0;       // head speed on the turns (0: the fill speed)
+  bool turns_outside = false;           // turns may run outside the fill region (into the boundary)
+  double line_matching_limit_mm = 0.0;  // a shorter line is extended to meet a longer at a turn up to this
+  double line_extension_mm = 0.0;       // lines run on this far past the region before turning
+  // A sparse fill that leaves its gaps keeps top and bottom surfaces solid: a layer with part faces within
+  // the angle tolerance of horizontal, larger than the step tolerance across, is filled solid.
+  double step_tolerance_mm = 0.0;
+  double angle_tolerance_deg = 5.0;
 };
 
 // Corner pull-back (patent (47)): the roller cannot follow a sharp corner; it lifts this long before the
@@ -129,6 +165,7 @@ struct SectionParams {
   double melt_reduction = 0.0;  // pump slows by this fraction where a bead is laid over one just laid
   int rafts = 0;                // layers printed under the section's first layer (the part sits on them)
   int stock_on_top = 0;         // layers printed on the section's top layer with its outline
+  MeltSettings melt;            // melt on / melt off (patent (51)-(53))
   PullBackParams pull_back;
   SmoothingParams smoothing;
   VoidParams voids;
@@ -148,7 +185,10 @@ struct PlanStats {
 // Plans every section and merges their layers by height into one Toolpath (times from `motion`). Sections
 // may overlap in Z only when they slice different bodies (checked by the scenario loader). Throws InputError
 // on parameters the planner cannot use.
+// With an `extruder`, each section's melt on / melt off settings become prime, coast and reverse events
+// (slicer/melt_events.hpp); without one, sections must not ask for them.
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
-                       const MotionLimits& motion, PlanStats* stats = nullptr);
+                       const MotionLimits& motion, PlanStats* stats = nullptr,
+                       const Extruder* extruder = nullptr);
 
 }  // namespace beadtwin::slicer

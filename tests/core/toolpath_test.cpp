@@ -67,6 +67,29 @@ TEST(Motion, StraightContinuationKeepsSpeedAndCornersSlowDown) {
   EXPECT_NEAR(corner.layers[0].end_s, corner.total_time_s(), 1e-12);
 }
 
+TEST(Motion, HeadMovesOnThroughTheMeltOffIntoACoast) {
+  // Melt off (an instantaneous event) between a print move and its coast: the head does not stop, so the
+  // pair takes as long as one straight move. Before anything but a coast the event still stops the head.
+  MotionLimits lim;
+  lim.max_feed_mm_s = 1000;
+  lim.acceleration_mm_s2 = 1000;
+  Move off;
+  off.kind = MoveKind::kDwell;
+  off.event = ExtruderEvent::kMeltOff;
+  off.start = off.end = {500, 0, 1};
+  off.layer = 0;
+  Move coast = straight(500, 1000, 100);
+  coast.feature = Feature::kCoast;
+  Toolpath tp;
+  tp.layers.resize(1);
+  tp.moves = {straight(0, 500, 100), off, coast};
+  time_toolpath(tp, lim);
+  EXPECT_NEAR(tp.total_time_s(), 1000.0 / 100 + 100.0 / 1000, 1e-9);
+  tp.moves[2].feature = Feature::kBoundary;
+  time_toolpath(tp, lim);
+  EXPECT_NEAR(tp.total_time_s(), 2 * (500.0 / 100 + 100.0 / 1000), 1e-9);
+}
+
 TEST(Motion, DwellKeepsItsDuration) {
   Toolpath tp;
   tp.layers.resize(1);

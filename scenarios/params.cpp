@@ -28,6 +28,12 @@ constexpr ParamSpec kSection[] = {
      "patent (39) AM Outline", true},
     {"outline.closed", T::kBool, D::kDimensionless, "true", 0, 0, false,
      "the outline path returns to its start", "patent (39)"},
+    {"variable_height.slope", T::kQuantity, D::kFraction, "0", -1, 1, false,
+     "AM Outline: the bead grows this much taller per length along the direction (2 % is 0.02 mm per mm); "
+     "the flow stays constant and the head slows where the bead is taller",
+     "seed 002 eqs. 4-12"},
+    {"variable_height.direction", T::kQuantity, D::kDimensionless, "[1, 0]", 0, 0, false,
+     "AM Outline: the plane direction [x, y] the bead's height grows along", "seed 002 eq. 4"},
     {"layers", T::kInteger, D::kDimensionless, "", 1, 100000, false,
      "number of layers, instead of an upper Z limit (for AM Outline sections)", "patent (39)", true},
     {"z", T::kQuantity, D::kLength, "", -kInf, kInf, false,

@@ -390,6 +390,23 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
     static constexpr std::string_view kOutlineKeys[] = {"points", "closed"};
     orr.finish({}, kOutlineKeys);
   }
+  // Variable layer height with constant feed (seed 002): outline sections only.
+  if (YAML::Node vh = r.take("variable_height"); vh.IsDefined()) {
+    if (s.outline_path.empty())
+      r.fail(vh, "variable_height", "a variable layer height needs an AM Outline section (outline: points)");
+    BlockReader vr(vh, r.full_key("variable_height"), std::make_shared<YamlSource>(r.source()));
+    ParamSpec slope = spec(t, "variable_height.slope");
+    slope.key = "slope";
+    s.height_slope = vr.quantity(slope);
+    if (YAML::Node d = vr.take("direction"); d.IsDefined()) {
+      if (!d.IsSequence() || d.size() != 2) vr.fail(d, "direction", "expected a direction [x, y]");
+      s.height_direction = {vr.parse(d[0], Dimension::kDimensionless, "direction"),
+                            vr.parse(d[1], Dimension::kDimensionless, "direction")};
+      if (!(s.height_direction.norm() > 0)) vr.fail(d, "direction", "expected a non-zero direction [x, y]");
+    }
+    static constexpr std::string_view kKeys[] = {"slope", "direction"};
+    vr.finish({}, kKeys);
+  }
   // Containment boundaries (patent (41)): one outside polygon, and one or more inside polygons.
   if (YAML::Node c = r.take("containment"); c.IsDefined()) {
     BlockReader cr(c, r.full_key("containment"), std::make_shared<YamlSource>(r.source()));

@@ -269,8 +269,8 @@ void outline_jobs(const SectionParams& s, int section, int order, double z_shift
   }
 }
 
-void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top, int index,
-                 Eigen::Vector2d& head) {
+void lay_outline_path(Toolpath& tp, const SectionParams& s, int section, double z_top, int index,
+                      Eigen::Vector2d& head) {
   Polygon path = s.outline_path;
   for (Eigen::Vector2d& p : path) p += s.shift_mm;
   const double length =
@@ -297,6 +297,70 @@ void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top
       (s.outline_path.back() - s.start_point_mm).norm() < (s.outline_path.front() - s.start_point_mm).norm();
   if (from_far_end) std::reverse(path.begin(), path.end());
   b.print_open(path, 0, s.boundary.lead_in_mm, s.boundary.lead_out_mm);
+}
+
+// Variable layer height (seed 002, eq. 12) on the moves of outline layer `index` from move `first`: each
+// point's layer top rises to z_base + (index + 1)·h(p) with h(p) = h0 + slope·(p − origin)·dir, and each
+// print move, cut into pieces short enough that h changes by at most 1 %, lays A(h) = π h²/4 + b_p h with
+// the core width b_p = w − h0 at the speed that keeps the flow at A(h0)·v0.
+void apply_height_gradient(Toolpath& tp, std::size_t first, const SectionParams& s, double z_top, int index,
+                           const Eigen::Vector2d& origin) {
+  const double h0 = s.layer_height_mm, b_p = s.bead_width_mm - h0;
+  const Eigen::Vector2d dir = s.height_direction.normalized();
+  const double z_base = z_top - (index + 1) * h0;
+  auto height = [&](const Eigen::Vector3d& p) {
+    return h0 + s.height_slope * (p.head<2>() - origin).dot(dir);
+  };
+  auto top = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(p.x(), p.y(), z_base + (index + 1) * height(p));
+  };
+  const double flow = (0.25 * kPi * h0 * h0 + b_p * h0) * s.print_speed_mm_s;  // Q, constant (eqs. 9-10)
+  std::vector<Move> out(tp.moves.begin(), tp.moves.begin() + static_cast<std::ptrdiff_t>(first));
+  for (std::size_t i = first; i < tp.moves.size(); ++i) {
+    Move m = tp.moves[i];
+    if (m.kind != MoveKind::kPrint) {
+      // Travels and events follow the wedge's top where they are at the layer's height.
+      if (std::abs(m.start.z() - z_top) < 1e-9) m.start = top(m.start);
+      if (std::abs(m.end.z() - z_top) < 1e-9) m.end = top(m.end);
+      out.push_back(m);
+      continue;
+    }
+    const double dh = std::abs(height(m.end) - height(m.start));
+    const int pieces = std::max(1, static_cast<int>(std::ceil(dh / (0.01 * h0))));
+    // The melt setting's reduction (a retraced lead-out) carries over.
+    const double scale = m.volume_mm3 / (bead_area_mm2(m.bead_width_mm, m.layer_height_mm) * m.length_mm());
+    for (int k = 0; k < pieces; ++k) {
+      Move piece = m;
+      const Eigen::Vector3d a = m.start + (m.end - m.start) * (static_cast<double>(k) / pieces);
+      const Eigen::Vector3d b = m.start + (m.end - m.start) * (static_cast<double>(k + 1) / pieces);
+      const double h = height(0.5 * (a + b));
+      if (!(h > 0))
+        throw InputError({}, "sections." + s.name + ".variable_height",
+                         "the bead's height falls to zero along the path");
+      const double area = 0.25 * kPi * h * h + b_p * h;
+      piece.start = top(a);
+      piece.end = top(b);
+      piece.layer_height_mm = h;
+      piece.bead_width_mm = b_p + h;
+      piece.feed_mm_s = flow / area;  // eq. 12: constant flow, the head slows as the bead grows
+      piece.volume_mm3 = area * (b - a).head<2>().norm() * scale;
+      out.push_back(piece);
+    }
+  }
+  tp.moves = std::move(out);
+}
+
+void lay_outline(Toolpath& tp, const SectionParams& s, int section, double z_top, int index,
+                 Eigen::Vector2d& head) {
+  const std::size_t first = tp.moves.size();
+  lay_outline_path(tp, s, section, z_top, index, head);
+  if (s.height_slope == 0.0) return;
+  // The wedge starts at the path's first point along the gradient.
+  const Eigen::Vector2d dir = s.height_direction.normalized();
+  Eigen::Vector2d origin = s.outline_path.front() + s.shift_mm;
+  for (const Eigen::Vector2d& p : s.outline_path)
+    if ((p + s.shift_mm).dot(dir) < origin.dot(dir)) origin = p + s.shift_mm;
+  apply_height_gradient(tp, first, s, z_top, index, origin);
 }
 
 // The mesh a section slices: the whole part, or the one body it names, laid down on its slice plane.

@@ -119,6 +119,12 @@ struct SectionParams {
   // of slicing the part.
   std::vector<Eigen::Vector2d> outline_path;
   bool outline_closed = true;
+  // Variable layer height with constant feed (seed 002, eqs. 4-12; AM Outline sections): the bead's height
+  // grows by `height_slope` mm per mm along `height_direction` from the path's first point in that
+  // direction, its core width w − h staying that of the layer height; the extruder's flow stays constant
+  // and the head slows where the bead is taller (eq. 12), and every layer's top follows the wedge.
+  double height_slope = 0.0;
+  Eigen::Vector2d height_direction = Eigen::Vector2d::UnitX();
   double z_min_mm = 0.0;  // bottom of the section's first layer
   double z_max_mm = 0.0;  // top of the section's last layer
   double layer_height_mm = 5.08;

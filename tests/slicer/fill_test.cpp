@@ -9,6 +9,7 @@
 #include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/flow.hpp"
+#include "core/units.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -202,6 +203,49 @@ TEST(Fill, MeltEventsNeedAndUseTheExtruder) {
   }
   EXPECT_EQ(primes, beads);
   EXPECT_NEAR(coast, 25.0 * beads, 1e-6);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer
+
+namespace beadtwin::slicer {
+namespace {
+
+// Seed 002, eqs. 4-12: a bead growing linearly taller along the path, laid with a constant flow: the head
+// slows as A(h) = π h²/4 + b_p h grows, the core width b_p stays w − h0, and each layer's top is a wedge.
+TEST(Fill, VariableLayerHeightKeepsTheFlowConstant) {
+  SectionParams s;
+  s.name = "wedge";
+  s.z_max_mm = 10;  // two layers of h0 = 5
+  s.layer_height_mm = 5;
+  s.bead_width_mm = 20;
+  s.print_speed_mm_s = 40;
+  s.travel_speed_mm_s = 200;
+  s.outline_path = {{0, 0}, {200, 0}};
+  s.outline_closed = false;
+  s.height_slope = 0.01;  // 5 mm at x = 0, 7 mm at x = 200
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
+  const double b_p = 15, q = (kPi / 4 * 25 + b_p * 5) * 40;
+  int pieces = 0;
+  double last_feed = 1e9;
+  for (const Move& m : tp.moves) {
+    if (m.kind != MoveKind::kPrint) continue;
+    ++pieces;
+    const double x = 0.5 * (m.start.x() + m.end.x());
+    const double h = 5 + 0.01 * x;
+    EXPECT_NEAR(m.layer_height_mm, h, 1e-9);
+    EXPECT_NEAR(m.bead_width_mm, b_p + h, 1e-9);
+    // Eq. 12 written out: v = Q / (h (π h / 4 + b_p)).
+    EXPECT_NEAR(m.feed_mm_s, q / (h * (kPi * h / 4 + b_p)), 1e-9);
+    EXPECT_NEAR(m.volume_mm3 / (m.end - m.start).head<2>().norm() * m.feed_mm_s, q, 1e-6 * q);
+    if (m.layer == 0) {
+      EXPECT_LT(m.feed_mm_s, last_feed);  // slower as the bead grows
+      last_feed = m.feed_mm_s;
+    }
+    // The top follows the wedge: layer n's top at (n + 1) h(x).
+    EXPECT_NEAR(m.end.z(), (m.layer + 1) * (5 + 0.01 * m.end.x()), 1e-9);
+  }
+  EXPECT_GT(pieces, 2 * 30);  // cut finely: h changes by at most 1 % per piece
 }
 
 }  // namespace

@@ -43,8 +43,8 @@ void extend_free_ends(FillPath& path, double by) {
   Eigen::Vector2d start = path.start;
   for (std::size_t i = 0; i < seg.size(); ++i) {
     if (!seg[i].print) continue;
-    const bool free_start = i == 0 || !seg[i - 1].print;
-    const bool free_end = i + 1 == seg.size() || !seg[i + 1].print;
+    const bool free_start = i == 0 ? path.free_start : !seg[i - 1].print;
+    const bool free_end = i + 1 == seg.size() ? path.free_end : !seg[i + 1].print;
     if (free_start) (i == 0 ? start : ends[i - 1]) -= by * dir(i);
     if (free_end) ends[i] += by * dir(i);
   }

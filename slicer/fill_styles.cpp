@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "core/error.hpp"
@@ -321,12 +322,47 @@ LocalPath fillet(const LocalPath& path, double radius) {
   return out;
 }
 
-std::vector<FillPath> to_global(const std::vector<LocalPath>& paths, const FillPattern& f) {
+// Sparse gap passes (paths from `first` on) end where the first serpentine turned: there they stop short,
+// overlapping the turn's bead by the pass overlap instead of running over it, and those ends are not free.
+// Returns (free start, free end) per path.
+std::vector<std::pair<bool, bool>> trim_against_turns(std::vector<LocalPath>& paths, std::size_t first,
+                                                      const FillPattern& f) {
+  std::vector<std::pair<bool, bool>> free(paths.size(), {true, true});
+  const double w = f.bead_width_mm, back = w * (0.5 - f.overlap);
+  auto near_turn = [&](const Eigen::Vector2d& p) {
+    for (std::size_t i = 0; i < first; ++i)
+      for (std::size_t k = 1; k < paths[i].size(); ++k) {
+        if (!paths[i][k].corner) continue;
+        const Eigen::Vector2d a = paths[i][k - 1].p, d = paths[i][k].p - a;
+        const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+        if ((a + t * d - p).norm() < 0.5 * w) return true;
+      }
+    return false;
+  };
+  for (std::size_t i = first; i < paths.size(); ++i) {
+    LocalPath& path = paths[i];
+    if (path.size() < 2) continue;
+    for (const bool at_end : {false, true}) {
+      Vertex& v = at_end ? path.back() : path.front();
+      const Vertex& inner = at_end ? path[path.size() - 2] : path[1];
+      if (!near_turn(v.p)) continue;
+      const Eigen::Vector2d d = inner.p - v.p;
+      if (d.norm() <= back + kMinLine) continue;
+      v.p += back * d.normalized();
+      (at_end ? free[i].second : free[i].first) = false;
+    }
+  }
+  return free;
+}
+
+std::vector<FillPath> to_global(const std::vector<LocalPath>& paths, const FillPattern& f,
+                                const std::vector<std::pair<bool, bool>>& free = {}) {
   std::vector<FillPath> out;
-  for (const LocalPath& local : paths) {
-    const LocalPath path = fillet(local, f.fillet_radius_mm);
+  for (std::size_t n = 0; n < paths.size(); ++n) {
+    const LocalPath path = fillet(paths[n], f.fillet_radius_mm);
     if (path.size() < 2) continue;
     FillPath fp{rotate(path.front().p, f.angle_rad), {}};
+    if (n < free.size()) std::tie(fp.free_start, fp.free_end) = free[n];
     for (std::size_t i = 1; i < path.size(); ++i)
       fp.segments.push_back({rotate(path[i].p, f.angle_rad), path[i].print, path[i].corner});
     out.push_back(std::move(fp));
@@ -374,12 +410,15 @@ std::vector<FillPath> plan_fill(const Polygons& region, const FillPattern& patte
       // The gap passes lie between beads already laid: a printed turn at their ends would run over the
       // first serpentine's turns, so each gap pass is a bead of its own.
       const std::size_t passes = pattern.sparse_fill_gaps ? every : 1;
+      std::size_t first_phase = 0;
       for (std::size_t residue = 0; residue < passes; ++residue) {
         a.end_path();
         a.set_linking(residue == 0);
         a.serpentine(cell_lines(cells, rows, pattern, every, residue), static_cast<double>(every) * pitch);
+        if (residue == 0) first_phase = a.paths().size();
       }
-      break;
+      const auto free = trim_against_turns(a.paths(), first_phase, pattern);
+      return to_global(a.paths(), pattern, free);
     }
   }
   return to_global(a.paths(), pattern);

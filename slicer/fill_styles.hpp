@@ -49,6 +49,10 @@ struct FillSegment {
 struct FillPath {
   Eigen::Vector2d start;
   std::vector<FillSegment> segments;
+  // Whether the path's first and last points are free bead ends (that may run on into the boundary); an
+  // end pulled back against a bead laid before it (a sparse gap pass meeting a turn) is not.
+  bool free_start = true;
+  bool free_end = true;
 };
 
 // The fill of `region`, the area bead centres may reach (already inside the boundary passes; outer contours

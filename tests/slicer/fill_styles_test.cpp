@@ -519,5 +519,35 @@ TEST(FillStyle, BadParametersAreReportedTogether) {
   }
 }
 
+// Sparse gap passes stop short of the first serpentine's turns instead of running over them: where a gap
+// pass meets a turn, its bead overlaps the turn's by no more than the pass overlap, and that end is not free.
+TEST(FillStyle, SparseGapPassesStopShortOfTheTurns) {
+  FillPattern f;
+  f.style = FillStyle::kSparseZigzag;
+  f.bead_width_mm = kW;
+  f.overlap = 0.1;
+  f.max_sparse_spacing_mm = 3 * kW * 0.9;
+  const std::vector<FillPath> paths = plan_fill(centres({{{0, 0}, {600, 0}, {600, 400}, {0, 400}}}), f);
+  const std::vector<Seg> segs = flatten(paths);
+  int pulled_back = 0;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    for (const bool at_end : {false, true}) {
+      if (at_end ? paths[i].free_end : paths[i].free_start) continue;
+      ++pulled_back;
+      const Eigen::Vector2d p = at_end ? paths[i].segments.back().to : paths[i].start;
+      double nearest = 1e9;
+      for (const Seg& s : segs) {
+        if (!s.corner || s.path >= i) continue;
+        const Eigen::Vector2d d = s.b - s.a;
+        const double t = std::clamp((p - s.a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        nearest = std::min(nearest, (s.a + t * d - p).norm());
+      }
+      // The gap bead's square end lies w/2 − overlap·w from the turn's centre line: they overlap by 10 %.
+      EXPECT_NEAR(nearest, kW * (0.5 - 0.1), 1e-6);
+    }
+  }
+  EXPECT_GT(pulled_back, 10);
+}
+
 }  // namespace
 }  // namespace beadtwin::slicer

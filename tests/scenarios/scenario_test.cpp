@@ -391,6 +391,9 @@ TEST(Scenario, ContainmentSlicePlaneSharedWallSmoothingAndVoids) {
 
   EXPECT_EQ(load_error(replace(text, "slice_plane: top", "slice_plane: diagonal")).key(),
             "sections.walls.slice_plane");
+  const InputError self = load_error(replace(text, "shares_wall_with: floor", "shares_wall_with: walls"));
+  EXPECT_EQ(self.key(), "sections.walls.shares_wall_with");
+  EXPECT_GT(self.where().line, 0);
   EXPECT_EQ(load_error(replace(text, "max_overlap: 40 %", "max_overlap: 5 %")).key(),
             "sections.walls.boundary.max_overlap");
   EXPECT_EQ(load_error(replace(text, "inside: [[[10, 10]", "inside: [[[10]")).key(),

@@ -159,6 +159,7 @@ Machine read_machine(BlockReader& r) {
     std::string c = r.string(spec(t, key));
     return c == "none" ? std::string() : c;
   };
+  m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
   m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
   m.dialect.prime_code = code("gcode.prime_code");
   m.dialect.reverse_on = code("gcode.reverse_on");

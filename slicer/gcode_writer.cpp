@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "slicer/macro_loops.hpp"
+
 #include "core/units.hpp"
 #include "slicer/arc_fit.hpp"
 
@@ -454,9 +456,10 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
     }
   }
   if (x) x->end_reverse();
-  w.line(d.melt_off);
+  w.line(fmt::format("{} (end of program)", d.melt_off));
   w.line("M30");
   w.line("%");
+  if (d.macro_loops) return loop_repeated_layers(w.out());
   return std::move(w.out());
 }
 

@@ -19,6 +19,9 @@ struct GcodeDialect {
   std::string roller_down = "";  // optional code to engage the compression roller
   std::string roller_up = "";
   int decimals = 3;
+  // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
+  // (slicer/macro_loops.hpp).
+  bool macro_loops = false;
   bool arcs =
       false;  // the controller takes G2/G3 in the XY plane (G17) with I/J centre offsets from the start
   // Written only with an extruder (GcodeOptions::extruder):

@@ -1,0 +1,91 @@
+// Fanuc macro print programs (seed 002, section 2.7): repeated layers written once in a WHILE loop must
+// command what the plain program commands.
+#include "slicer/macro_loops.hpp"
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "slicer/gcode_writer.hpp"
+#include "slicer/mesh.hpp"
+#include "slicer/plan.hpp"
+
+namespace beadtwin::slicer {
+namespace {
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+// The motion blocks of a program with its one-level WHILE loops unrolled by hand (the loop counter #100,
+// the Z variable #101 = z0 + #100 * step), comments dropped.
+std::vector<std::string> unrolled(const std::string& program) {
+  const std::vector<std::string> lines = lines_of(program);
+  std::vector<std::string> out;
+  const std::regex z_of(R"(#101=([-0-9.]+)\+#100\*([-0-9.]+))"), count_of(R"(WHILE \[#100 LT (\d+)\] DO 1)");
+  auto strip = [](std::string l) { return l.substr(0, l.find(" (")); };
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    std::smatch m;
+    if (!std::regex_search(lines[i], m, count_of)) {
+      if (lines[i].empty() || lines[i][0] == '(' || lines[i][0] == '#') continue;
+      out.push_back(strip(lines[i]));
+      continue;
+    }
+    const int count = std::stoi(m[1]);
+    std::size_t end = i + 1;
+    while (lines[end] != "END 1") ++end;
+    std::smatch zm;
+    EXPECT_TRUE(std::regex_search(lines[i + 1], zm, z_of)) << lines[i + 1];
+    const double z0 = std::stod(zm[1]), step = std::stod(zm[2]);
+    for (int k = 0; k < count; ++k)
+      for (std::size_t j = i + 2; j < end; ++j) {
+        if (lines[j][0] == '(' || lines[j][0] == '#') continue;
+        std::string l = strip(lines[j]);
+        const std::size_t at = l.find("Z#101");
+        if (at != std::string::npos) {
+          std::string z = fmt::format("{:.3f}", z0 + k * step);
+          while (z.back() == '0') z.pop_back();
+          if (z.back() == '.') z.pop_back();
+          l.replace(at, 5, "Z" + z);
+        }
+        out.push_back(l);
+      }
+    i = end;
+  }
+  return out;
+}
+
+TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
+  SectionParams s;
+  s.name = "ring";
+  s.z_max_mm = 40;  // 8 layers of 5 mm
+  s.layer_height_mm = 5;
+  s.bead_width_mm = 20;
+  s.print_speed_mm_s = 60;
+  s.travel_speed_mm_s = 300;
+  s.outline_path = {{0, 0}, {400, 0}, {400, 300}, {0, 300}};
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
+  GcodeDialect plain_d;
+  const std::string plain = write_gcode(tp, plain_d, {});
+  GcodeDialect loop_d;
+  loop_d.macro_loops = true;
+  const std::string looped = write_gcode(tp, loop_d, {});
+  EXPECT_NE(looped.find("WHILE [#100 LT 7] DO 1"), std::string::npos) << looped;
+  EXPECT_LT(lines_of(looped).size(), lines_of(plain).size() / 2);
+  EXPECT_EQ(unrolled(looped), unrolled(plain));
+  // Layers that differ (a seam moving along the path) stay as they are.
+  s.seam_offset_mm = 37;
+  const Toolpath moving = plan_toolpath(TriangleMesh{}, {s}, {});
+  EXPECT_EQ(write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

@@ -153,25 +153,25 @@ Machine read_machine(BlockReader& r) {
     r.fail(r.take("gcode.units"), "gcode.units", fmt::format("expected in or mm but found '{}'", units));
   m.dialect.inches = units == "in";
   m.dialect.arcs = r.boolean(spec(t, "gcode.arcs"));
-  m.dialect.roller_down = r.string(spec(t, "gcode.roller_down"));
-  m.dialect.roller_up = r.string(spec(t, "gcode.roller_up"));
+  // Codes a machine does not have are "none" (written as comments).
   auto code = [&](std::string_view key) {
     std::string c = r.string(spec(t, key));
     return c == "none" ? std::string() : c;
   };
-  m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
-  m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
-  m.dialect.prime_code = code("gcode.prime_code");
-  m.dialect.reverse_on = code("gcode.reverse_on");
-  m.dialect.reverse_off = code("gcode.reverse_off");
-  if (m.dialect.roller_down == "none") m.dialect.roller_down.clear();
-  if (m.dialect.roller_up == "none") m.dialect.roller_up.clear();
+  m.dialect.melt_on = code("gcode.melt_on");
+  m.dialect.melt_off = code("gcode.melt_off");
+  m.dialect.roller_down = code("gcode.roller_down");
+  m.dialect.roller_up = code("gcode.roller_up");
   if (m.dialect.roller_down.empty() != m.dialect.roller_up.empty())
     r.fail(r.take(m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down"),
            m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down",
            "give both roller codes (down and up), or neither");
-  m.dialect.melt_on = r.string(spec(t, "gcode.melt_on"));
-  m.dialect.melt_off = r.string(spec(t, "gcode.melt_off"));
+  m.dialect.prime_code = code("gcode.prime_code");
+  m.dialect.reverse_on = code("gcode.reverse_on");
+  m.dialect.reverse_off = code("gcode.reverse_off");
+  m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
+  m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
+  m.dialect.absolute_e = r.boolean(spec(t, "gcode.absolute_e"));
   r.finish(t);
   return m;
 }

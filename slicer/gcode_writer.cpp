@@ -151,7 +151,13 @@ class ExtruderWords {
       : w_(w), d_(d), o_(o), e_(*o.extruder) {}
 
   void header() const {
-    if (filament()) w_.line("M83 (relative extrusion)");
+    if (!filament()) return;
+    if (d_.absolute_e) {
+      w_.line("M82 (absolute extrusion)");
+      w_.line("G92 E0");
+    } else {
+      w_.line("M83 (relative extrusion)");
+    }
   }
 
   // Writes the dwell moves[i] when it is an extruder event written the extruder's way; false otherwise.
@@ -164,7 +170,7 @@ class ExtruderWords {
         return true;
       case ExtruderEvent::kMeltOff:
         rpm_.clear();
-        w_.line(fmt::format("{} (melt off)", d_.melt_off));
+        w_.line(code_or_comment(d_.melt_off, "melt off"));
         return true;
       case ExtruderEvent::kPrime:
         prime(m);
@@ -226,6 +232,12 @@ class ExtruderWords {
   // half a unit of the last decimal of the exact total.
   std::string filament_word(Words& x, double length_mm) const {
     x.e_exact_mm += length_mm;
+    if (d_.absolute_e) {
+      // The total so far, as written.
+      const std::string e = w_.num(x.e_exact_mm);
+      x.e_written_mm = w_.parse_mm(e);
+      return e;
+    }
     const std::string e = w_.num(x.e_exact_mm - x.e_written_mm);
     x.e_written_mm += w_.parse_mm(e);
     return e;
@@ -255,6 +267,10 @@ class ExtruderWords {
   }
 
   void melt_on(const std::vector<Move>& moves, std::size_t i) {
+    if (d_.melt_on.empty()) {
+      w_.line("(melt on)");
+      return;
+    }
     std::string blk = d_.melt_on;
     const double flow = speed_words() ? flow_at_melt_on(moves, i) : 0.0;
     if (flow > 0) {
@@ -419,9 +435,9 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
         continue;
       }
       if (m.event == ExtruderEvent::kMeltOn)
-        w.line(fmt::format("{} (melt on)", d.melt_on));
+        w.line(code_or_comment(d.melt_on, "melt on"));
       else if (m.event == ExtruderEvent::kMeltOff)
-        w.line(fmt::format("{} (melt off)", d.melt_off));
+        w.line(code_or_comment(d.melt_off, "melt off"));
       else if (m.duration_s > 0)
         w.line(fmt::format("G4 P{:.3f} ({})", m.duration_s, to_string(m.event)));
       ++i;
@@ -456,7 +472,7 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
     }
   }
   if (x) x->end_reverse();
-  w.line(fmt::format("{} (end of program)", d.melt_off));
+  w.line(d.melt_off.empty() ? "(end of program)" : fmt::format("{} (end of program)", d.melt_off));
   w.line("M30");
   w.line("%");
   if (d.macro_loops) return loop_repeated_layers(w.out());

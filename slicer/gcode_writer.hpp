@@ -14,14 +14,17 @@ namespace beadtwin::slicer {
 struct GcodeDialect {
   std::string name = "gantry";
   bool inches = false;           // G20 and inch coordinates/feeds, else G21 and mm
-  std::string melt_on = "M23";   // extruder feed on (the M23/M24 convention of Fanuc macro print programs)
-  std::string melt_off = "M24";  // extruder feed off
+  std::string melt_on = "M23";   // extruder feed on (the M23/M24 convention of Fanuc macro print programs);
+  std::string melt_off = "M24";  // extruder feed off; empty: a comment (desktop machines extrude by E)
   std::string roller_down = "";  // optional code to engage the compression roller
   std::string roller_up = "";
   int decimals = 3;
   // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
   // (slicer/macro_loops.hpp).
   bool macro_loops = false;
+  // Filament machines: E as the running total (M82, Marlin/RepRap absolute extrusion) instead of per move
+  // (M83).
+  bool absolute_e = false;
   bool arcs =
       false;  // the controller takes G2/G3 in the XY plane (G17) with I/J centre offsets from the start
   // Written only with an extruder (GcodeOptions::extruder):

@@ -1,0 +1,69 @@
+// Print-program dialects (issue 5 item 6): Marlin/RepRap E words, relative (M83) and absolute (M82), and
+// machines without melt codes.
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/flow.hpp"
+#include "slicer/gcode_writer.hpp"
+#include "slicer/mesh.hpp"
+#include "slicer/plan.hpp"
+
+namespace beadtwin::slicer {
+namespace {
+
+Toolpath small_part() {
+  SectionParams s;
+  s.name = "all";
+  s.z_max_mm = 1;
+  s.layer_height_mm = 0.2;
+  s.bead_width_mm = 0.45;
+  s.print_speed_mm_s = 40;
+  s.travel_speed_mm_s = 150;
+  s.boundary.passes = 2;
+  s.fill.enabled = true;
+  return plan_toolpath(make_box({30, 20, 1}), {s}, {});
+}
+
+// Sum of E over a relative program, or the last E of an absolute one.
+double filament_total(const std::string& program, bool absolute) {
+  std::istringstream in(program);
+  const std::regex e_word(R"( E(-?[0-9.]+))");
+  double total = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (line.rfind("G1", 0) != 0 || !std::regex_search(line, m, e_word)) continue;
+    total = absolute ? std::stod(m[1]) : total + std::stod(m[1]);
+  }
+  return total;
+}
+
+TEST(GcodeDialect, RelativeAndAbsoluteEWordsFeedTheSameFilament) {
+  const Toolpath tp = small_part();
+  Extruder filament;
+  filament.kind = ExtruderKind::kFilament;
+  filament.filament_diameter_mm = 1.75;
+  GcodeOptions o;
+  o.extruder = &filament;
+  GcodeDialect d;
+  d.melt_on.clear();
+  d.melt_off.clear();
+  const std::string relative = write_gcode(tp, d, {}, o);
+  d.absolute_e = true;
+  const std::string absolute = write_gcode(tp, d, {}, o);
+  EXPECT_NE(relative.find("M83"), std::string::npos);
+  EXPECT_NE(absolute.find("M82"), std::string::npos);
+  EXPECT_NE(absolute.find("G92 E0"), std::string::npos);
+  // Machines without melt codes get comments, never M23 (which Marlin reads as "select SD file").
+  EXPECT_EQ(relative.find("M23"), std::string::npos);
+  EXPECT_NE(relative.find("(melt on)"), std::string::npos);
+  // Both feed the filament the bead needs: V / (π d²/4), to the program's last decimal.
+  const double expected = tp.commanded_volume_mm3() / filament_area_mm2(filament);
+  EXPECT_NEAR(filament_total(relative, false), expected, 1e-3);
+  EXPECT_NEAR(filament_total(absolute, true), expected, 1e-3);
+}
+
+}  // namespace
+}  // namespace beadtwin::slicer

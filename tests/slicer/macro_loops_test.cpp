@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "slicer/gcode_writer.hpp"
+#include "slicer/macro.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -85,6 +86,43 @@ TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
   s.seam_offset_mm = 37;
   const Toolpath moving = plan_toolpath(TriangleMesh{}, {s}, {});
   EXPECT_EQ(write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
+}
+
+// The looped program run by the macro interpreter commands the plain program's blocks, word for word.
+TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
+  SectionParams s;
+  s.name = "ring";
+  s.z_max_mm = 50;  // 10 layers
+  s.layer_height_mm = 5;
+  s.bead_width_mm = 20;
+  s.print_speed_mm_s = 60;
+  s.travel_speed_mm_s = 300;
+  s.outline_path = {{0, 0}, {400, 0}, {400, 300}, {0, 300}};
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
+  GcodeDialect d;
+  const std::string plain = write_gcode(tp, d, {});
+  d.macro_loops = true;
+  const std::string looped = write_gcode(tp, d, {});
+  ASSERT_NE(looped.find("WHILE"), std::string::npos);
+  auto blocks = [](const std::string& program) {
+    std::vector<std::vector<std::pair<char, double>>> out;
+    MacroProgram(program).run([&](const Block& b) {
+      if (b.words.empty()) return;
+      std::vector<std::pair<char, double>> words;
+      for (const Word& w : b.words) words.emplace_back(w.letter, w.value);
+      out.push_back(std::move(words));
+    });
+    return out;
+  };
+  const auto expected = blocks(plain), got = blocks(looped);
+  ASSERT_EQ(got.size(), expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    ASSERT_EQ(got[i].size(), expected[i].size()) << "block " << i;
+    for (std::size_t k = 0; k < got[i].size(); ++k) {
+      EXPECT_EQ(got[i][k].first, expected[i][k].first) << "block " << i;
+      EXPECT_NEAR(got[i][k].second, expected[i][k].second, 1e-9) << "block " << i;
+    }
+  }
 }
 
 }  // namespace

@@ -64,15 +64,21 @@ std::vector<std::string> unrolled(const std::string& program) {
   return out;
 }
 
-TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
+// An AM Outline ring of `layers` 5 mm layers: every layer the same path.
+SectionParams ring(int layers) {
   SectionParams s;
   s.name = "ring";
-  s.z_max_mm = 40;  // 8 layers of 5 mm
+  s.z_max_mm = 5.0 * layers;
   s.layer_height_mm = 5;
   s.bead_width_mm = 20;
   s.print_speed_mm_s = 60;
   s.travel_speed_mm_s = 300;
   s.outline_path = {{0, 0}, {400, 0}, {400, 300}, {0, 300}};
+  return s;
+}
+
+TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
+  SectionParams s = ring(8);
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
   GcodeDialect plain_d;
   const std::string plain = write_gcode(tp, plain_d, {});
@@ -90,14 +96,7 @@ TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
 
 // The looped program run by the macro interpreter commands the plain program's blocks, word for word.
 TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
-  SectionParams s;
-  s.name = "ring";
-  s.z_max_mm = 50;  // 10 layers
-  s.layer_height_mm = 5;
-  s.bead_width_mm = 20;
-  s.print_speed_mm_s = 60;
-  s.travel_speed_mm_s = 300;
-  s.outline_path = {{0, 0}, {400, 0}, {400, 300}, {0, 300}};
+  const SectionParams s = ring(10);
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
   GcodeDialect d;
   const std::string plain = write_gcode(tp, d, {});

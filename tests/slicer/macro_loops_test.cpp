@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
+#include "slicer/gcode_reader.hpp"
 #include "slicer/gcode_writer.hpp"
 #include "slicer/macro.hpp"
 #include "slicer/mesh.hpp"
@@ -122,6 +124,30 @@ TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
       EXPECT_NEAR(got[i][k].second, expected[i][k].second, 1e-9) << "block " << i;
     }
   }
+}
+
+// read_gcode hands a macro program to the interpreter: the looped program reads back as the plain one.
+TEST(MacroLoops, ReadGcodeRunsMacroProgramsThroughTheInterpreter) {
+  const Toolpath tp = plan_toolpath(TriangleMesh{}, {ring(6)}, {});
+  GcodeDialect d;
+  const ReaderOptions ro = reader_options_for(d, nullptr);
+  std::istringstream plain_in(write_gcode(tp, d, {}));
+  d.macro_loops = true;
+  std::istringstream looped_in(write_gcode(tp, d, {}));
+  const Toolpath plain = read_gcode(plain_in, "plain.nc", ro),
+                 looped = read_gcode(looped_in, "looped.nc", ro);
+  ASSERT_EQ(looped.moves.size(), plain.moves.size());
+  ASSERT_EQ(looped.layers.size(), 6u);
+  for (std::size_t i = 0; i < plain.moves.size(); ++i) {
+    EXPECT_NEAR((looped.moves[i].end - plain.moves[i].end).norm(), 0.0, 1e-9) << i;
+    EXPECT_NEAR(looped.moves[i].volume_mm3, plain.moves[i].volume_mm3, 1e-9) << i;
+    EXPECT_EQ(looped.moves[i].source_line > 0, true);
+  }
+  // An endless loop is an error naming its line, not a hang.
+  std::istringstream endless("#1=0\nWHILE [#1 LT 1] DO 1\nG1 X1\nEND 1\nM30\n");
+  ReaderOptions short_run = ro;
+  short_run.max_macro_steps = 1000;
+  EXPECT_THROW((void)read_gcode(endless, "endless.nc", short_run), InputError);
 }
 
 }  // namespace

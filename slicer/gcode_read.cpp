@@ -1,0 +1,111 @@
+// read_gcode: a program's text streamed line by line through the lexer into the reader.
+#include <cstring>
+#include <istream>
+#include <iterator>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "slicer/gcode_lexer.hpp"
+#include "slicer/gcode_reader.hpp"
+#include "slicer/macro.hpp"
+
+namespace beadtwin::slicer {
+namespace {
+
+constexpr std::size_t kChunk = std::size_t{1} << 16;
+constexpr std::size_t kMaxLine = std::size_t{1} << 20;  // 1 MB: no G-code line is that long
+// Macro programs are run whole by the interpreter: the text is kept while it is no longer than this, so a
+// macro line found within it can start the program over; beyond it the program is plain G-code, streamed.
+constexpr std::size_t kMacroText = std::size_t{8} << 20;
+
+// A parameterised (Fanuc macro) program, run by the macro interpreter into the reader.
+Toolpath read_macro(const std::string& text, const std::string& file_name, const ReaderOptions& options,
+                    ReadStats* stats, int lines) {
+  MacroOptions mo;
+  mo.file_name = file_name;
+  mo.block_delete = options.block_delete;
+  mo.max_steps = options.max_macro_steps;
+  const MacroProgram program(text, mo);
+  ReaderOptions ro = options;
+  ro.block_delete = false;  // the interpreter has applied it
+  GcodeReader reader(ro, file_name);
+  program.run([&](const Block& b) {
+    if (!reader.ended()) reader.feed(b);
+  });
+  Toolpath tp = reader.finish();
+  if (stats) {
+    *stats = reader.stats();
+    stats->lines = static_cast<std::size_t>(lines);
+  }
+  return tp;
+}
+
+}  // namespace
+
+Toolpath read_gcode(std::istream& in, const std::string& file_name, const ReaderOptions& options,
+                    ReadStats* stats) {
+  GcodeReader reader(options, file_name);
+  int number = 0;
+  std::string line, kept;
+  bool macro = false;
+  const auto lex = [&] {
+    ++number;
+    if (kept.size() <= kMacroText) kept.append(line).push_back('\n');
+    const LexedLine l = lex_gcode_line(line, number, file_name);
+    line.clear();
+    if (l.kind == LineKind::kMacro) {
+      if (kept.size() > kMacroText)
+        throw InputError(
+            {file_name, number, 0}, "gcode",
+            fmt::format("macro syntax (variables, expressions or branches) after more than {} MB "
+                        "of plain G-code: a macro program is read whole and must be smaller",
+                        kMacroText >> 20));
+      macro = true;
+      return;
+    }
+    reader.feed(l.block);
+  };
+  std::string chunk(kChunk, '\0'), chunk_tail;
+  while (!reader.ended() && !macro) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (got == 0) break;
+    std::size_t at = 0;
+    while (at < got && !reader.ended() && !macro) {
+      const char* from = chunk.data() + at;
+      const auto* nl = static_cast<const char*>(std::memchr(from, '\n', got - at));
+      const std::size_t end = nl ? static_cast<std::size_t>(nl - chunk.data()) : got;
+      const std::string_view piece(from, end - at);
+      if (const std::size_t nul = piece.find('\0'); nul != std::string_view::npos)
+        throw InputError({file_name, number + 1, static_cast<int>(line.size() + nul) + 1}, "gcode",
+                         "NUL byte in the program: this is not a text file");
+      line += piece;
+      if (line.size() > kMaxLine)
+        throw InputError({file_name, number + 1, 0}, "gcode",
+                         fmt::format("line longer than {} bytes: this is not a G-code program", kMaxLine));
+      at = end;
+      if (nl) {
+        lex();
+        ++at;
+        if (macro) chunk_tail.assign(chunk.data() + at, got - at);
+      }
+    }
+  }
+  if (!line.empty() && !reader.ended() && !macro) lex();
+  if (macro) {
+    // The rest of the text (from where the chunk stopped), then the whole program through the interpreter.
+    std::string rest(std::istreambuf_iterator<char>(in), {});
+    if (rest.find('\0') != std::string::npos)
+      throw InputError({file_name, 0, 0}, "gcode", "NUL byte in the program: this is not a text file");
+    return read_macro(kept + chunk_tail + rest, file_name, options, stats, number);
+  }
+  Toolpath tp = reader.finish();
+  if (stats) {
+    *stats = reader.stats();
+    stats->lines = static_cast<std::size_t>(number);
+  }
+  return tp;
+}
+
+}  // namespace beadtwin::slicer

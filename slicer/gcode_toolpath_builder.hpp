@@ -1,0 +1,55 @@
+// The G-code reader's toolpath (slicer/gcode_reader.hpp): moves in program order, gathered into layers,
+// with the bead each print move lays.
+//
+// A layer starts when material is laid at a new Z; its height is that Z less the layer before's, or what a
+// HEIGHT annotation said. The moves without material just before the layer's first deposit that end at
+// its Z (the travel there, a melt on, an unretract) are moved into it. A print move's width follows from
+// its section A = volume / length and its height through core/bead.hpp's stadium, unless a WIDTH
+// annotation gives it; below π h²/4 the bead is round.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/toolpath.hpp"
+
+namespace beadtwin::slicer {
+
+class GcodeToolpathBuilder {
+ public:
+  // `warn(kind, message)` reports a layer whose height cannot be found; `default_layer_height_mm` (0: none)
+  // stands in for it when no layer before has one.
+  GcodeToolpathBuilder(std::string section, double default_layer_height_mm,
+                       std::function<void(const std::string&, const std::string&)> warn);
+
+  // Annotations: a layer change (forgets the height annotation), a layer height, an extrusion width (mm).
+  void layer_marker() { height_mm_.reset(); }
+  void set_height(double mm) { height_mm_ = mm; }
+  void set_width(double mm) { width_mm_ = mm; }
+
+  // Appends `m`, setting its section and layer, and for a print move or a dwell laying material its layer
+  // height and (print moves) width.
+  void add(Move m);
+  std::size_t size() const { return tp_.moves.size(); }
+  std::size_t layers() const { return tp_.layers.size(); }
+  // The toolpath, layers indexed.
+  Toolpath finish();
+
+ private:
+  void start_layer(double z);
+  void shape_bead(Move& m) const;
+
+  Toolpath tp_;
+  double default_layer_height_mm_;
+  std::function<void(const std::string&, const std::string&)> warn_;
+  std::optional<double> height_mm_;
+  std::optional<double> width_mm_;
+  int layer_ = -1;
+  double layer_z_ = 0.0;
+  double layer_height_mm_ = 0.0;
+  std::optional<std::size_t> last_deposit_;
+};
+
+}  // namespace beadtwin::slicer

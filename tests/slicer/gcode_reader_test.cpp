@@ -469,7 +469,8 @@ TEST(GcodeReaderBadInput, BinaryAbsurdAndNonFiniteInputAreErrors) {
   EXPECT_EQ(error_line("G1 X1 F600\nG1 X200000\n"), 2) << "200 m";
   EXPECT_EQ(error_line("G91\nG1 X60000 F600\nG1 X60000\n"), 3) << "relative moves adding up past 100 m";
   EXPECT_EQ(error_line("G1 X1 F-5\n"), 1);
-  EXPECT_EQ(error_line("G1 X1\n#1=5\n"), 2) << "macro syntax needs the interpreter";
+  EXPECT_EQ(error_line("G1 X1\n#1=[5\nG1 X#1\n"), 2) << "a macro program's syntax error names its line";
+  EXPECT_EQ(error_line("G1 X1 F600\n#1=1000000\nG1 X#1\n"), 3) << "macro values are checked like written ones";
   EXPECT_EQ(error_line("G1 X1 F600\nG4 P-1\n"), 2);
   ReaderOptions few;
   few.max_moves = 10;

@@ -128,6 +128,13 @@ json parameters_json(const Variant& v) {
            {"inside_out", s.boundary.inside_out}}},
          {"fill", s.fill.enabled ? fill_json(s.fill) : json("none")}});
   }
+  if (v.program)
+    return {{"machine", v.machine.name},
+            {"material", v.material.name},
+            {"program", v.program_file.string()},
+            {"program_read", v.program_summary},
+            {"voxel_size_mm", v.output.voxel_size_mm},
+            {"overrides", v.overrides}};
   return {{"machine", v.machine.name}, {"material", v.material.name},
           {"part", v.part.describe()}, {"voxel_size_mm", v.output.voxel_size_mm},
           {"overrides", v.overrides},  {"sections", sections}};

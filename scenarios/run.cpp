@@ -22,6 +22,15 @@ namespace beadtwin::scenarios {
 namespace {
 
 Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
+  if (v.program) {
+    // A program read as it was written: timed with this machine's motion.
+    Toolpath tp = *v.program;
+    if (tp.layers.empty())
+      throw InputError({v.program_file.string(), 0, 0}, "program",
+                       "the program deposits no material: there is nothing to simulate");
+    time_toolpath(tp, v.machine.motion);
+    return tp;
+  }
   BT_CHECK(v.part.loaded != nullptr);
   Toolpath tp =
       slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, stats, &v.machine.extruder);

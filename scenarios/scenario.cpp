@@ -10,6 +10,7 @@
 #include "scenarios/embedded.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/yaml_reader.hpp"
+#include "slicer/gcode_reader.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -693,6 +694,13 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
     }
   }
   const std::string& head = parts.front();
+  if (path == "program") {
+    // The program a variant simulates (a baseline beside the program being checked).
+    if (!tree.root["program"]) throw InputError(at, path, "the scenario simulates a part, not a program");
+    tree.root["program"] = value;
+    tree.overridden[path] = at;
+    return;
+  }
   YAML::Node target;
   std::size_t first = 1;
   if (head == "machine")
@@ -717,7 +725,8 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
   } else {
     throw InputError(
         at, path,
-        "a variant can set keys under machine, material, part, output, thermal, tools or sections.<name>");
+        "a variant can set program, or keys under machine, material, part, output, thermal, tools or "
+        "sections.<name>");
   }
   if (parts.size() <= first) throw InputError(at, path, "expected a key below the block");
   for (std::size_t i = first; i + 1 < parts.size(); ++i) {
@@ -802,6 +811,29 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));
   th_r.finish(thermal_params());
 
+  // A print program instead of sections: read it with the machine's dialect.
+  if (const YAML::Node prog = tree.root["program"]) {
+    BlockReader pr(tree.root, "", tree.scenario_src, &tree.overridden);
+    if (!prog.IsScalar() || prog.Scalar().empty())
+      pr.fail(prog, "program", "expected the path of a G-code program");
+    if (tree.root["sections"] || tree.root["part"])
+      pr.fail(prog, "program", "a scenario simulates either a program or a part's sections, not both");
+    v.program_file = dir / prog.Scalar();
+    std::ifstream in(v.program_file, std::ios::binary);
+    if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
+    slicer::ReadStats stats;
+    const Extruder* extruder =
+        v.machine.extruder.has_rpm() || v.machine.extruder.kind == ExtruderKind::kFilament
+            ? &v.machine.extruder
+            : nullptr;
+    v.program = std::make_shared<const Toolpath>(slicer::read_gcode(
+        in, v.program_file.string(), slicer::reader_options_for(v.machine.dialect, extruder), &stats));
+    v.program_summary = fmt::format("{}: {} lines, {} layers, {} moves", v.program_file.filename().string(),
+                                    stats.lines, v.program->layers.size(), v.program->moves.size());
+    for (const std::string& w : stats.messages) meshes.warnings.push_back(w);
+    v.part.kind = PartSpec::Kind::kNone;
+    return v;
+  }
   if (!v.part.loaded) v.part.loaded = std::make_shared<const slicer::TriangleMesh>(build_part_mesh(v.part));
   const std::map<std::string, Tool> tools = read_tools(tree, v.material);
   const YAML::Node sections = tree.root["sections"];
@@ -915,8 +947,9 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
         "description", ParamType::kString, Dimension::kDimensionless, "-", 0, 0, false, "", ""};
     sc.name = top.string(kName);
     sc.description = top.string(kDesc);
-    static constexpr std::string_view kKeys[] = {"units",   "machine", "material", "part",     "output",
-                                                 "thermal", "tools",   "sections", "variants", "gates"};
+    static constexpr std::string_view kKeys[] = {"units",    "machine", "material", "part",
+                                                 "output",   "thermal", "tools",    "sections",
+                                                 "variants", "gates",   "program"};
     for (const auto k : kKeys) (void)top.take(k);
     static const ParamSpec kTop[] = {kName, kDesc};
     top.finish(kTop, kKeys);
@@ -985,6 +1018,87 @@ Scenario load_default_scenario() {
   const auto it = files.find("default.yaml");
   if (it == files.end()) throw InternalError("the default scenario is not embedded");
   return load_scenario_text(it->second, std::string(kBuiltIn) + "/default.yaml");
+}
+
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+
+std::string infer_machine(const std::filesystem::path& program, std::string* why) {
+  std::ifstream in(program, std::ios::binary);
+  if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
+  std::string text(std::size_t{1} << 20, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  std::istringstream lines(text);
+  int e_words = 0, melt_codes = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const std::string code = line.substr(0, line.find_first_of(";("));
+    if ((code.rfind("G1", 0) == 0 || code.rfind("G0", 0) == 0) && code.find(" E") != std::string::npos)
+      ++e_words;
+    if (code.rfind("M23", 0) == 0 || code.rfind("M24", 0) == 0) ++melt_codes;
+  }
+  if (e_words > melt_codes) {
+    if (why) *why = fmt::format("{} moves with E words: a filament printer", e_words);
+    return "desktop-fff";
+  }
+  if (why)
+    *why = melt_codes > 0 ? fmt::format("{} M23/M24 melt codes and no E words: a pellet gantry", melt_codes)
+                          : std::string("no E words: a pellet gantry");
+  return "lsam-ph15";
+}
+
+Scenario load_program_check(const ProgramCheck& check) {
+  std::vector<std::string> assumed;
+  YAML::Node doc(YAML::NodeType::Map);
+  std::string file = "<check>";
+  if (!check.scenario.empty()) {
+    // Machine, material, units, output, thermal and gates from the scenario; its part and sections are not
+    // used.
+    file = check.scenario.string();
+    const std::string text = read_text_file(check.scenario, {file, 0, 0}, {});
+    YAML::Node base;
+    try {
+      base = YAML::Load(text);
+    } catch (const YAML::Exception& e) {
+      throw InputError({file, e.mark.line + 1, e.mark.column + 1}, {}, e.msg);
+    }
+    for (const char* key : {"units", "machine", "material", "output", "thermal", "gates"})
+      if (base[key]) doc[key] = base[key];
+  }
+  doc["name"] = "check " + check.program.filename().string();
+  if (!doc["units"]) doc["units"] = YAML::Load("{length: mm}");
+  if (!check.machine.empty()) {
+    doc["machine"] = check.machine;
+  } else if (!doc["machine"]) {
+    std::string why;
+    doc["machine"] = infer_machine(check.program, &why);
+    assumed.push_back(
+        fmt::format("assumed machine {} ({}); give --machine to choose", doc["machine"].Scalar(), why));
+  }
+  if (!check.material.empty()) {
+    doc["material"] = check.material;
+  } else if (!doc["material"]) {
+    doc["material"] = "cf-abs-20";
+    assumed.push_back("assumed material cf-abs-20 (the shipped material); give --material to choose");
+  }
+  doc["program"] = std::filesystem::absolute(check.program).string();
+  YAML::Node variants(YAML::NodeType::Sequence);
+  YAML::Node program_variant(YAML::NodeType::Map);
+  program_variant["name"] = "program";
+  variants.push_back(program_variant);
+  if (!check.baseline.empty()) {
+    YAML::Node baseline(YAML::NodeType::Map);
+    baseline["name"] = "baseline";
+    baseline["set"]["program"] = std::filesystem::absolute(check.baseline).string();
+    variants.push_back(baseline);
+  }
+  doc["variants"] = variants;
+  YAML::Emitter out;
+  out << doc;
+  Scenario sc = load_scenario_text(out.c_str(), file);
+  sc.warnings.insert(sc.warnings.begin(), assumed.begin(), assumed.end());
+  return sc;
 }
 
 }  // namespace beadtwin::scenarios

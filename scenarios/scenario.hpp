@@ -68,6 +68,11 @@ struct Variant {
   std::vector<slicer::SectionParams> sections;
   OutputSpec output;
   ThermalSpec thermal;
+  // A print program to simulate instead of slicing (`program:`, `beadtwin check`): read with the machine's
+  // dialect, untimed until the run times it with the machine's motion.
+  std::shared_ptr<const Toolpath> program;
+  std::filesystem::path program_file;
+  std::string program_summary;  // what the reader saw (layers, lines, warnings), for the report
 };
 
 enum class GateOp { kLess, kLessEqual, kGreater, kGreaterEqual, kEqual, kNotEqual };
@@ -101,5 +106,26 @@ Scenario load_default_scenario();
 
 // Metric names a gate may use (the report's metrics).
 const std::vector<std::string>& gate_metrics();
+
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+
+// `beadtwin check PROGRAM`: a scenario that simulates a print program instead of slicing a part.
+struct ProgramCheck {
+  std::filesystem::path program;
+  std::filesystem::path baseline;  // optional: an older program, simulated beside it and compared
+  std::string machine, material;   // names (shipped or beside the scenario) or files; empty: inferred
+  std::filesystem::path scenario;  // optional: machine, material, units, output, thermal and gates from it
+};
+
+// The machine a program was written for, guessed from its first megabyte: E words mean a filament
+// printer (desktop-fff); otherwise a pellet gantry (lsam-ph15). `why` says what decided it.
+std::string infer_machine(const std::filesystem::path& program, std::string* why);
+
+// Loads the scenario for a program check: variant "program" (and "baseline" with an older program), with
+// the machine and material given, taken from the scenario, or inferred; what was assumed is in the
+// scenario's warnings.
+Scenario load_program_check(const ProgramCheck& check);
 
 }  // namespace beadtwin::scenarios

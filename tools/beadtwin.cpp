@@ -33,9 +33,9 @@ beadtwin::scenarios::Scenario load(const std::string& path) {
   return scenario;
 }
 
-int cmd_run(const std::string& scenario_path, const std::string& out_dir,
-            const std::vector<std::string>& variants, bool quiet) {
-  const auto scenario = load(scenario_path);
+// Runs a loaded scenario and prints the verdict, the report and the images.
+int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
+                   const std::vector<std::string>& variants, bool quiet) {
   beadtwin::scenarios::RunOptions options;
   options.out_dir = out_dir;
   options.variants = variants;
@@ -54,6 +54,19 @@ int cmd_run(const std::string& scenario_path, const std::string& out_dir,
   for (const auto& v : result.variants)
     for (const auto& img : v.images) std::printf("image:  %s\n", (dir / img).c_str());
   return result.passed ? kExitPass : kExitGateFailed;
+}
+
+int cmd_run(const std::string& scenario_path, const std::string& out_dir,
+            const std::vector<std::string>& variants, bool quiet) {
+  return run_and_report(load(scenario_path), out_dir, variants, quiet);
+}
+
+// A print program simulated as it is (README, command line): machine and material given, from a scenario,
+// or inferred from the program; with a baseline, both are simulated and compared in the report.
+int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const std::string& out_dir, bool quiet) {
+  const auto scenario = beadtwin::scenarios::load_program_check(check);
+  for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  return run_and_report(scenario, out_dir, {}, quiet);
 }
 
 int cmd_slice(const std::string& scenario_path, const std::string& variant, const std::string& out) {
@@ -106,6 +119,22 @@ int main(int argc, char** argv) {
   slice->add_option("-o,--out", program_out, "Print program file to write, or - for standard output")
       ->required();
 
+  beadtwin::scenarios::ProgramCheck check;
+  std::string check_program, check_baseline, check_scenario;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check", "Simulate a print program from any slicer (or a Fanuc macro program) as it is written.");
+  check_cmd->add_option("program", check_program, "G-code program to simulate")->required();
+  check_cmd->add_option(
+      "--machine", check.machine,
+      "Machine by name (machines/NAME.yaml or shipped); default: inferred from the program");
+  check_cmd->add_option("--material", check.material, "Material by name; default: cf-abs-20");
+  check_cmd->add_option("--scenario", check_scenario,
+                        "Take machine, material, units, output, thermal and gates from this scenario");
+  check_cmd->add_option("--baseline", check_baseline,
+                        "An older program: simulated beside this one, differences in the report");
+  check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
+  check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
+
   CLI::App* params = app.add_subcommand(
       "params", "List every scenario parameter (key, type, default, range, meaning, source) as Markdown.");
 
@@ -125,6 +154,12 @@ int main(int argc, char** argv) {
   try {
     if (*run) return cmd_run(scenario_path, out_dir, variants, quiet);
     if (*slice) return cmd_slice(scenario_path, variant, program_out);
+    if (*check_cmd) {
+      check.program = check_program;
+      check.baseline = check_baseline;
+      check.scenario = check_scenario;
+      return cmd_check(check, out_dir, quiet);
+    }
     if (*params) return cmd_params();
   } catch (const beadtwin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -144,3 +144,58 @@ TEST(Cli, AbsurdResolutionsAreInputErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string read_file(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// `beadtwin check PROGRAM` (issue 5 item 5): a program from another slicer, simulated as written, with the
+// machine inferred and said so; with a baseline, both side by side; a program written as a Fanuc macro
+// program (our own macro dialect) simulated through the interpreter.
+TEST(Cli, CheckSimulatesAProgramAsItIsWritten) {
+  const std::string sample = std::string(BEADTWIN_SOURCE_DIR) + "/tests/data/prusa_box.gcode";
+  const auto out = std::filesystem::temp_directory_path() / "beadtwin_cli_check";
+  std::filesystem::remove_all(out);
+  const Result r = run("check " + sample + " -q -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("assumed machine desktop-fff"), std::string::npos) << r.output;
+  const std::string report = read_file(out / "report.json");
+  EXPECT_NE(report.find("\"program\""), std::string::npos);
+  EXPECT_NE(report.find("assumed machine desktop-fff"), std::string::npos);  // in the report too
+  EXPECT_TRUE(std::filesystem::exists(out / "program" / "fusion.png"));
+
+  // A macro program (layers in a WHILE loop) against the plain one as baseline, on the gantry.
+  const auto yaml =
+      write("beadtwin_cli_ring.yaml",
+            "name: ring\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+            "sections:\n  - name: ring\n    layers: 6\n    layer_height: 5\n    bead_width: 20\n"
+            "    speed: 60 mm/s\n    outline: {points: [[0, 0], [300, 0], [300, 200], [0, 200]]}\n"
+            "variants:\n  - name: plain\n  - name: macro\n    set: {machine.gcode.macro_loops: true}\n");
+  const auto plain = std::filesystem::temp_directory_path() / "beadtwin_cli_ring_plain.nc";
+  const auto macro = std::filesystem::temp_directory_path() / "beadtwin_cli_ring_macro.nc";
+  ASSERT_EQ(run("slice " + yaml.string() + " --variant plain -o " + plain.string()).code, 0);
+  ASSERT_EQ(run("slice " + yaml.string() + " --variant macro -o " + macro.string()).code, 0);
+  ASSERT_NE(read_file(macro).find("WHILE"), std::string::npos);
+  std::filesystem::remove_all(out);
+  const Result both = run("check " + macro.string() + " --machine lsam-ph15 --baseline " + plain.string() +
+                          " -q -o " + out.string());
+  EXPECT_EQ(both.code, 0) << both.output;
+  EXPECT_EQ(both.output.find("assumed machine"), std::string::npos) << both.output;
+  const std::string two = read_file(out / "report.json");
+  // The same part either way: the same commanded volume in both variants.
+  const auto volume = [&](std::size_t from) {
+    const std::size_t at = two.find("\"commanded_volume_mm3\":", from);
+    return at == std::string::npos ? -1.0 : std::stod(two.substr(at + 23));
+  };
+  const std::size_t second = two.find("\"commanded_volume_mm3\":") + 1;
+  EXPECT_GT(volume(0), 0);
+  EXPECT_NEAR(volume(0), volume(second), 1e-6 * volume(0));
+
+  EXPECT_EQ(run("check /nonexistent/program.gcode -q -o " + out.string()).code, 2);
+  EXPECT_EQ(run("check " + sample + " --machine nosuchmachine -q -o " + out.string()).code, 2);
+}
+
+}  // namespace

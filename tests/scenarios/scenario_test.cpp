@@ -454,3 +454,43 @@ TEST(Scenario, PullBackWritesTheMachinesRollerCodes) {
 
 }  // namespace
 }  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+namespace {
+
+// Issue 5: a PrusaSlicer program timed by our motion model on the desktop machine agrees with
+// PrusaSlicer's own estimate written in the program ("estimated printing time (normal mode)") within 10 %.
+TEST(ProgramCheck, TimingAgreesWithPrusaSlicersEstimate) {
+  const std::filesystem::path sample =
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "tests/data/prusa_box.gcode";
+  ProgramCheck check;
+  check.program = sample;
+  const Scenario sc = load_program_check(check);
+  ASSERT_EQ(sc.variants.size(), 1u);
+  const Variant& v = sc.variants[0];
+  EXPECT_EQ(v.machine.name, "desktop-fff");  // inferred from the E words
+  ASSERT_TRUE(v.program);
+  Toolpath tp = *v.program;
+  time_toolpath(tp, v.machine.motion);
+  // PrusaSlicer's estimate, "; estimated printing time (normal mode) = 2m 3s".
+  std::ifstream in(sample);
+  double estimate_s = -1;
+  for (std::string line; std::getline(in, line);) {
+    const std::string key = "; estimated printing time (normal mode) = ";
+    if (line.rfind(key, 0) != 0) continue;
+    int h = 0, m = 0, s = 0;
+    const std::string t = line.substr(key.size());
+    if (std::sscanf(t.c_str(), "%dh %dm %ds", &h, &m, &s) == 3)
+      estimate_s = 3600.0 * h + 60.0 * m + s;
+    else if (std::sscanf(t.c_str(), "%dm %ds", &m, &s) == 2)
+      estimate_s = 60.0 * m + s;
+  }
+  ASSERT_GT(estimate_s, 0);
+  EXPECT_NEAR(tp.total_time_s() / estimate_s, 1.0, 0.10) << tp.total_time_s() << " s against " << estimate_s;
+  // The machine is said to be assumed.
+  ASSERT_FALSE(sc.warnings.empty());
+  EXPECT_NE(sc.warnings.front().find("assumed machine desktop-fff"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

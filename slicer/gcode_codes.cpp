@@ -131,7 +131,7 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   o.reverse_on = codes(d.reverse_on);
   o.reverse_off = codes(d.reverse_off);
   o.inches = d.inches;
-  o.dwell_p_seconds = true;  // write_gcode writes G4 P<seconds>
+  o.dwell_p_seconds = false;  // write_gcode writes G4 P<milliseconds>
   if (extruder) {
     o.extruder = *extruder;
     if (extruder->kind == ExtruderKind::kFilament) o.filament_diameter_mm = extruder->filament_diameter_mm;

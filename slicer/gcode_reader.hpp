@@ -115,7 +115,8 @@ struct ReaderOptions {
 void validate(const ReaderOptions& options);
 
 // The options that read back a program written by write_gcode with `dialect` and, if any, `extruder`:
-// its melt, roller, prime and reverse codes, G4 P in seconds, its units, the extruder's filament or pump.
+// its melt, roller, prime and reverse codes, G4 P in milliseconds, its units, the extruder's filament or
+// pump.
 ReaderOptions reader_options_for(const GcodeDialect& dialect, const Extruder* extruder);
 
 struct ReadStats {

@@ -131,6 +131,10 @@ std::string trimmed(double value, int decimals) {
   return s;
 }
 
+// A dwell's P word: whole milliseconds, which Fanuc (G04 P, no decimal point) and Marlin/RepRap (G4 P)
+// both read.
+long dwell_ms(double seconds) { return std::lround(seconds * 1000.0); }
+
 std::string code_or_comment(const std::string& code, std::string_view what) {
   return code.empty() ? fmt::format("({})", what) : fmt::format("{} ({})", code, what);
 }
@@ -296,7 +300,7 @@ class ExtruderWords {
       if (rpm != rpm_) w_.line(d_.rpm_word + rpm);
       rpm_ = rpm;
     }
-    w_.line(fmt::format("G4 P{:.3f} (prime)", m.duration_s));
+    w_.line(fmt::format("G4 P{} (prime)", dwell_ms(m.duration_s)));
   }
 
   void reverse(const Move& m) {
@@ -321,7 +325,7 @@ class ExtruderWords {
     if (filament() && drawn_mm3 > 0)
       filament_in_place(-drawn_mm3 / filament_area_mm2(e_), m.duration_s, "reverse");
     else
-      w_.line(fmt::format("G4 P{:.3f} (reverse)", m.duration_s));
+      w_.line(fmt::format("G4 P{} (reverse)", dwell_ms(m.duration_s)));
     w_.line(code_or_comment(d_.reverse_off, "reverse off"));
   }
 
@@ -439,7 +443,7 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
       else if (m.event == ExtruderEvent::kMeltOff)
         w.line(code_or_comment(d.melt_off, "melt off"));
       else if (m.duration_s > 0)
-        w.line(fmt::format("G4 P{:.3f} ({})", m.duration_s, to_string(m.event)));
+        w.line(fmt::format("G4 P{} ({})", dwell_ms(m.duration_s), to_string(m.event)));
       ++i;
       continue;
     }

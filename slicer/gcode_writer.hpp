@@ -77,7 +77,8 @@ struct GcodeOptions {
 //            the filament back in place, G1 E-<length> F<feed>, instead of the dwell.
 //   set at control
 //            Only the prime code or reverse code: the controller supplies times and speeds.
-// Codes left empty in the dialect are written as comments.
+// Dwells are G4 P<whole milliseconds>, which Fanuc and Marlin/RepRap controllers both read. Codes left empty
+// in the dialect are written as comments.
 std::string write_gcode(const Toolpath& toolpath, const GcodeDialect& dialect, const GcodeHeader& header,
                         const GcodeOptions& options = {});
 

@@ -429,7 +429,7 @@ TEST(MeltGcode, GearPumpWritesThePrimeDwellAndTheSpeed) {
   // 94.635 mm² · 50 mm/s · 60 / 10000 mm³ = 28.39 rpm.
   const std::size_t on = index_of(lines, "M23 S30 (melt on)");
   ASSERT_LT(on, lines.size()) << g;
-  EXPECT_EQ(lines[on + 1], "G4 P2.000 (prime)");
+  EXPECT_EQ(lines[on + 1], "G4 P2000 (prime)");
   EXPECT_NE(g.find("G1 X100 F3000 S28.4\n"), std::string::npos) << g;
   // The coast runs with the pump off: no speed words until the reverse, which waits its time.
   const std::size_t off = index_of(lines, "M24 (melt off)", on);
@@ -438,7 +438,7 @@ TEST(MeltGcode, GearPumpWritesThePrimeDwellAndTheSpeed) {
   EXPECT_EQ(lines[off + 1], "(coast)");
   for (std::size_t i = off + 1; i < reverse; ++i) EXPECT_FALSE(has_word(lines[i], 'S')) << lines[i];
   EXPECT_EQ(reverse - off - 2, static_cast<std::size_t>(kCoastSteps)) << "the coast's moves";
-  EXPECT_EQ(lines[reverse + 1], "G4 P0.500 (reverse)");
+  EXPECT_EQ(lines[reverse + 1], "G4 P500 (reverse)");
   EXPECT_EQ(lines[reverse + 2], "M26 (reverse off)");
   // The second bead starts at the priming speed again.
   EXPECT_LT(index_of(lines, "M23 S30 (melt on)", on + 1), lines.size());
@@ -446,7 +446,7 @@ TEST(MeltGcode, GearPumpWritesThePrimeDwellAndTheSpeed) {
   // Codes left empty are comments.
   GcodeDialect plain;
   const std::string c = write_gcode(tp, plain, {}, o);
-  EXPECT_NE(c.find("\n(reverse at 10 rpm)\nG4 P0.500 (reverse)\n(reverse off)\n"), std::string::npos) << c;
+  EXPECT_NE(c.find("\n(reverse at 10 rpm)\nG4 P500 (reverse)\n(reverse off)\n"), std::string::npos) << c;
 }
 
 TEST(MeltGcode, ReverseWithoutDelayRunsThroughTheCoast) {
@@ -590,8 +590,8 @@ TEST(MeltGcode, NothingChangesWithoutAnExtruder) {
   const std::string g = write_gcode(tp, d, {});
   EXPECT_EQ(write_gcode(tp, d, {}, o), g) << "melt settings alone change nothing";
   // The events are plain dwells, as every program had them.
-  EXPECT_NE(g.find("M23 (melt on)\nG4 P2.000 (prime)\n"), std::string::npos) << g;
-  EXPECT_NE(g.find("\nG4 P0.500 (reverse)\n"), std::string::npos) << g;
+  EXPECT_NE(g.find("M23 (melt on)\nG4 P2000 (prime)\n"), std::string::npos) << g;
+  EXPECT_NE(g.find("\nG4 P500 (reverse)\n"), std::string::npos) << g;
   EXPECT_FALSE(has_word(g, 'S'));
   EXPECT_FALSE(has_word(g, 'E'));
   for (const char* absent : {"M83", "M25", "M27", "set at control"})

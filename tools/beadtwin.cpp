@@ -81,6 +81,22 @@ int cmd_slice(const std::string& scenario_path, const std::string& variant, cons
   return kExitPass;
 }
 
+// What beadtwin reads in a program, without simulating it: layers, moves, material and print time on the
+// machine (given or inferred).
+int cmd_read(const beadtwin::scenarios::ProgramCheck& check) {
+  const auto scenario = beadtwin::scenarios::load_program_check(check);
+  for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  const auto& v = scenario.variants.front();
+  beadtwin::Toolpath tp = *v.program;
+  beadtwin::time_toolpath(tp, v.machine.motion);
+  std::printf(
+      "%s\nmachine: %s\nlayers: %zu\nmoves: %zu\nprint length: %.1f mm\ntravel length: %.1f mm\n"
+      "commanded volume: %.1f mm3\nprint time: %.1f s\n",
+      v.program_summary.c_str(), v.machine.name.c_str(), tp.layers.size(), tp.moves.size(),
+      tp.print_length_mm(), tp.travel_length_mm(), tp.commanded_volume_mm3(), tp.total_time_s());
+  return kExitPass;
+}
+
 // The parameter tables, as Markdown (docs/parameters.md is this output).
 int cmd_params() {
   const std::string text = beadtwin::scenarios::params_markdown();
@@ -135,6 +151,11 @@ int main(int argc, char** argv) {
   check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
   check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
 
+  CLI::App* read_cmd = app.add_subcommand(
+      "read", "Read a print program and print what beadtwin sees in it (layers, moves, material, time).");
+  read_cmd->add_option("program", check_program, "G-code program to read")->required();
+  read_cmd->add_option("--machine", check.machine, "Machine by name; default: inferred from the program");
+
   CLI::App* params = app.add_subcommand(
       "params", "List every scenario parameter (key, type, default, range, meaning, source) as Markdown.");
 
@@ -154,6 +175,10 @@ int main(int argc, char** argv) {
   try {
     if (*run) return cmd_run(scenario_path, out_dir, variants, quiet);
     if (*slice) return cmd_slice(scenario_path, variant, program_out);
+    if (*read_cmd) {
+      check.program = check_program;
+      return cmd_read(check);
+    }
     if (*check_cmd) {
       check.program = check_program;
       check.baseline = check_baseline;

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Reading benchmark (issue 5): a G-code program of at least 100 MB read by `beadtwin read` (lexer, reader
+# and motion timing, one thread) and counted by `wc -l`, on the same file in the same run. Prints the
+# median wall time of each over RUNS runs and their ratio.
+# Usage: bench/read_vs_wc.sh [BUILD_DIR] [RUNS] [MEGABYTES]
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$root/build}"
+runs="${2:-3}"
+megabytes="${3:-100}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+[ -x "$build/tools/beadtwin" ] || { echo "build beadtwin first (cmake --build $build --target beadtwin)"; exit 2; }
+
+python3 "$root/bench/make_gcode.py" "$work/big.gcode" "$megabytes"
+size=$(stat -c %s "$work/big.gcode")
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
+
+wc_t=$(for _ in $(seq "$runs"); do wall wc -l "$work/big.gcode"; done | median)
+bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done | median)
+"$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff 2>/dev/null | head -4
+echo "program: $((size / 1000000)) MB, $(wc -l < "$work/big.gcode") lines"
+printf 'wc -l          (median of %s): %.3f s\n' "$runs" "$wc_t"
+printf 'beadtwin read  (median of %s): %.3f s\n' "$runs" "$bt"
+printf 'ratio beadtwin / wc -l: %.1f\n' "$(echo "$bt / $wc_t" | bc -l)"

@@ -1,7 +1,9 @@
 // read_gcode: a program's text streamed line by line through the lexer into the reader.
+#include <algorithm>
 #include <cstring>
 #include <istream>
 #include <iterator>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -41,10 +43,43 @@ Toolpath read_macro(const std::string& text, const std::string& file_name, const
   return tp;
 }
 
+// The filament diameter a program states in its settings block (PrusaSlicer, Slic3r: near its end, ";
+// filament_diameter = 1.75" or "= 1.75,1.75" for several extruders, the first taken), found without reading
+// the whole stream: the last 256 kB of a seekable stream. The stream is left where it was.
+std::optional<double> stated_filament_diameter(std::istream& in) {
+  const std::istream::pos_type start = in.tellg();
+  if (start == std::istream::pos_type(-1)) return std::nullopt;
+  in.seekg(0, std::ios::end);
+  const std::istream::pos_type end = in.tellg();
+  if (end == std::istream::pos_type(-1)) {
+    in.clear();
+    in.seekg(start);
+    return std::nullopt;
+  }
+  const std::streamoff tail = std::min<std::streamoff>(end - start, 256 * 1024);
+  in.seekg(end - tail);
+  std::string text(static_cast<std::size_t>(tail), '\0');
+  in.read(text.data(), tail);
+  in.clear();
+  in.seekg(start);
+  const std::string key = "; filament_diameter = ";
+  const std::size_t at = text.rfind(key);
+  if (at == std::string::npos) return std::nullopt;
+  try {
+    const double d = std::stod(text.substr(at + key.size(), 32));
+    if (d > 0.1 && d < 10) return d;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
-Toolpath read_gcode(std::istream& in, const std::string& file_name, const ReaderOptions& options,
+Toolpath read_gcode(std::istream& in, const std::string& file_name, const ReaderOptions& given,
                     ReadStats* stats) {
+  ReaderOptions options = given;
+  if (options.filament_diameter_from_program)
+    if (const auto d = stated_filament_diameter(in)) options.filament_diameter_mm = *d;
   GcodeReader reader(options, file_name);
   int number = 0;
   std::string line, kept;

@@ -92,7 +92,10 @@ struct ReaderOptions {
   bool block_delete = true;            // the block delete switch: blocks starting with `/` are skipped
   long max_macro_steps = 10'000'000;   // macro programs: statements run before an endless loop is an error
   double filament_diameter_mm = 1.75;  // E times π d²/4 is the volume fed, unless E is volumetric
-  bool volumetric_e = false;           // E is volume (mm³, in³ under G20) from the start
+  // A program that states its filament diameter (PrusaSlicer and Slic3r write `; filament_diameter = d` in
+  // the settings at its end) is read with that diameter: its E words were computed for it.
+  bool filament_diameter_from_program = true;
+  bool volumetric_e = false;  // E is volume (mm³, in³ under G20) from the start
 
   // The pump or screw (kGearPump, kScrew): turns the S word (rev/min) into flow. Without one, a pump
   // program's print moves lay the default bead, or nothing when there is none.

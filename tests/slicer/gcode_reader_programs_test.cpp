@@ -400,5 +400,28 @@ TEST(GcodeReaderPrusaSlicer, FreshlySlicedBoxReadsAsSliced) {
   std::filesystem::remove_all(dir);
 }
 
+// Slic3r (1.3, Debian's slic3r), a 10 mm ball at 0.3 mm layers with its default 3 mm filament: the
+// program states the filament diameter only in its settings at the end, and the reader finds it there, so
+// the volume is the filament Slic3r reports ("; filament used = 70.0mm") times π·1.5².
+TEST(GcodeReaderSlic3r, CommittedSampleReadsWithTheProgramsFilament) {
+  std::ifstream file(std::string(BEADTWIN_SOURCE_DIR) + "/tests/data/slic3r_ball.gcode");
+  ASSERT_TRUE(file) << "tests/data/slic3r_ball.gcode";
+  ReadStats stats;
+  const Toolpath tp = read_gcode(file, "slic3r_ball.gcode", {}, &stats);
+  EXPECT_NEAR(tp.commanded_volume_mm3(), 70.0 * kPi * 1.5 * 1.5, 0.05 * kPi * 2.25);  // 70.0 is rounded
+  // Layers: 0.35 mm first, then 0.3 mm, up to the ball's 10 mm.
+  ASSERT_GE(tp.layers.size(), 30u);
+  EXPECT_NEAR(tp.layers.front().z_mm, 0.35, 1e-6);
+  for (std::size_t i = 1; i < tp.layers.size(); ++i)
+    EXPECT_NEAR(tp.layers[i].z_mm - tp.layers[i - 1].z_mm, 0.3, 1e-6);
+  EXPECT_EQ(stats.warning_count(), 0u) << (stats.messages.empty() ? "" : stats.messages.front());
+  // Told otherwise, the reader keeps the diameter it is given.
+  std::ifstream again(std::string(BEADTWIN_SOURCE_DIR) + "/tests/data/slic3r_ball.gcode");
+  ReaderOptions given;
+  given.filament_diameter_from_program = false;
+  EXPECT_NEAR(read_gcode(again, "slic3r_ball.gcode", given).commanded_volume_mm3(),
+              70.0 * kPi * 1.75 * 1.75 / 4, 0.05 * kPi);
+}
+
 }  // namespace
 }  // namespace beadtwin::slicer

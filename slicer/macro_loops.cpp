@@ -77,6 +77,17 @@ std::string number(double v, int decimals) {
   return s == "-0" ? "0" : s;
 }
 
+// "(LAYER 3 SECTION ring Z 20 HEIGHT 5 TIME 23.4 S)" -> "(LAYER IN THE RUN SECTION ring HEIGHT 5)".
+std::string run_layer_comment(const std::string& header) {
+  const std::size_t section = header.find(" SECTION "), z = header.find(" Z "),
+                    height = header.find(" HEIGHT ");
+  if (section == std::string::npos || z == std::string::npos || height == std::string::npos)
+    return "(LAYER IN THE RUN SECTION - HEIGHT 0)";
+  const std::size_t height_end = header.find(' ', height + 8);
+  return "(LAYER IN THE RUN" + header.substr(section, z - section) +
+         header.substr(height, height_end - height) + ")";
+}
+
 }  // namespace
 
 std::string loop_repeated_layers(const std::string& program, int min_layers) {
@@ -137,6 +148,9 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
     out += "#100=0 (LAYER OF THE RUN)\n";
     out += fmt::format("WHILE [#100 LT {}] DO 1\n", count);
     out += fmt::format("#101={}+#100*{} (ITS Z)\n", number(z0, decimals), dz);
+    // Each pass through the loop is a layer: its comment names the section and height, as the plain
+    // program's layer comments do (a reader counts them).
+    out += run_layer_comment(first.header) + '\n';
     for (const Split& b : first.blocks) {
       if (!b.z) {
         out += b.before + '\n';

@@ -167,6 +167,8 @@ Machine read_machine(BlockReader& r) {
     r.fail(r.take(m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down"),
            m.dialect.roller_down.empty() ? "gcode.roller_up" : "gcode.roller_down",
            "give both roller codes (down and up), or neither");
+  m.dialect.heat_on = code("gcode.heat_on");
+  m.dialect.heat_off = code("gcode.heat_off");
   m.dialect.prime_code = code("gcode.prime_code");
   m.dialect.reverse_on = code("gcode.reverse_on");
   m.dialect.reverse_off = code("gcode.reverse_off");

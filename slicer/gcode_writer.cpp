@@ -133,7 +133,9 @@ std::string trimmed(double value, int decimals) {
 
 // A dwell's P word: whole milliseconds, which Fanuc (G04 P, no decimal point) and Marlin/RepRap (G4 P)
 // both read.
-long dwell_ms(double seconds) { return std::lround(seconds * 1000.0); }
+long dwell_ms(double seconds) {
+  return std::lround(seconds * 1000.0);
+}
 
 std::string code_or_comment(const std::string& code, std::string_view what) {
   return code.empty() ? fmt::format("({})", what) : fmt::format("{} ({})", code, what);
@@ -411,6 +413,11 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
                      tp.total_time_s(), tp.commanded_volume_mm3() / 1000.0));
   w.line(d.inches ? "G20 (inch)" : "G21 (mm)");
   w.line("G90 (absolute)");
+  // Heaters on for the program and off at its end (seed 002's M27/M28), unless the toolpath switches them.
+  const bool heat_events = std::any_of(tp.moves.begin(), tp.moves.end(), [](const Move& m) {
+    return m.event == ExtruderEvent::kHeatOn || m.event == ExtruderEvent::kHeatOff;
+  });
+  if (!d.heat_on.empty() && !heat_events) w.line(d.heat_on + " (heaters on)");
   if (d.arcs) w.line("G17 (XY plane for arcs)");
   std::optional<ExtruderWords> x;
   if (o.extruder) {
@@ -442,6 +449,10 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
         w.line(code_or_comment(d.melt_on, "melt on"));
       else if (m.event == ExtruderEvent::kMeltOff)
         w.line(code_or_comment(d.melt_off, "melt off"));
+      else if (m.event == ExtruderEvent::kHeatOn)
+        w.line(code_or_comment(d.heat_on, "heaters on"));
+      else if (m.event == ExtruderEvent::kHeatOff)
+        w.line(code_or_comment(d.heat_off, "heaters off"));
       else if (m.duration_s > 0)
         w.line(fmt::format("G4 P{} ({})", dwell_ms(m.duration_s), to_string(m.event)));
       ++i;
@@ -477,6 +488,7 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
   }
   if (x) x->end_reverse();
   w.line(d.melt_off.empty() ? "(end of program)" : fmt::format("{} (end of program)", d.melt_off));
+  if (!d.heat_off.empty() && !heat_events) w.line(d.heat_off + " (heaters off)");
   w.line("M30");
   w.line("%");
   if (d.macro_loops) return loop_repeated_layers(w.out());

@@ -16,6 +16,8 @@ struct GcodeDialect {
   bool inches = false;           // G20 and inch coordinates/feeds, else G21 and mm
   std::string melt_on = "M23";   // extruder feed on (the M23/M24 convention of Fanuc macro print programs);
   std::string melt_off = "M24";  // extruder feed off; empty: a comment (desktop machines extrude by E)
+  std::string heat_on = "";      // extruder heaters on (seed 002's M27), written at the program's start
+  std::string heat_off = "";     // heaters off (M28), at its end
   std::string roller_down = "";  // optional code to engage the compression roller
   std::string roller_up = "";
   int decimals = 3;

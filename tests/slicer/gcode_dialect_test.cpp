@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/flow.hpp"
+#include "slicer/gcode_reader.hpp"
 #include "slicer/gcode_writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
@@ -63,6 +64,34 @@ TEST(GcodeDialect, RelativeAndAbsoluteEWordsFeedTheSameFilament) {
   const double expected = tp.commanded_volume_mm3() / filament_area_mm2(filament);
   EXPECT_NEAR(filament_total(relative, false), expected, 1e-3);
   EXPECT_NEAR(filament_total(absolute, true), expected, 1e-3);
+}
+
+// Seed 002's heating codes: M27 at the program's start, M28 at its end, read back as heater events.
+TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
+  const Toolpath tp = small_part();
+  GcodeDialect d;
+  d.heat_on = "M27";
+  d.heat_off = "M28";
+  const std::string program = write_gcode(tp, d, {});
+  const std::size_t on = program.find("\nM27 (heaters on)\n"), off = program.find("\nM28 (heaters off)\n");
+  ASSERT_NE(on, std::string::npos);
+  ASSERT_NE(off, std::string::npos);
+  EXPECT_LT(on, program.find("(LAYER 0"));
+  EXPECT_GT(off, program.rfind("(LAYER "));
+  EXPECT_LT(off, program.find("\nM30"));
+  std::istringstream in(program);
+  const Toolpath read = read_gcode(in, "heat.nc", reader_options_for(d, nullptr));
+  int heat_on = 0, heat_off = 0;
+  for (const Move& m : read.moves) {
+    heat_on += m.event == ExtruderEvent::kHeatOn;
+    heat_off += m.event == ExtruderEvent::kHeatOff;
+  }
+  EXPECT_EQ(heat_on, 1);
+  EXPECT_EQ(heat_off, 1);
+  // Written again, the events are the codes, once each.
+  const std::string again = write_gcode(read, d, {});
+  EXPECT_EQ(again.find("M27"), again.rfind("M27"));
+  EXPECT_NE(again.find("M27"), std::string::npos);
 }
 
 }  // namespace

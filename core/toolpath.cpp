@@ -134,16 +134,25 @@ double trapezoid_time(double length, double v0, double vc, double v1, double a) 
   return (vp - v0) / a + (vp - v1) / a;
 }
 
-}  // namespace
+// std::min(cap, std::sqrt(y)), the root taken only where it may be the smaller (it seldom is, and the
+// passes over the moves wait on it): y above cap² by more than rounding can account for has a root, rounded
+// correctly and so no smaller than the double cap, no smaller than cap.
+double min_root(double cap, double y) {
+  if (y > cap * cap * (1.0 + 1e-12)) return cap;
+  return std::min(cap, std::sqrt(y));
+}
 
-void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
-  auto& moves = toolpath.moves;
+// The motion plan: calls `timed(i, start_s, duration_s)` for every move in order. Each move's length is
+// found once.
+template <class Timed>
+void plan_motion(const std::vector<Move>& moves, const MotionLimits& limits, Timed&& timed) {
   const double a = limits.acceleration_mm_s2;
   BT_CHECK(a > 0.0);
   const std::size_t n = moves.size();
-  std::vector<double> cruise(n, 0.0), entry_max(n + 1, 0.0);
+  std::vector<double> length(n), cruise(n), entry(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const Move& m = moves[i];
+    length[i] = m.length_mm();
     const double cap = m.kind == MoveKind::kTravel ? limits.max_travel_mm_s : limits.max_feed_mm_s;
     cruise[i] = m.kind == MoveKind::kDwell ? 0.0 : std::min(m.feed_mm_s > 0 ? m.feed_mm_s : cap, cap);
   }
@@ -162,10 +171,11 @@ void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
     const std::size_t mi = into_coast ? after : i;
     const Move& p = moves[pi];
     const Move& m = moves[mi];
-    if (p.length_mm() <= 0 || m.length_mm() <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell)
+    if (length[pi] <= 0 || length[mi] <= 0 || p.kind == MoveKind::kDwell || m.kind == MoveKind::kDwell)
       continue;
-    const Eigen::Vector3d u = (p.end - p.start).normalized();
-    const Eigen::Vector3d w = (m.end - m.start).normalized();
+    // As Eigen's normalized(): the vector over its norm.
+    const Eigen::Vector3d u = (p.end - p.start) / length[pi];
+    const Eigen::Vector3d w = (m.end - m.start) / length[mi];
     const double cos_theta =
         std::clamp(-u.dot(w), -1.0, 1.0);  // angle between reversed incoming and outgoing
     double vj = std::min(cruise[pi], cruise[mi]);
@@ -176,36 +186,47 @@ void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
         vj = std::min(vj, std::sqrt(a * r));
       }
     }
-    entry_max[i] = vj;
+    entry[i] = vj;
   }
   // Backward then forward pass so every speed change is reachable within the move's length.
-  std::vector<double> entry = entry_max;
-  for (std::size_t i = n; i-- > 0;) {
-    const double len = moves[i].length_mm();
-    entry[i] = std::min(entry[i], std::sqrt(entry[i + 1] * entry[i + 1] + 2 * a * len));
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const double len = moves[i].length_mm();
-    entry[i + 1] = std::min(entry[i + 1], std::sqrt(entry[i] * entry[i] + 2 * a * len));
-  }
+  for (std::size_t i = n; i-- > 0;)
+    entry[i] = min_root(entry[i], entry[i + 1] * entry[i + 1] + 2 * a * length[i]);
+  for (std::size_t i = 0; i < n; ++i)
+    entry[i + 1] = min_root(entry[i + 1], entry[i] * entry[i] + 2 * a * length[i]);
   double t = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    Move& m = moves[i];
-    m.start_s = t;
+    const Move& m = moves[i];
     if (m.kind == MoveKind::kDwell) {
+      timed(i, t, m.duration_s);
       t += m.duration_s;
       continue;
     }
-    const double len = m.length_mm();
-    if (len <= 0.0 || cruise[i] <= 0.0) {
-      m.duration_s = 0.0;
+    if (length[i] <= 0.0 || cruise[i] <= 0.0) {
+      timed(i, t, 0.0);
       continue;
     }
     const double vc = std::max({cruise[i], entry[i], entry[i + 1]});
-    m.duration_s = trapezoid_time(len, entry[i], vc, entry[i + 1], a);
-    t += m.duration_s;
+    const double d = trapezoid_time(length[i], entry[i], vc, entry[i + 1], a);
+    timed(i, t, d);
+    t += d;
   }
+}
+
+}  // namespace
+
+void time_toolpath(Toolpath& toolpath, const MotionLimits& limits) {
+  plan_motion(toolpath.moves, limits, [&](std::size_t i, double start_s, double duration_s) {
+    toolpath.moves[i].start_s = start_s;
+    toolpath.moves[i].duration_s = duration_s;
+  });
   toolpath.index_layers();
+}
+
+double motion_time_s(const Toolpath& toolpath, const MotionLimits& limits) {
+  double end_s = 0.0;
+  plan_motion(toolpath.moves, limits,
+              [&](std::size_t, double start_s, double duration_s) { end_s = start_s + duration_s; });
+  return end_s;
 }
 
 }  // namespace beadtwin

@@ -117,5 +117,7 @@ struct MotionLimits {
   double junction_deviation_mm = 0.5;  // corner rounding the controller allows; sets cornering speed
 };
 void time_toolpath(Toolpath& toolpath, const MotionLimits& limits);
+// The total time time_toolpath would find (Toolpath::total_time_s after it), leaving the toolpath as it is.
+double motion_time_s(const Toolpath& toolpath, const MotionLimits& limits);
 
 }  // namespace beadtwin

@@ -1,11 +1,14 @@
 // Machine codes for the G-code reader (slicer/gcode_reader.hpp): "M23" as a letter and a number, the sets
-// of them ReaderOptions names, matched against a block's words, and a block's parameter words.
+// of them ReaderOptions names, matched against a block's words, a block's parameter words, and a block
+// sorted by what its words mean.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slicer/gcode_block.hpp"
@@ -14,9 +17,16 @@ namespace beadtwin::slicer {
 
 struct ReaderOptions;
 
-// A code's number in tenths, so that M862.3 and M23 compare exactly: 8623 and 230.
+// A code's number in tenths, so that M862.3 and M23 compare exactly: 8623 and 230. std::lround(value * 10)
+// (halves away from zero), inline for the numbers codes have: the fraction of a double is exact.
 inline int code_tenths(double value) {
-  return static_cast<int>(std::lround(value * 10.0));
+  const double x = value * 10.0;
+  if (!(std::abs(x) < 1e9)) return static_cast<int>(std::lround(x));
+  const auto whole = static_cast<long>(x);  // towards zero
+  const double fraction = x - static_cast<double>(whole);
+  if (fraction >= 0.5) return static_cast<int>(whole + 1);
+  if (fraction <= -0.5) return static_cast<int>(whole - 1);
+  return static_cast<int>(whole);
 }
 
 struct MachineCode {
@@ -47,32 +57,33 @@ struct CodeSets {
 };
 
 // The parameter words of one block, each taken by the code that uses it; the rest are reported unused.
+// Letters A to Z are found through a table, others by search.
 class Params {
  public:
   void add(const Word& w) {
-    for (const Entry& e : entries_)
-      if (e.word.letter == w.letter) {
-        repeated_.push_back(w);
-        return;
-      }
+    if (find(w.letter)) {
+      repeated_.push_back(w);
+      return;
+    }
+    if (const int k = slot(w.letter); k >= 0) index_[static_cast<std::size_t>(k)] = entries_.size() + 1;
     entries_.push_back({w, false});
   }
   std::optional<double> take(char letter) {
-    for (Entry& e : entries_)
-      if (e.word.letter == letter) {
-        e.used = true;
-        return e.word.value;
-      }
-    return std::nullopt;
+    Entry* e = find(letter);
+    if (!e) return std::nullopt;
+    e->used = true;
+    return e->word.value;
   }
-  bool has(char letter) const {
-    return std::any_of(entries_.begin(), entries_.end(),
-                       [&](const Entry& e) { return e.word.letter == letter; });
-  }
+  bool has(char letter) const { return find(letter) != nullptr; }
   int column(char letter) const {
+    const Entry* e = find(letter);
+    return e ? e->word.column : 0;
+  }
+  void clear() {
     for (const Entry& e : entries_)
-      if (e.word.letter == letter) return e.word.column;
-    return 0;
+      if (const int k = slot(e.word.letter); k >= 0) index_[static_cast<std::size_t>(k)] = 0;
+    entries_.clear();
+    repeated_.clear();
   }
   void take_all() {
     for (Entry& e : entries_) e.used = true;
@@ -89,8 +100,39 @@ class Params {
     Word word;
     bool used;
   };
+  static int slot(char letter) { return letter >= 'A' && letter <= 'Z' ? letter - 'A' : -1; }
+  const Entry* find(char letter) const {
+    if (const int k = slot(letter); k >= 0) {
+      const std::size_t at = index_[static_cast<std::size_t>(k)];
+      return at ? &entries_[at - 1] : nullptr;
+    }
+    for (const Entry& e : entries_)
+      if (e.word.letter == letter) return &e;
+    return nullptr;
+  }
+  Entry* find(char letter) { return const_cast<Entry*>(std::as_const(*this).find(letter)); }
+
   std::vector<Entry> entries_;
+  std::array<std::size_t, 26> index_{};  // 1 + the entry of each letter A-Z; 0: none
   std::vector<Word> repeated_;
+};
+
+// One block sorted for the reader: its G and M codes by meaning, its parameters. The reader keeps one and
+// clears it for each block, so that its vectors' memory is reused.
+struct SortedBlock {
+  std::vector<Word> modal_g;   // G17-19, G20/21, G90/91
+  std::optional<Word> motion;  // G0-G3
+  std::optional<Word> dwell, set_position, home;
+  std::vector<Word> unhandled;  // codes ignored or unknown: their parameters are theirs
+  std::vector<Word> unknown;
+  std::vector<Word> m;  // M codes the reader acts on
+  Params params;
+
+  void clear() {
+    for (std::vector<Word>* v : {&modal_g, &unhandled, &unknown, &m}) v->clear();
+    motion = dwell = set_position = home = std::nullopt;
+    params.clear();
+  }
 };
 
 }  // namespace beadtwin::slicer

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 
 #include <fmt/format.h>
 
@@ -64,11 +65,31 @@ bool has_macro_syntax(std::string_view text) {
 // A run of letters that starts a macro statement (Fanuc custom macro B): IF, WHILE, GOTO, DO, END.
 bool is_macro_keyword(std::string_view run) {
   static constexpr std::array<std::string_view, 5> kKeywords = {"IF", "WHILE", "GOTO", "DO", "END"};
-  std::string up;
-  for (const char c : run) up += upper(c);
-  for (const std::string_view k : kKeywords)
-    if (up == k) return true;
+  for (const std::string_view k : kKeywords) {
+    if (k.size() != run.size()) continue;
+    bool same = true;
+    for (std::size_t i = 0; i < k.size() && same; ++i) same = upper(run[i]) == k[i];
+    if (same) return true;
+  }
   return false;
+}
+
+// The number with `digits` digits, `decimals` of them after the point, that are `mantissa` as an integer
+// (modulo 2^64), and that std::from_chars reads from [first, last). Most numbers in a program have few
+// digits: their integer and the power of ten they are scaled by are then exact doubles, and one division
+// rounds the quotient correctly, as from_chars does. The rest go to from_chars. False when from_chars does
+// not read the whole range or overflows.
+bool read_number(std::uint64_t mantissa, std::size_t digits, std::size_t decimals, const char* first,
+                 const char* last, double& value) {
+  static constexpr std::array<double, 20> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,
+                                                    1e7,  1e8,  1e9,  1e10, 1e11, 1e12, 1e13,
+                                                    1e14, 1e15, 1e16, 1e17, 1e18, 1e19};
+  if (digits <= 19 && mantissa <= (std::uint64_t{1} << 53)) {
+    value = static_cast<double>(mantissa) / kPow10[decimals];
+    return true;
+  }
+  const auto [ptr, ec] = std::from_chars(first, last, value);
+  return ec == std::errc() && ptr == last && std::isfinite(value);
 }
 
 class Lexer {
@@ -77,18 +98,33 @@ class Lexer {
     while (!text_.empty() && (text_.back() == '\r' || text_.back() == '\n')) text_.remove_suffix(1);
   }
 
-  LexedLine run() {
-    LexedLine out;
-    out.block.line = line_;
-    if (has_macro_syntax(text_)) {
-      out.kind = LineKind::kMacro;
-      return out;
+  // A line with macro syntax is the macro interpreter's, whatever else it holds. The lexer finds `#` and
+  // `[` where has_macro_syntax does (outside comments and strings), and no plain line holds them: the
+  // line is searched for them only where lexing stops early (a tape marker, a message) or fails.
+  LineKind run(Block& out) {
+    out.line = line_;
+    try {
+      if (lex(out) == LineKind::kPlain) return LineKind::kPlain;
+    } catch (const InputError&) {
+      if (!has_macro_syntax(text_)) throw;
     }
+    out.words.clear();
+    out.comments.clear();
+    out.block_delete = false;
+    return LineKind::kMacro;
+  }
+
+ private:
+  LineKind lex(Block& out) {
+    out.words.clear();
+    out.comments.clear();
+    out.block_delete = false;
     std::size_t i = 0;
     while (i < text_.size() && is_space(text_[i])) ++i;
-    if (i < text_.size() && text_[i] == '%') return out;
+    if (i < text_.size() && text_[i] == '%')
+      return has_macro_syntax(text_) ? LineKind::kMacro : LineKind::kPlain;
     if (i < text_.size() && text_[i] == '/') {
-      out.block.block_delete = true;
+      out.block_delete = true;
       ++i;
     }
     while (i < text_.size()) {
@@ -96,12 +132,12 @@ class Lexer {
       if (is_space(c)) {
         ++i;
       } else if (c == ';') {
-        out.block.comments.push_back(trimmed(text_.substr(i + 1)));
+        out.comments.push_back(trimmed(text_.substr(i + 1)));
         break;
       } else if (c == '(') {
-        i = comment(i, ')', out.block);
+        i = comment(i, ')', out);
       } else if (c == '"') {
-        i = comment(i, '"', out.block);
+        i = comment(i, '"', out);
       } else if (c == '*') {
         ++i;  // checksum: the number after it is dropped too
         while (i < text_.size() && is_digit(text_[i])) ++i;
@@ -109,31 +145,26 @@ class Lexer {
         if (i + 1 < text_.size() && is_alpha(text_[i + 1])) {
           std::size_t end = i;
           while (end < text_.size() && is_alpha(text_[end])) ++end;
-          if (is_macro_keyword(text_.substr(i, end - i))) {
-            out.kind = LineKind::kMacro;
-            out.block = Block{};
-            out.block.line = line_;
-            return out;
-          }
+          if (is_macro_keyword(text_.substr(i, end - i))) return LineKind::kMacro;
         }
-        const std::size_t words_before = out.block.words.size();
-        i = word(i, out.block);
-        const bool message = out.block.words.size() > words_before && out.block.words.back().letter == 'M' &&
-                             (out.block.words.back().value == 117.0 || out.block.words.back().value == 118.0);
+        const std::size_t words_before = out.words.size();
+        i = word(i, out);
+        const bool message = out.words.size() > words_before && out.words.back().letter == 'M' &&
+                             (out.words.back().value == 117.0 || out.words.back().value == 118.0);
         if (message) {
           // Display and host messages: free text to the end of the line.
-          const std::string msg = trimmed(text_.substr(i));
-          if (!msg.empty()) out.block.comments.push_back(msg);
+          if (has_macro_syntax(text_)) return LineKind::kMacro;
+          std::string msg = trimmed(text_.substr(i));
+          if (!msg.empty()) out.comments.push_back(std::move(msg));
           break;
         }
       } else {
         fail(i, fmt::format("unexpected {} in a G-code line", shown(c)));
       }
     }
-    return out;
+    return LineKind::kPlain;
   }
 
- private:
   [[noreturn]] void fail(std::size_t pos, const std::string& message) const {
     throw InputError(SourceLocation{file_, line_, static_cast<int>(pos) + 1}, "gcode", message);
   }
@@ -160,11 +191,14 @@ class Lexer {
       ++i;
     }
     const std::size_t digits_at = i;
-    std::size_t digits = 0;
-    while (i < text_.size() && is_digit(text_[i])) ++i, ++digits;
+    std::size_t digits = 0, decimals = 0;
+    std::uint64_t mantissa = 0;  // the digits as an integer (modulo 2^64)
+    for (; i < text_.size() && is_digit(text_[i]); ++i, ++digits)
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
     if (i < text_.size() && text_[i] == '.') {
-      ++i;
-      while (i < text_.size() && is_digit(text_[i])) ++i, ++digits;
+      for (++i; i < text_.size() && is_digit(text_[i]); ++i, ++decimals)
+        mantissa = mantissa * 10 + static_cast<std::uint64_t>(text_[i] - '0');
+      digits += decimals;
     }
     if (digits == 0) {
       const std::string found =
@@ -172,8 +206,7 @@ class Lexer {
       fail(start, fmt::format("expected a number after '{}', found {}", letter, found));
     }
     double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(text_.data() + digits_at, text_.data() + i, value);
-    if (ec != std::errc() || ptr != text_.data() + i || !std::isfinite(value))
+    if (!read_number(mantissa, digits, decimals, text_.data() + digits_at, text_.data() + i, value))
       fail(start, fmt::format("malformed number '{}' after '{}'", text_.substr(start, i - start), letter));
     if (letter != 'N')
       block.words.push_back(Word{letter, negative ? -value : value, static_cast<int>(at) + 1});
@@ -188,7 +221,13 @@ class Lexer {
 }  // namespace
 
 LexedLine lex_gcode_line(std::string_view text, int line, const std::string& file_name) {
-  return Lexer(text, line, file_name).run();
+  LexedLine out;
+  out.kind = Lexer(text, line, file_name).run(out.block);
+  return out;
+}
+
+LineKind lex_gcode_line(std::string_view text, int line, const std::string& file_name, Block& block) {
+  return Lexer(text, line, file_name).run(block);
 }
 
 }  // namespace beadtwin::slicer

@@ -40,4 +40,9 @@ struct LexedLine {
 // number, a letter without a number, or a character no G-code line holds.
 LexedLine lex_gcode_line(std::string_view text, int line, const std::string& file_name);
 
+// The same into `block`, which the caller keeps from line to line so that its vectors' memory is reused
+// (read_gcode lexes every line so): `block` is overwritten, and holds only the line number when the line
+// is a macro line.
+LineKind lex_gcode_line(std::string_view text, int line, const std::string& file_name, Block& block);
+
 }  // namespace beadtwin::slicer

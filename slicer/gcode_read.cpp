@@ -4,6 +4,7 @@
 #include <istream>
 #include <iterator>
 #include <optional>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@ namespace beadtwin::slicer {
 namespace {
 
 constexpr std::size_t kChunk = std::size_t{1} << 16;
+constexpr std::streamoff kBytesPerMove = 20;  // room is made for a move per 20 bytes: see read_gcode
 constexpr std::size_t kMaxLine = std::size_t{1} << 20;  // 1 MB: no G-code line is that long
 // Macro programs are run whole by the interpreter: the text is kept while it is no longer than this, so a
 // macro line found within it can start the program over; beyond it the program is plain G-code, streamed.
@@ -41,6 +43,18 @@ Toolpath read_macro(const std::string& text, const std::string& file_name, const
     stats->lines = static_cast<std::size_t>(lines);
   }
   return tp;
+}
+
+// The bytes from the stream's position to its end, if it is seekable. The stream is left where it was.
+std::optional<std::streamoff> bytes_left(std::istream& in) {
+  const std::istream::pos_type start = in.tellg();
+  if (start == std::istream::pos_type(-1)) return std::nullopt;
+  in.seekg(0, std::ios::end);
+  const std::istream::pos_type end = in.tellg();
+  in.clear();
+  in.seekg(start);
+  if (end == std::istream::pos_type(-1) || end < start) return std::nullopt;
+  return end - start;
 }
 
 // The filament diameter a program states in its settings block (PrusaSlicer, Slic3r: near its end, ";
@@ -81,15 +95,18 @@ Toolpath read_gcode(std::istream& in, const std::string& file_name, const Reader
   if (options.filament_diameter_from_program)
     if (const auto d = stated_filament_diameter(in)) options.filament_diameter_mm = *d;
   GcodeReader reader(options, file_name);
+  // Room for the moves a program of this size makes, so that the move list is not copied as it grows: a
+  // move takes some 30 bytes of G-code or more (comments, codes), so this is seldom too little, and room
+  // never used is address space, not memory.
+  if (const auto bytes = bytes_left(in)) reader.reserve(static_cast<std::size_t>(*bytes / kBytesPerMove));
   int number = 0;
   std::string line, kept;
+  Block block;  // reused from line to line
   bool macro = false;
-  const auto lex = [&] {
+  const auto lex = [&](std::string_view text) {
     ++number;
-    if (kept.size() <= kMacroText) kept.append(line).push_back('\n');
-    const LexedLine l = lex_gcode_line(line, number, file_name);
-    line.clear();
-    if (l.kind == LineKind::kMacro) {
+    if (kept.size() <= kMacroText) kept.append(text).push_back('\n');
+    if (lex_gcode_line(text, number, file_name, block) == LineKind::kMacro) {
       if (kept.size() > kMacroText)
         throw InputError(
             {file_name, number, 0}, "gcode",
@@ -99,35 +116,45 @@ Toolpath read_gcode(std::istream& in, const std::string& file_name, const Reader
       macro = true;
       return;
     }
-    reader.feed(l.block);
+    reader.feed(block);
   };
   std::string chunk(kChunk, '\0'), chunk_tail;
   while (!reader.ended() && !macro) {
     in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
     const auto got = static_cast<std::size_t>(in.gcount());
     if (got == 0) break;
+    // Lines are searched for NUL bytes only in a chunk that holds one.
+    const bool has_nul = std::memchr(chunk.data(), '\0', got) != nullptr;
     std::size_t at = 0;
     while (at < got && !reader.ended() && !macro) {
       const char* from = chunk.data() + at;
       const auto* nl = static_cast<const char*>(std::memchr(from, '\n', got - at));
       const std::size_t end = nl ? static_cast<std::size_t>(nl - chunk.data()) : got;
       const std::string_view piece(from, end - at);
-      if (const std::size_t nul = piece.find('\0'); nul != std::string_view::npos)
+      if (const std::size_t nul = has_nul ? piece.find('\0') : std::string_view::npos;
+          nul != std::string_view::npos)
         throw InputError({file_name, number + 1, static_cast<int>(line.size() + nul) + 1}, "gcode",
                          "NUL byte in the program: this is not a text file");
-      line += piece;
-      if (line.size() > kMaxLine)
-        throw InputError({file_name, number + 1, 0}, "gcode",
-                         fmt::format("line longer than {} bytes: this is not a G-code program", kMaxLine));
       at = end;
+      if (nl && line.empty()) {
+        lex(piece);  // the whole line is in the chunk: lexed where it lies
+      } else {
+        line += piece;
+        if (line.size() > kMaxLine)
+          throw InputError({file_name, number + 1, 0}, "gcode",
+                           fmt::format("line longer than {} bytes: this is not a G-code program", kMaxLine));
+        if (nl) {
+          lex(line);
+          line.clear();
+        }
+      }
       if (nl) {
-        lex();
         ++at;
         if (macro) chunk_tail.assign(chunk.data() + at, got - at);
       }
     }
   }
-  if (!line.empty() && !reader.ended() && !macro) lex();
+  if (!line.empty() && !reader.ended() && !macro) lex(line);
   if (macro) {
     // The rest of the text (from where the chunk stopped), then the whole program through the interpreter.
     std::string rest(std::istreambuf_iterator<char>(in), {});

@@ -1,8 +1,10 @@
 #include "slicer/gcode_reader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <span>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -23,17 +25,6 @@ std::string section_name(const std::string& file) {
   return stem.empty() ? std::string("program") : stem;
 }
 
-// One block sorted: its G and M codes by meaning, its parameters.
-struct Sorted {
-  std::vector<Word> modal_g;   // G17-19, G20/21, G90/91
-  std::optional<Word> motion;  // G0-G3
-  std::optional<Word> dwell, set_position, home;
-  std::vector<Word> unhandled;  // codes ignored or unknown: their parameters are theirs
-  std::vector<Word> unknown;
-  std::vector<Word> m;  // M codes the reader acts on
-  Params params;
-};
-
 }  // namespace
 
 class GcodeReader::State {
@@ -50,6 +41,7 @@ class GcodeReader::State {
         filament_area_mm2_(kPi * o.filament_diameter_mm * o.filament_diameter_mm / 4.0) {}
 
   bool ended() const { return ended_; }
+  void reserve(std::size_t moves) { builder_.reserve(std::min(moves, opt_.max_moves)); }
   const ReadStats& stats() const { return stats_; }
 
   void feed(const Block& b) {
@@ -63,7 +55,7 @@ class GcodeReader::State {
     }
     for (const std::string& c : b.comments) annotate(c);
     check_numbers(b);
-    Sorted s = sort(b);
+    SortedBlock& s = sort(b);
     run(s);
     for (const Word& w : s.params.unused())
       warn(fmt::format("unused word {}", w.letter), w.column,
@@ -133,8 +125,9 @@ class GcodeReader::State {
     }
   }
 
-  Sorted sort(const Block& b) {
-    Sorted s;
+  SortedBlock& sort(const Block& b) {
+    SortedBlock& s = sorted_;
+    s.clear();
     for (const Word& w : b.words) {
       if (w.letter == 'G') {
         const int g = code_tenths(w.value);
@@ -182,13 +175,13 @@ class GcodeReader::State {
     return w.letter == letter && code_tenths(w.value) == tenths;
   }
 
-  bool has_m(const Sorted& s, const CodeSet& set) const {
+  bool has_m(const SortedBlock& s, const CodeSet& set) const {
     return std::any_of(s.m.begin(), s.m.end(), [&](const Word& w) { return set.matches(w); });
   }
 
   // ---- one block, in the order a controller runs it ----
 
-  void run(Sorted& s) {
+  void run(SortedBlock& s) {
     // An ignored or unknown code owns the block's parameters (M104 S200, M204 S800, M203 X200 ...).
     const bool housekeeping = !s.unhandled.empty() && !(s.motion || s.dwell || s.set_position || s.home);
     if (housekeeping) {
@@ -213,7 +206,7 @@ class GcodeReader::State {
   }
 
   // The block's one action: a dwell, a new position, homing, or motion in the modal G0-G3.
-  void act(Sorted& s) {
+  void act(SortedBlock& s) {
     if (s.dwell) {
       dwell(s);
     } else if (s.set_position) {
@@ -233,7 +226,7 @@ class GcodeReader::State {
     rpm_ = rpm;
   }
 
-  void modes(Sorted& s) {
+  void modes(SortedBlock& s) {
     for (const Word& w : s.modal_g) {
       const int g = code_tenths(w.value);
       if (g == 170 || g == 180 || g == 190)
@@ -257,7 +250,7 @@ class GcodeReader::State {
     if (const auto on = p.take('S')) volumetric_ = *on != 0.0;
   }
 
-  void events_before(const Sorted& s) {
+  void events_before(const SortedBlock& s) {
     for (const Word& w : s.m) {
       if (codes_.heat_on.matches(w)) event(ExtruderEvent::kHeatOn);
       if (codes_.roller_down.matches(w)) roller_ = true;
@@ -279,7 +272,7 @@ class GcodeReader::State {
     }
   }
 
-  void events_after(Sorted& s) {
+  void events_after(SortedBlock& s) {
     for (const Word& w : s.m) {
       if (codes_.melt_off.matches(w) && melt_) {
         flush_pending();
@@ -319,7 +312,7 @@ class GcodeReader::State {
     return flow_for_rpm(*opt_.extruder, rpm_);
   }
 
-  void dwell(Sorted& s) {
+  void dwell(SortedBlock& s) {
     double t = 0.0;
     if (const auto p = s.params.take('P')) t = opt_.dwell_p_seconds ? *p : *p / 1000.0;
     if (const auto sec = s.params.take('S')) t = *sec;
@@ -342,14 +335,14 @@ class GcodeReader::State {
     emit(std::move(m));
   }
 
-  void set_position(Sorted& s) {
+  void set_position(SortedBlock& s) {
     for (int a = 0; a < 3; ++a)
       if (const auto v = s.params.take("XYZ"[a])) origin_[a] = pos_[a] - *v * scale();
     if (const auto e = s.params.take('E')) e_ = *e;
     for (const char r : {'A', 'B', 'C'}) s.params.take(r);
   }
 
-  void home(Sorted& s) {
+  void home(SortedBlock& s) {
     bool any = false;
     for (int a = 0; a < 3; ++a)
       if (s.params.take("XYZ"[a])) {
@@ -368,7 +361,7 @@ class GcodeReader::State {
 
   // ---- motion ----
 
-  void motion(Sorted& s) {
+  void motion(SortedBlock& s) {
     Params& p = s.params;
     if (motion_ < 0) {
       warn("no motion mode", p.column('X'), "axis words before any G0/G1/G2/G3: taken as G1");
@@ -401,7 +394,8 @@ class GcodeReader::State {
       if (fed_mm3 && *fed_mm3 != 0.0) in_place(*fed_mm3);
       return;
     }
-    lay({pos_, target}, fed_mm3);
+    const std::array<Eigen::Vector3d, 2> points = {pos_, target};
+    lay(points, fed_mm3);
   }
 
   // E fed or drawn back with the head standing: a prime (unretract) or a reverse (retraction).
@@ -437,7 +431,7 @@ class GcodeReader::State {
     return opt_.default_feed_mm_s;
   }
 
-  void arc(Sorted& s, const Eigen::Vector3d& target, std::optional<double> fed_mm3) {
+  void arc(SortedBlock& s, const Eigen::Vector3d& target, std::optional<double> fed_mm3) {
     Params& p = s.params;
     ++stats_.arcs;
     const bool clockwise = motion_ == 2;
@@ -478,7 +472,7 @@ class GcodeReader::State {
 
   // Moves along `points` (the first is the head's position): print or travel, the material `fed_mm3` (E)
   // or the pump's spread over them by length.
-  void lay(const std::vector<Eigen::Vector3d>& points, std::optional<double> fed_mm3) {
+  void lay(std::span<const Eigen::Vector3d> points, std::optional<double> fed_mm3) {
     double length = 0.0;
     for (std::size_t k = 1; k < points.size(); ++k) length += (points[k] - points[k - 1]).norm();
     const bool rapid = motion_ == 0;
@@ -556,6 +550,7 @@ class GcodeReader::State {
   std::string file_;
   CodeSets codes_;
   ReadStats stats_;
+  SortedBlock sorted_;  // the block being run
   GcodeToolpathBuilder builder_;
   int line_ = 0;
   bool ended_ = false;
@@ -598,6 +593,9 @@ GcodeReader& GcodeReader::operator=(GcodeReader&&) noexcept = default;
 
 void GcodeReader::feed(const Block& block) {
   state_->feed(block);
+}
+void GcodeReader::reserve(std::size_t moves) {
+  state_->reserve(moves);
 }
 bool GcodeReader::ended() const {
   return state_->ended();

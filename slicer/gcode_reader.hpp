@@ -147,6 +147,8 @@ class GcodeReader {
 
   // One block, in program order. Throws InputError on bad input (see the file comment).
   void feed(const Block& block);
+  // Room for `moves` moves in the toolpath (a hint, to spare copying it as it grows).
+  void reserve(std::size_t moves);
   // True once M2 or M30 has ended the program.
   bool ended() const;
   const ReadStats& stats() const;

@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -32,6 +33,14 @@ class GcodeToolpathBuilder {
   // Appends `m`, setting its section and layer, and for a print move or a dwell laying material its layer
   // height and (print moves) width.
   void add(Move m);
+  // Room for `moves` moves, so that the move list is not copied as it grows. A hint: without room for
+  // them, the list grows as it would have.
+  void reserve(std::size_t moves) {
+    try {
+      tp_.moves.reserve(moves);
+    } catch (const std::bad_alloc&) {
+    }
+  }
   std::size_t size() const { return tp_.moves.size(); }
   std::size_t layers() const { return tp_.layers.size(); }
   // The toolpath, layers indexed.

@@ -87,13 +87,13 @@ int cmd_read(const beadtwin::scenarios::ProgramCheck& check) {
   const auto scenario = beadtwin::scenarios::load_program_check(check);
   for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const auto& v = scenario.variants.front();
-  beadtwin::Toolpath tp = *v.program;
-  beadtwin::time_toolpath(tp, v.machine.motion);
+  const beadtwin::Toolpath& tp = *v.program;  // timed without a copy: only its total time is printed
+  const double time_s = beadtwin::motion_time_s(tp, v.machine.motion);
   std::printf(
       "%s\nmachine: %s\nlayers: %zu\nmoves: %zu\nprint length: %.1f mm\ntravel length: %.1f mm\n"
       "commanded volume: %.1f mm3\nprint time: %.1f s\n",
       v.program_summary.c_str(), v.machine.name.c_str(), tp.layers.size(), tp.moves.size(),
-      tp.print_length_mm(), tp.travel_length_mm(), tp.commanded_volume_mm3(), tp.total_time_s());
+      tp.print_length_mm(), tp.travel_length_mm(), tp.commanded_volume_mm3(), time_s);
   return kExitPass;
 }
 

@@ -103,6 +103,31 @@ TEST(Motion, DwellKeepsItsDuration) {
   EXPECT_NEAR(tp.moves[1].start_s, tp.moves[0].duration_s, 1e-12);
 }
 
+TEST(Motion, TimeWithoutTimingIsTheTimedTotal) {
+  // motion_time_s gives the total time_toolpath finds, to the bit, and leaves the toolpath untimed.
+  MotionLimits lim;
+  lim.max_feed_mm_s = 1000;
+  lim.acceleration_mm_s2 = 1000;
+  lim.junction_deviation_mm = 0.05;
+  Move dwell;
+  dwell.kind = MoveKind::kDwell;
+  dwell.duration_s = 1.5;
+  dwell.start = dwell.end = {500, 500, 1};
+  dwell.layer = 0;
+  Toolpath tp;
+  tp.layers.resize(1);
+  tp.moves = {straight(0, 500, 100), straight(500, 0, 80, MoveKind::kTravel), straight(0, 500, 120)};
+  tp.moves[2].end = {500, 500, 1};
+  tp.moves.push_back(dwell);
+  const double t = motion_time_s(tp, lim);
+  for (const Move& m : tp.moves) EXPECT_EQ(m.start_s, 0.0);
+  EXPECT_EQ(tp.moves[0].duration_s, 0.0);
+  time_toolpath(tp, lim);
+  EXPECT_EQ(t, tp.total_time_s());
+  EXPECT_GT(t, 1.5);
+  EXPECT_EQ(motion_time_s(Toolpath{}, lim), 0.0);
+}
+
 TEST(Toolpath, LayersMustBeContiguous) {
   Toolpath tp;
   tp.layers.resize(2);

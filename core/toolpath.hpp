@@ -95,6 +95,9 @@ struct Toolpath {
   std::vector<std::string> sections;
   std::vector<ToolpathLayer> layers;
   std::vector<Move> moves;
+  // Rotary axes A, B, C (degrees) at the end of each move, parallel to `moves`; empty when no rotary axis
+  // moves (a 3-axis program). Read from programs and kept; multi-axis kinematics come later.
+  std::vector<Eigen::Vector3f> rotary_deg;
 
   double commanded_volume_mm3() const;
   double print_length_mm() const;

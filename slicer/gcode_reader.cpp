@@ -339,7 +339,13 @@ class GcodeReader::State {
     for (int a = 0; a < 3; ++a)
       if (const auto v = s.params.take("XYZ"[a])) origin_[a] = pos_[a] - *v * scale();
     if (const auto e = s.params.take('E')) e_ = *e;
-    for (const char r : {'A', 'B', 'C'}) s.params.take(r);
+    bool turned = false;
+    for (int r = 0; r < 3; ++r)
+      if (const auto v = s.params.take("ABC"[r])) {
+        rotary_[r] = *v;
+        turned = true;
+      }
+    if (turned) builder_.set_rotary(rotary_);
   }
 
   void home(SortedBlock& s) {
@@ -370,10 +376,14 @@ class GcodeReader::State {
     Eigen::Vector3d target = pos_;
     for (int a = 0; a < 3; ++a)
       if (const auto v = p.take("XYZ"[a])) target[a] = (absolute_ ? origin_[a] : target[a]) + *v * scale();
-    for (const char r : {'A', 'B', 'C'})
-      if (p.take(r))
-        warn(fmt::format("rotary axis {}", r), p.column(r),
-             fmt::format("rotary axis {} is read but not modelled: the move ignores it", r));
+    // Rotary axes (degrees, not scaled by G20): kept with the moves, not yet part of the kinematics.
+    bool turned = false;
+    for (int r = 0; r < 3; ++r)
+      if (const auto v = p.take("ABC"[r])) {
+        rotary_[r] = absolute_ ? *v : rotary_[r] + *v;
+        turned = true;
+      }
+    if (turned) builder_.set_rotary(rotary_);
     for (int a = 0; a < 3; ++a)
       if (std::abs(target[a]) > opt_.max_coordinate_mm)
         fail(p.column("XYZ"[a]), fmt::format("the move reaches {} = {:.4g} m: farther than {:.4g} m",
@@ -552,6 +562,7 @@ class GcodeReader::State {
   ReadStats stats_;
   SortedBlock sorted_;  // the block being run
   GcodeToolpathBuilder builder_;
+  Eigen::Vector3d rotary_ = Eigen::Vector3d::Zero();  // A, B, C, degrees
   int line_ = 0;
   bool ended_ = false;
   bool finished_ = false;

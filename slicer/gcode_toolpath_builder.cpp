@@ -31,6 +31,7 @@ void GcodeToolpathBuilder::add(Move m) {
   }
   m.layer = layer_;
   tp_.moves.push_back(std::move(m));
+  if (rotary_used_) tp_.rotary_deg.push_back(rotary_);
 }
 
 Toolpath GcodeToolpathBuilder::finish() {

@@ -29,6 +29,13 @@ class GcodeToolpathBuilder {
   void layer_marker() { height_mm_.reset(); }
   void set_height(double mm) { height_mm_ = mm; }
   void set_width(double mm) { width_mm_ = mm; }
+  // The rotary axes A, B, C (degrees) from now on; from the first call every move keeps them
+  // (Toolpath::rotary_deg), the moves before it at zero.
+  void set_rotary(const Eigen::Vector3d& abc_deg) {
+    if (tp_.rotary_deg.empty()) tp_.rotary_deg.assign(tp_.moves.size(), Eigen::Vector3f::Zero());
+    rotary_ = abc_deg.cast<float>();
+    rotary_used_ = true;
+  }
 
   // Appends `m`, setting its section and layer, and for a print move or a dwell laying material its layer
   // height and (print moves) width.
@@ -56,6 +63,8 @@ class GcodeToolpathBuilder {
   std::optional<double> height_mm_;
   std::optional<double> width_mm_;
   int layer_ = -1;
+  Eigen::Vector3f rotary_ = Eigen::Vector3f::Zero();
+  bool rotary_used_ = false;
   double layer_z_ = 0.0;
   double layer_height_mm_ = 0.0;
   std::optional<std::size_t> last_deposit_;

@@ -470,7 +470,8 @@ TEST(GcodeReaderBadInput, BinaryAbsurdAndNonFiniteInputAreErrors) {
   EXPECT_EQ(error_line("G91\nG1 X60000 F600\nG1 X60000\n"), 3) << "relative moves adding up past 100 m";
   EXPECT_EQ(error_line("G1 X1 F-5\n"), 1);
   EXPECT_EQ(error_line("G1 X1\n#1=[5\nG1 X#1\n"), 2) << "a macro program's syntax error names its line";
-  EXPECT_EQ(error_line("G1 X1 F600\n#1=1000000\nG1 X#1\n"), 3) << "macro values are checked like written ones";
+  EXPECT_EQ(error_line("G1 X1 F600\n#1=1000000\nG1 X#1\n"), 3)
+      << "macro values are checked like written ones";
   EXPECT_EQ(error_line("G1 X1 F600\nG4 P-1\n"), 2);
   ReaderOptions few;
   few.max_moves = 10;
@@ -511,14 +512,13 @@ TEST(GcodeReaderBadInput, UnknownWordsAreCountedWarningsNeverSpam) {
   const Toolpath tp = read(program, o, &st);
   EXPECT_EQ(st.count("unknown code M999"), 50u);
   EXPECT_EQ(st.count("unused word Q"), 50u);
-  EXPECT_EQ(st.count("rotary axis A"), 1u);
-  EXPECT_EQ(st.count("rotary axis B"), 1u);
+  EXPECT_EQ(st.count("rotary axis A"), 0u);  // rotary axes are kept now, not warned about
   EXPECT_EQ(st.count("tool change"), 1u);
   EXPECT_EQ(st.count("unknown code G93"), 1u);
   EXPECT_EQ(st.messages.size(), 3u);
   EXPECT_EQ(st.messages[0], "test.gcode:2:1: gcode: unknown code M999; ignored with its parameters");
   EXPECT_NE(st.messages[1].find("test.gcode:3:7:"), std::string::npos) << st.messages[1];
-  EXPECT_EQ(tp.moves.back().end.x(), 11.0) << "rotary axes are left out, the move still happens";
+  EXPECT_EQ(tp.moves.back().end.x(), 11.0) << "rotary axes do not stop the move";
   EXPECT_EQ(st.lines, 105u);
 }
 
@@ -532,6 +532,29 @@ TEST(GcodeReaderBadInput, ProgramEndAndBlockDelete) {
   ReaderOptions keep;
   keep.block_delete = false;
   EXPECT_EQ(read("G1 X1 F600\n/G1 X5\nM2\n", keep).moves.size(), 2u);
+}
+
+// Issue 5 item 3: rotary axes B and C (seed 002's 5-axis machine) are parsed and kept with the moves,
+// absolute or relative like the linear axes; a program without them keeps no rotary column at all.
+TEST(GcodeReader, RotaryAxesAreKeptWithTheMoves) {
+  const Toolpath tp =
+      read("G90\nG1 X10 F600\nG1 X20 B90\nG1 X30 C45\nG91\nG1 X5 B-30 C15\nG90\nG92 B0\nG1 X40\n");
+  ASSERT_EQ(tp.rotary_deg.size(), tp.moves.size());
+  ASSERT_GE(tp.moves.size(), 5u);
+  const auto at = [&](double x) {
+    for (std::size_t i = 0; i < tp.moves.size(); ++i)
+      if (std::abs(tp.moves[i].end.x() - x) < 1e-9) return tp.rotary_deg[i];
+    ADD_FAILURE() << "no move to x = " << x;
+    return Eigen::Vector3f(Eigen::Vector3f::Zero());
+  };
+  EXPECT_TRUE(at(10).isZero());
+  EXPECT_FLOAT_EQ(at(20).y(), 90.0f);
+  EXPECT_FLOAT_EQ(at(30).y(), 90.0f);
+  EXPECT_FLOAT_EQ(at(30).z(), 45.0f);
+  EXPECT_FLOAT_EQ(at(35).y(), 60.0f);  // relative
+  EXPECT_FLOAT_EQ(at(35).z(), 60.0f);
+  EXPECT_FLOAT_EQ(at(40).y(), 0.0f);  // G92 B0 set it
+  EXPECT_TRUE(read("G1 X10 F600\nG1 X20\n").rotary_deg.empty());
 }
 
 }  // namespace

@@ -82,7 +82,8 @@ TEST(Fill, BoundaryAndSideOverlaps) {
   s.fill.boundary_side_overlap = 0.2;
   auto extent = [&] {
     double x_min = 1e9, y_min = 1e9;
-    for (const Move* m : moves(plan_toolpath(box, {s}, {}), Feature::kFill)) {
+    const Toolpath tp = plan_toolpath(box, {s}, {});
+    for (const Move* m : moves(tp, Feature::kFill)) {
       x_min = std::min({x_min, m->start.x(), m->end.x()});
       y_min = std::min({y_min, m->start.y(), m->end.y()});
     }

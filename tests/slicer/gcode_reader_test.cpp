@@ -349,7 +349,7 @@ TEST(GcodeReaderPump, SpeedWordsGiveFlowAndEventsTheMeltState) {
   EXPECT_EQ(moves_of_line(tp, 10).at(0).kind, MoveKind::kTravel) << "melt off: no material";
   EXPECT_EQ(st.warning_count(), 0u) << (st.messages.empty() ? "" : st.messages[0]);
   // The bead: A = 100 mm², h = 5 (the first layer, at Z 5).
-  const Move& bead = moves_of_line(tp, 6).at(0);
+  const Move bead = moves_of_line(tp, 6).at(0);
   EXPECT_NEAR(bead.layer_height_mm, 5.0, 1e-12);
   EXPECT_NEAR(bead.bead_width_mm, bead_width_mm(100.0, 5.0), 1e-12);
   EXPECT_NEAR(bead_area_mm2(bead.bead_width_mm, bead.layer_height_mm), 100.0, 1e-9);
@@ -410,10 +410,10 @@ TEST(GcodeReaderLayers, MaterialAtANewZStartsALayerHopsDoNot) {
   EXPECT_EQ(tp.layers[1].first_move, 6u);
   EXPECT_EQ(st.count("layer markers"), 0u);
 
-  const Move& m = moves_of_line(tp, 10).at(0);
+  const Move m = moves_of_line(tp, 10).at(0);
   EXPECT_NEAR(m.layer_height_mm, 0.3, 1e-12);
   EXPECT_NEAR(m.bead_width_mm, bead_width_mm(a / 10.0, 0.3), 1e-12);
-  const Move& round = moves_of_line(tp, 14).at(0);
+  const Move round = moves_of_line(tp, 14).at(0);
   const double area = 0.001 * a / 10.0;
   ASSERT_LT(area, kPi * 0.35 * 0.35 / 4);
   EXPECT_NEAR(round.bead_width_mm, std::sqrt(4 * area / kPi), 1e-12);
@@ -439,7 +439,7 @@ TEST(GcodeReaderLayers, AnnotationsGiveWidthHeightAndFeature) {
       "G1 X40 E4\n"               // 11
       "G1 X50 E5 ; PERIMETER\n",  // 12: ORNL Slicer 2 style region comment
       {}, &st);
-  const Move& outer = moves_of_line(tp, 5).at(0);
+  const Move outer = moves_of_line(tp, 5).at(0);
   EXPECT_EQ(outer.feature, Feature::kBoundary);
   EXPECT_EQ(outer.pass, 0);
   EXPECT_DOUBLE_EQ(outer.bead_width_mm, 0.5);

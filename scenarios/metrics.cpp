@@ -31,8 +31,15 @@ const MetricDef kMetrics[] = {
      [](const Metrics& m) -> std::optional<double> { return m.too_hot_fraction; }},
     {"interfaces.too_cold_fraction",
      [](const Metrics& m) -> std::optional<double> { return m.too_cold_fraction; }},
-    {"interfaces.min_healing", [](const Metrics& m) -> std::optional<double> { return m.min_healing; }},
-    {"interfaces.mean_healing", [](const Metrics& m) -> std::optional<double> { return m.mean_healing; }},
+    // Healing is measured at interfaces: a single-layer part has none.
+    {"interfaces.min_healing",
+     [](const Metrics& m) -> std::optional<double> {
+       return m.interfaces > 0 ? std::optional<double>(m.min_healing) : std::nullopt;
+     }},
+    {"interfaces.mean_healing",
+     [](const Metrics& m) -> std::optional<double> {
+       return m.interfaces > 0 ? std::optional<double>(m.mean_healing) : std::nullopt;
+     }},
     {"layer_time_s.min", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.min; }},
     {"layer_time_s.mean", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.mean; }},
     {"layer_time_s.max", [](const Metrics& m) -> std::optional<double> { return m.layer_time_s.max; }},

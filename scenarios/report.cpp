@@ -65,6 +65,11 @@ json fill_json(const slicer::FillParams& f) {
           {"angle_tolerance_deg", f.angle_tolerance_deg}};
 }
 
+// The least healing over the interfaces, or a dash for a part without any (a single layer).
+std::string healing_text(const Metrics& m) {
+  return m.interfaces > 0 ? fmt::format("{:.3f}", m.min_healing) : std::string("—");
+}
+
 json parameters_json(const Variant& v) {
   json sections = json::array();
   for (const auto& s : v.sections) {
@@ -183,8 +188,8 @@ json variant_json(const VariantResult& r) {
              {{"count", m.interfaces},
               {"too_hot_fraction", m.too_hot_fraction},
               {"too_cold_fraction", m.too_cold_fraction},
-              {"min_healing", number_or_null(m.min_healing)},
-              {"mean_healing", number_or_null(m.mean_healing)}}},
+              {"min_healing", optional_json(m.get("interfaces.min_healing"))},
+              {"mean_healing", optional_json(m.get("interfaces.mean_healing"))}}},
             {"layer_time_s", stats_json(m.layer_time_s)},
             {"planned_voids", m.planned_voids},
             {"extruder_demand", m.extruder_demand},
@@ -338,9 +343,9 @@ details{margin:1em 0} .muted{color:#777}
     h += fmt::format(
         "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.2f} %</td><td>{:.1f} "
         "%</td>"
-        "<td>{:.1f} %</td><td>{:.3f}</td><td>{:.0f} / {:.0f} / {:.0f}</td></tr>",
+        "<td>{:.1f} %</td><td>{}</td><td>{:.0f} / {:.0f} / {:.0f}</td></tr>",
         esc(v.name), v.passed ? "pass" : "<b>fail</b>", m.layers, hms(m.print_time_s), m.mass_kg,
-        100 * m.porosity, 100 * m.too_hot_fraction, 100 * m.too_cold_fraction, m.min_healing,
+        100 * m.porosity, 100 * m.too_hot_fraction, 100 * m.too_cold_fraction, healing_text(m),
         m.layer_time_s.min, m.layer_time_s.mean, m.layer_time_s.max);
   }
   h += "</table>";
@@ -459,9 +464,9 @@ std::string summary_md(const RunResult& result) {
   s += "|---|---|---|---|---|---|---|---|\n";
   for (const auto& v : result.variants) {
     const Metrics& m = v.metrics;
-    s += fmt::format("| {} | {} | {} | {:.1f} | {:.2f} % | {:.1f} % | {:.1f} % | {:.3f} |\n", v.name,
+    s += fmt::format("| {} | {} | {} | {:.1f} | {:.2f} % | {:.1f} % | {:.1f} % | {} |\n", v.name,
                      v.passed ? "pass" : "**fail**", hms(m.print_time_s), m.mass_kg, 100 * m.porosity,
-                     100 * m.too_hot_fraction, 100 * m.too_cold_fraction, m.min_healing);
+                     100 * m.too_hot_fraction, 100 * m.too_cold_fraction, healing_text(m));
   }
   for (const auto& v : result.variants)
     for (const auto& g : v.gates)

@@ -108,5 +108,33 @@ TEST(Run, UnknownVariantIsAnInputError) {
   EXPECT_NE(slice_program(sc, "slow").find("(LAYER 0 SECTION floor"), std::string::npos);
 }
 
+// A single layer has no interface: its healing is not measured (null in report.json, a dash in the
+// summary), and a gate on it fails with a message saying so rather than passing on a made-up 0.
+TEST(Run, SingleLayerHasNoHealingToReport) {
+  const std::string text = R"(name: one-layer
+units: {length: mm}
+machine: lsam-ph15
+material: cf-abs-20
+output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100}
+sections:
+  - {name: ring, layers: 1, layer_height: 5, bead_width: 20, outline: {points: [[0, 0], [200, 0], [200, 100], [0, 100]]}}
+gates:
+  - interfaces.min_healing >= 0.5
+)";
+  const Scenario sc = load_scenario_text(text, "one.yaml");
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_one_layer";
+  std::filesystem::remove_all(o.out_dir);
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), 1u);
+  EXPECT_FALSE(r.passed);
+  ASSERT_EQ(r.variants[0].gates.size(), 1u);
+  EXPECT_NE(r.variants[0].gates[0].message.find("not measured"), std::string::npos)
+      << r.variants[0].gates[0].message;
+  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  EXPECT_TRUE(j["variants"][0]["metrics"]["interfaces"]["min_healing"].is_null());
+  EXPECT_NE(read(o.out_dir / "summary.md").find("| —"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace beadtwin::scenarios

@@ -76,11 +76,7 @@ class LayerBuilder {
     const double flow = 1.0 - s_.melt_reduction;
     const std::size_t next = run_along(loop, 1, overlap_mm, Feature::kBoundary, pass, flow);
     if (!tangential_lead_out) run_along(loop, next, lead_out_mm, Feature::kLeadOut, pass, flow);
-    if (tangential_lead_out && lead_out_mm > 0 && tp_.moves.back().kind == MoveKind::kPrint) {
-      const Move& last = tp_.moves.back();
-      const Eigen::Vector2d dir = (last.end - last.start).head<2>().normalized();
-      print_segment(head_ + lead_out_mm * dir, Feature::kLeadOut, pass);
-    }
+    if (tangential_lead_out) lead_out(lead_out_mm, true);
     event(ExtruderEvent::kMeltOff);
   }
 
@@ -111,9 +107,7 @@ class LayerBuilder {
     event(ExtruderEvent::kMeltOn);
     if (lead_in_mm > 0) print_segment(path.front(), Feature::kLeadIn, pass);
     for (std::size_t i = 1; i < path.size(); ++i) print_segment(path[i], Feature::kBoundary, pass);
-    if (lead_out_mm > 0)
-      print_segment(head_ + lead_out_mm * (path.back() - path[path.size() - 2]).normalized(),
-                    Feature::kLeadOut, pass);
+    lead_out(lead_out_mm, true);
     event(ExtruderEvent::kMeltOff);
   }
 

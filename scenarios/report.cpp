@@ -35,10 +35,7 @@ json polygons_json(const slicer::Polygons& polys) {
 }
 
 json fill_json(const slicer::FillParams& f) {
-  static constexpr const char* kStyle[] = {"one_way",       "simple_zigzag",
-                                           "smart_zigzag",  "smart_zigzag_constant_overlap",
-                                           "sparse_zigzag", "variable_bead_regions"};
-  return {{"style", kStyle[static_cast<int>(f.style)]},
+  return {{"style", slicer::to_string(f.style)},
           {"angle_deg", f.angle_deg},
           {"angle_step_deg", f.angle_step_deg},
           {"overlap", f.overlap},
@@ -92,9 +89,7 @@ json parameters_json(const Variant& v) {
          {"containment",
           {{"outside", polygons_json(s.containment_outside)},
            {"inside", polygons_json(s.containment_inside)}}},
-         {"slice_plane", s.slice_plane == slicer::SlicePlane::kTop     ? "top"
-                         : s.slice_plane == slicer::SlicePlane::kFront ? "front"
-                                                                       : "side"},
+         {"slice_plane", slicer::to_string(s.slice_plane)},
          {"shares_wall_with", s.shares_wall_with},
          {"pull_back",
           {{"length_mm", s.pull_back.length_mm},

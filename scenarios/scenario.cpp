@@ -23,6 +23,17 @@ const ParamSpec& spec(std::span<const ParamSpec> table, std::string_view key) {
   throw InternalError(fmt::format("no parameter '{}' declared", key));
 }
 
+// The value of `values` whose name (to_string) is `text`; otherwise an error at `key` listing the names.
+template <typename Enum, std::size_t N>
+Enum one_of(BlockReader& r, std::string_view key, const std::string& text, const Enum (&values)[N]) {
+  std::string names;
+  for (const Enum v : values) {
+    if (to_string(v) == text) return v;
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", to_string(v));
+  }
+  r.fail(r.take(key), key, fmt::format("expected one of {} but found '{}'", names, text));
+}
+
 std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
                            const std::string& key) {
   std::ifstream f(path, std::ios::binary);
@@ -431,15 +442,7 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
   }
   {
     const std::string plane = r.string(spec(t, "slice_plane"));
-    if (plane == "top")
-      s.slice_plane = slicer::SlicePlane::kTop;
-    else if (plane == "front")
-      s.slice_plane = slicer::SlicePlane::kFront;
-    else if (plane == "side")
-      s.slice_plane = slicer::SlicePlane::kSide;
-    else
-      r.fail(r.take("slice_plane"), "slice_plane",
-             fmt::format("expected top, front or side but found '{}'", plane));
+    s.slice_plane = one_of(r, "slice_plane", plane, slicer::kSlicePlanes);
   }
   if (YAML::Node w = r.take("shares_wall_with"); w.IsDefined()) {
     if (!w.IsScalar() || w.Scalar().empty())
@@ -632,22 +635,8 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
                                                    "angle_tolerance"};
   slicer::FillParams& f = s.fill;
   {
-    static constexpr std::pair<std::string_view, slicer::FillStyleKind> kStyles[] = {
-        {"one_way", slicer::FillStyleKind::kOneWay},
-        {"simple_zigzag", slicer::FillStyleKind::kSimpleZigzag},
-        {"smart_zigzag", slicer::FillStyleKind::kSmartZigzag},
-        {"smart_zigzag_constant_overlap", slicer::FillStyleKind::kSmartZigzagConstantOverlap},
-        {"sparse_zigzag", slicer::FillStyleKind::kSparseZigzag},
-        {"variable_bead_regions", slicer::FillStyleKind::kVariableBeadRegions}};
     const std::string style = fr.string(sub(spec(t, "fill.style")));
-    const auto it =
-        std::find_if(std::begin(kStyles), std::end(kStyles), [&](const auto& k) { return k.first == style; });
-    if (it == std::end(kStyles))
-      fr.fail(fr.take("style"), "style",
-              fmt::format("expected one_way, simple_zigzag, smart_zigzag, smart_zigzag_constant_overlap, "
-                          "sparse_zigzag or variable_bead_regions but found '{}'",
-                          style));
-    f.style = it->second;
+    f.style = one_of(fr, "style", style, slicer::kFillStyles);
   }
   f.angle_deg = fr.quantity(sub(spec(t, "fill.angle")));
   f.angle_step_deg = fr.quantity(sub(spec(t, "fill.angle_step")));

@@ -417,6 +417,24 @@ void validate(const std::vector<SectionParams>& sections) {
 
 }  // namespace
 
+std::string_view to_string(FillStyleKind style) {
+  switch (style) {
+    case FillStyleKind::kOneWay:
+      return "one_way";
+    case FillStyleKind::kSimpleZigzag:
+      return "simple_zigzag";
+    case FillStyleKind::kSmartZigzag:
+      return "smart_zigzag";
+    case FillStyleKind::kSmartZigzagConstantOverlap:
+      return "smart_zigzag_constant_overlap";
+    case FillStyleKind::kSparseZigzag:
+      return "sparse_zigzag";
+    case FillStyleKind::kVariableBeadRegions:
+      return "variable_bead_regions";
+  }
+  return "smart_zigzag";
+}
+
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
                        const MotionLimits& motion, PlanStats* stats, const Extruder* extruder) {
   validate(sections);

@@ -57,6 +57,13 @@ enum class FillStyleKind : std::uint8_t {
   kVariableBeadRegions,         // (62): smart zigzag, then beads down the voids left against the boundary
 };
 
+inline constexpr FillStyleKind kFillStyles[] = {
+    FillStyleKind::kOneWay,       FillStyleKind::kSimpleZigzag,
+    FillStyleKind::kSmartZigzag,  FillStyleKind::kSmartZigzagConstantOverlap,
+    FillStyleKind::kSparseZigzag, FillStyleKind::kVariableBeadRegions};
+// The style's name in scenarios and reports ("smart_zigzag").
+std::string_view to_string(FillStyleKind style);
+
 struct FillParams {
   bool enabled = false;
   FillStyleKind style = FillStyleKind::kSmartZigzag;

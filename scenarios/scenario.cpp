@@ -855,27 +855,14 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
                         a.name, a.z_min_mm, a.z_max_mm));
     }
   }
-  // A shared wall (patent (17)) names another sliced section with the same layers; checked here, where the
-  // message can point at the key.
+  // A shared wall (patent (17)) is checked here too, where the message can point at the key.
   for (std::size_t i = 0; i < v.sections.size(); ++i) {
     const slicer::SectionParams& b = v.sections[i];
     if (b.shares_wall_with.empty()) continue;
     const std::string prefix = "sections." + b.name;
     BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
-    const YAML::Node key = sections[i]["shares_wall_with"];
-    const auto a = std::find_if(v.sections.begin(), v.sections.end(),
-                                [&](const auto& o) { return o.name == b.shares_wall_with && &o != &b; });
-    if (a == v.sections.end())
-      sr.fail(key, "shares_wall_with",
-              fmt::format("expected the name of another section, found '{}'", b.shares_wall_with));
-    if (!a->outline_path.empty() || !b.outline_path.empty())
-      sr.fail(key, "shares_wall_with", "walls are shared between sliced sections, not AM Outline sections");
-    const double steps = (b.z_min_mm - a->z_min_mm) / b.layer_height_mm;
-    if (std::abs(a->layer_height_mm - b.layer_height_mm) > 1e-9 || std::abs(steps - std::round(steps)) > 1e-6)
-      sr.fail(
-          key, "shares_wall_with",
-          fmt::format("section '{}' lays its layers at other heights: a shared wall needs the same layers",
-                      a->name));
+    if (const std::string problem = slicer::shared_wall_problem(v.sections, b); !problem.empty())
+      sr.fail(sections[i]["shares_wall_with"], "shares_wall_with", problem);
   }
   return v;
 }

@@ -378,22 +378,10 @@ TriangleMesh section_mesh(const TriangleMesh& mesh, const SectionParams& s) {
 // with layers at the same heights.
 std::optional<std::size_t> wall_provider(const std::vector<SectionParams>& sections, const SectionParams& s) {
   if (s.shares_wall_with.empty()) return std::nullopt;
-  const std::string key = "sections." + s.name + ".shares_wall_with";
-  const auto it = std::find_if(sections.begin(), sections.end(),
-                               [&](const SectionParams& o) { return o.name == s.shares_wall_with; });
-  if (it == sections.end() || &*it == &s)
-    throw InputError({}, key,
-                     fmt::format("expected the name of another section, found '{}'", s.shares_wall_with));
-  if (!it->outline_path.empty() || !s.outline_path.empty())
-    throw InputError({}, key, "walls are shared between sliced sections, not AM Outline sections");
-  const double h = s.layer_height_mm, steps = (s.z_min_mm - it->z_min_mm) / h;
-  if (std::abs(it->layer_height_mm - h) > 1e-9 || std::abs(steps - std::round(steps)) > 1e-6)
-    throw InputError(
-        {}, key,
-        fmt::format("section '{}' lays its layers at other heights ({} mm layers from {} mm; this "
-                    "section {} mm from {} mm): a shared wall needs the same layers",
-                    it->name, it->layer_height_mm, it->z_min_mm, h, s.z_min_mm));
-  return static_cast<std::size_t>(it - sections.begin());
+  std::size_t provider = 0;
+  if (const std::string problem = shared_wall_problem(sections, s, &provider); !problem.empty())
+    throw InputError({}, "sections." + s.name + ".shares_wall_with", problem);
+  return provider;
 }
 
 void validate(const std::vector<SectionParams>& sections) {
@@ -416,6 +404,25 @@ void validate(const std::vector<SectionParams>& sections) {
 }
 
 }  // namespace
+
+std::string shared_wall_problem(const std::vector<SectionParams>& sections, const SectionParams& s,
+                                std::size_t* provider) {
+  const auto it = std::find_if(sections.begin(), sections.end(), [&](const SectionParams& o) {
+    return o.name == s.shares_wall_with && &o != &s;
+  });
+  if (it == sections.end())
+    return fmt::format("expected the name of another section, found '{}'", s.shares_wall_with);
+  if (!it->outline_path.empty() || !s.outline_path.empty())
+    return "walls are shared between sliced sections, not AM Outline sections";
+  const double h = s.layer_height_mm, steps = (s.z_min_mm - it->z_min_mm) / h;
+  if (std::abs(it->layer_height_mm - h) > 1e-9 || std::abs(steps - std::round(steps)) > 1e-6)
+    return fmt::format(
+        "section '{}' lays its layers at other heights ({} mm layers from {} mm; this "
+        "section {} mm from {} mm): a shared wall needs the same layers",
+        it->name, it->layer_height_mm, it->z_min_mm, h, s.z_min_mm);
+  if (provider) *provider = static_cast<std::size_t>(it - sections.begin());
+  return {};
+}
 
 std::string_view to_string(FillStyleKind style) {
   switch (style) {

@@ -39,6 +39,9 @@ struct Extruder {
   double max_flow_mm3_s = 0.0;        // highest volumetric flow the extruder melts, mm³/s; 0: no limit
 
   bool has_rpm() const { return displacement_mm3_per_rev > 0.0; }
+  // Whether programs carry its commands: speed words for a pump or screw of known displacement, E words for
+  // a filament drive.
+  bool has_commands() const { return has_rpm() || kind == ExtruderKind::kFilament; }
 };
 
 // Throws InputError (key "extruder") naming every problem found: a gear pump or screw without a positive

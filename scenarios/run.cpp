@@ -49,8 +49,7 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
     o.melt.push_back(s.melt);
   }
   // Speed words need the pump's displacement; E words the filament's diameter.
-  if (v.machine.extruder.has_rpm() || v.machine.extruder.kind == ExtruderKind::kFilament)
-    o.extruder = &v.machine.extruder;
+  if (v.machine.extruder.has_commands()) o.extruder = &v.machine.extruder;
   return o;
 }
 

@@ -813,10 +813,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     std::ifstream in(v.program_file, std::ios::binary);
     if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
     slicer::ReadStats stats;
-    const Extruder* extruder =
-        v.machine.extruder.has_rpm() || v.machine.extruder.kind == ExtruderKind::kFilament
-            ? &v.machine.extruder
-            : nullptr;
+    const Extruder* extruder = v.machine.extruder.has_commands() ? &v.machine.extruder : nullptr;
     v.program = std::make_shared<const Toolpath>(slicer::read_gcode(
         in, v.program_file.string(), slicer::reader_options_for(v.machine.dialect, extruder), &stats));
     v.program_summary = fmt::format("{}: {} lines, {} layers, {} moves", v.program_file.filename().string(),

@@ -14,6 +14,15 @@
 #include "slicer/arc_fit.hpp"
 
 namespace beadtwin::slicer {
+
+std::string program_number(double value, int decimals) {
+  std::string s = fmt::format("{:.{}f}", value, decimals);
+  if (s.find('.') != std::string::npos) {
+    while (s.back() == '0') s.pop_back();
+    if (s.back() == '.') s.pop_back();
+  }
+  return s == "-0" ? "0" : s;
+}
 namespace {
 
 class Writer {
@@ -27,16 +36,7 @@ class Writer {
     out_ += '\n';
   }
 
-  std::string num(double mm) const {
-    std::string s = fmt::format("{:.{}f}", mm * scale_, d_.decimals);
-    // Trim trailing zeros for readability ("12.500" -> "12.5", "3.000" -> "3").
-    if (s.find('.') != std::string::npos) {
-      while (s.back() == '0') s.pop_back();
-      if (s.back() == '.') s.pop_back();
-    }
-    if (s == "-0") s = "0";
-    return s;
-  }
+  std::string num(double mm) const { return program_number(mm * scale_, d_.decimals); }
 
   // True when the last blocks written put the head at `p` (as the program's numbers round it).
   bool at(const Eigen::Vector3d& p) const {
@@ -121,16 +121,6 @@ bool is_event(const Move& m, ExtruderEvent e) {
   return m.kind == MoveKind::kDwell && m.event == e;
 }
 
-// "38.70" -> "38.7", "40.0" -> "40".
-std::string trimmed(double value, int decimals) {
-  std::string s = fmt::format("{:.{}f}", value, decimals);
-  if (s.find('.') != std::string::npos) {
-    while (s.back() == '0') s.pop_back();
-    if (s.back() == '.') s.pop_back();
-  }
-  return s;
-}
-
 // A dwell's P word: whole milliseconds, which Fanuc (G04 P, no decimal point) and Marlin/RepRap (G4 P)
 // both read.
 long dwell_ms(double seconds) {
@@ -200,7 +190,7 @@ class ExtruderWords {
     Words x{{}, rpm_, e_exact_mm_, e_written_mm_};
     if (m.kind != MoveKind::kPrint || m.feature == Feature::kCoast || !m.deposits()) return x;
     if (speed_words()) {
-      const std::string rpm = trimmed(rpm_for_flow(e_, commanded_flow_mm3_s(m)), kRpmDecimals);
+      const std::string rpm = program_number(rpm_for_flow(e_, commanded_flow_mm3_s(m)), kRpmDecimals);
       if (rpm != rpm_) x.text += fmt::format(" {}{}", d_.rpm_word, rpm);
       x.rpm = rpm;
     }
@@ -280,7 +270,7 @@ class ExtruderWords {
     std::string blk = d_.melt_on;
     const double flow = speed_words() ? flow_at_melt_on(moves, i) : 0.0;
     if (flow > 0) {
-      rpm_ = trimmed(rpm_for_flow(e_, flow), kRpmDecimals);
+      rpm_ = program_number(rpm_for_flow(e_, flow), kRpmDecimals);
       blk += fmt::format(" {}{}", d_.rpm_word, rpm_);
     }
     w_.line(blk + " (melt on)");
@@ -298,7 +288,7 @@ class ExtruderWords {
       return;
     }
     if (speed_words() && m.deposits()) {
-      const std::string rpm = trimmed(rpm_for_flow(e_, commanded_flow_mm3_s(m)), kRpmDecimals);
+      const std::string rpm = program_number(rpm_for_flow(e_, commanded_flow_mm3_s(m)), kRpmDecimals);
       if (rpm != rpm_) w_.line(d_.rpm_word + rpm);
       rpm_ = rpm;
     }
@@ -312,7 +302,7 @@ class ExtruderWords {
       return;
     }
     const bool speed = speed_words() && s.reverse_rpm > 0;
-    const std::string rpm = trimmed(s.reverse_rpm, kRpmDecimals);
+    const std::string rpm = program_number(s.reverse_rpm, kRpmDecimals);
     if (d_.reverse_on.empty())
       w_.line(speed ? fmt::format("(reverse at {} rpm)", rpm) : std::string("(reverse)"));
     else

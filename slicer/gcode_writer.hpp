@@ -61,6 +61,10 @@ struct GcodeOptions {
   std::vector<MeltSettings> melt;
 };
 
+// A number as print programs write it: `decimals` places, trailing zeros dropped ("12.500" -> "12.5",
+// "3.000" -> "3", "-0" -> "0").
+std::string program_number(double value, int decimals);
+
 // The whole program as text. Feeds are per minute (F in mm/min or in/min). Melt events become the dialect's
 // codes; a comment block at each layer change names the section, layer, Z and layer time.
 //

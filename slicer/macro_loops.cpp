@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "slicer/gcode_writer.hpp"
+
 namespace beadtwin::slicer {
 namespace {
 
@@ -68,15 +70,6 @@ std::optional<double> z_step(const Layer& a, const Layer& b) {
   return std::nullopt;
 }
 
-std::string number(double v, int decimals) {
-  std::string s = fmt::format("{:.{}f}", v, decimals);
-  if (s.find('.') != std::string::npos) {
-    while (s.back() == '0') s.pop_back();
-    if (s.back() == '.') s.pop_back();
-  }
-  return s == "-0" ? "0" : s;
-}
-
 // "(LAYER 3 SECTION ring Z 20 HEIGHT 5 TIME 23.4 S)" -> "(LAYER IN THE RUN SECTION ring HEIGHT 5)".
 std::string run_layer_comment(const std::string& header) {
   const std::size_t section = header.find(" SECTION "), z = header.find(" Z "),
@@ -119,7 +112,7 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
     if (!step || count < static_cast<std::size_t>(std::max(min_layers, 2))) {
       out += layers[i].header + '\n';
       for (const Split& b : layers[i].blocks)
-        out += b.z ? b.before + " Z" + number(*b.z, b.decimals) + b.after + '\n' : b.before + '\n';
+        out += b.z ? b.before + " Z" + program_number(*b.z, b.decimals) + b.after + '\n' : b.before + '\n';
       ++i;
       continue;
     }
@@ -136,7 +129,7 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
     out += fmt::format("(LAYERS {} TO {}: ONE LAYER REPEATED {} TIMES, Z STEP {})\n",
                        first.header.substr(7, first.header.find(' ', 7) - 7),
                        layers[end - 1].header.substr(7, layers[end - 1].header.find(' ', 7) - 7), count,
-                       number(*step, decimals));
+                       program_number(*step, decimals));
     // The step from the run's first to its last layer, so rounding does not add up over the layers.
     double z_last = z0;
     for (const Split& b : layers[end - 1].blocks)
@@ -144,10 +137,10 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
         z_last = *b.z;
         break;
       }
-    const std::string dz = number((z_last - z0) / static_cast<double>(count - 1), decimals + 4);
+    const std::string dz = program_number((z_last - z0) / static_cast<double>(count - 1), decimals + 4);
     out += "#100=0 (LAYER OF THE RUN)\n";
     out += fmt::format("WHILE [#100 LT {}] DO 1\n", count);
-    out += fmt::format("#101={}+#100*{} (ITS Z)\n", number(z0, decimals), dz);
+    out += fmt::format("#101={}+#100*{} (ITS Z)\n", program_number(z0, decimals), dz);
     // Each pass through the loop is a layer: its comment names the section and height, as the plain
     // program's layer comments do (a reader counts them).
     out += run_layer_comment(first.header) + '\n';
@@ -157,10 +150,10 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
         continue;
       }
       const double offset = *b.z - z0;
-      const std::string z =
-          std::abs(offset) < 0.5 * std::pow(10.0, -decimals)
-              ? "Z#101"
-              : fmt::format("Z[#101{}{}]", offset < 0 ? "-" : "+", number(std::abs(offset), decimals));
+      const std::string z = std::abs(offset) < 0.5 * std::pow(10.0, -decimals)
+                                ? "Z#101"
+                                : fmt::format("Z[#101{}{}]", offset < 0 ? "-" : "+",
+                                              program_number(std::abs(offset), decimals));
       out += b.before + " " + z + b.after + '\n';
     }
     out += "#100=#100+1\nEND 1\n";

@@ -298,9 +298,7 @@ LocalPath fillet(const LocalPath& path, double radius) {
     }
     const Eigen::Vector2d in = v.p - path[i - 1].p, next = path[i + 1].p - v.p;
     const double len_in = in.norm(), len_out = next.norm();
-    const double turn = len_in > kMinLine && len_out > kMinLine
-                            ? std::atan2(in.x() * next.y() - in.y() * next.x(), in.dot(next))
-                            : 0.0;
+    const double turn = len_in > kMinLine && len_out > kMinLine ? turn_rad(in, next) : 0.0;
     const double half_tan = std::tan(0.5 * std::abs(turn));
     if (std::abs(turn) < 1e-6 || std::abs(turn) > std::numbers::pi - 1e-3) {
       out.push_back(v);

@@ -104,7 +104,7 @@ Polygon blunt_corners(const Polygon& loop, double min_interior_deg, double cut_m
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector2d prev = loop[(i + n - 1) % n], p = loop[i], next = loop[(i + 1) % n];
     const Eigen::Vector2d a = p - prev, b = next - p;
-    const double turn = std::atan2(a.x() * b.y() - a.y() * b.x(), a.dot(b)) * 180.0 / kPi;
+    const double turn = turn_rad(a, b) * 180.0 / kPi;
     if (turn <= 0 || 180.0 - turn >= min_interior_deg) {
       out.push_back(p);
       continue;

@@ -134,7 +134,7 @@ namespace {
 // Turn (radians, unsigned) at point b between the segments a→b and b→c.
 double turn_at(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
   const Eigen::Vector2d u = b - a, v = c - b;
-  return std::abs(std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)));
+  return std::abs(turn_rad(u, v));
 }
 
 // Puts original points back (the middle one of a skipped run) next to kept points where the simplified

@@ -22,12 +22,17 @@ GcodeToolpathBuilder::GcodeToolpathBuilder(std::string section, double default_l
 
 void GcodeToolpathBuilder::add(Move m) {
   m.section = 0;
-  if (m.kind == MoveKind::kPrint || m.deposits()) {
+  if (m.kind == MoveKind::kPrint) {
+    // Layers come from material laid along a path; material fed with the head standing (a purge or a
+    // prime, often in the air before the first layer) belongs to the layer it is fed in, or to the first
+    // layer when it comes before any.
     const double z = m.end.z();
     if (layer_ < 0 || std::abs(z - layer_z_) > kSameZMm) start_layer(z);
     m.layer_height_mm = height_mm_ ? *height_mm_ : layer_height_mm_;
-    if (m.kind == MoveKind::kPrint) shape_bead(m);
-    last_deposit_ = tp_.moves.size();
+    shape_bead(m);
+    last_print_ = tp_.moves.size();
+  } else if (m.deposits()) {
+    m.layer_height_mm = height_mm_ ? *height_mm_ : layer_height_mm_;
   }
   m.layer = layer_;
   tp_.moves.push_back(std::move(m));
@@ -35,6 +40,14 @@ void GcodeToolpathBuilder::add(Move m) {
 }
 
 Toolpath GcodeToolpathBuilder::finish() {
+  // A program that feeds material but never moves while feeding: its one layer is where it fed.
+  if (layer_ < 0) {
+    for (const Move& m : tp_.moves) {
+      if (!m.deposits()) continue;
+      start_layer(m.end.z());
+      break;
+    }
+  }
   tp_.index_layers();
   return std::move(tp_);
 }
@@ -57,9 +70,15 @@ void GcodeToolpathBuilder::start_layer(double z) {
   layer_ = static_cast<int>(tp_.layers.size()) - 1;
   layer_z_ = z;
   layer_height_mm_ = h;
+  if (layer_ == 0) {  // the first layer takes what was fed before it
+    for (Move& m : tp_.moves)
+      if (m.layer < 0 && m.deposits()) m.layer = 0;
+  }
   for (std::size_t k = tp_.moves.size(); k-- > 0;) {
     Move& m = tp_.moves[k];
-    if ((last_deposit_ && k <= *last_deposit_) || m.deposits() || std::abs(m.end.z() - z) > kSameZMm) break;
+    if ((last_print_ && k <= *last_print_) || m.kind == MoveKind::kPrint ||
+        std::abs(m.end.z() - z) > kSameZMm)
+      break;
     m.layer = layer_;
   }
 }

@@ -67,7 +67,7 @@ class GcodeToolpathBuilder {
   bool rotary_used_ = false;
   double layer_z_ = 0.0;
   double layer_height_mm_ = 0.0;
-  std::optional<std::size_t> last_deposit_;
+  std::optional<std::size_t> last_print_;  // the last move laid along a path
 };
 
 }  // namespace beadtwin::slicer

@@ -492,5 +492,27 @@ TEST(ProgramCheck, TimingAgreesWithPrusaSlicersEstimate) {
   EXPECT_NE(sc.warnings.front().find("assumed machine desktop-fff"), std::string::npos);
 }
 
+// The same for CuraEngine: its estimate is the last ";TIME_ELAPSED:" of the program
+// (tests/data/cura_box.gcode, CuraEngine 4.13 with Cura's fdmprinter definition, 2.85 mm filament).
+TEST(ProgramCheck, TimingAgreesWithCuraEnginesEstimate) {
+  const std::filesystem::path sample =
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "tests/data/cura_box.gcode";
+  ProgramCheck check;
+  check.program = sample;
+  const Scenario sc = load_program_check(check);
+  ASSERT_EQ(sc.variants.size(), 1u);
+  const Variant& v = sc.variants[0];
+  EXPECT_EQ(v.machine.name, "desktop-fff");
+  ASSERT_TRUE(v.program);
+  Toolpath tp = *v.program;
+  time_toolpath(tp, v.machine.motion);
+  std::ifstream in(sample);
+  double estimate_s = -1;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(";TIME_ELAPSED:", 0) == 0) estimate_s = std::stod(line.substr(14));
+  ASSERT_GT(estimate_s, 0);
+  EXPECT_NEAR(tp.total_time_s() / estimate_s, 1.0, 0.10) << tp.total_time_s() << " s against " << estimate_s;
+}
+
 }  // namespace
 }  // namespace beadtwin::scenarios

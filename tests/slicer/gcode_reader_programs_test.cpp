@@ -1,4 +1,5 @@
 // Whole programs through the G-code reader: our own writer's output read back, and PrusaSlicer's.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -421,6 +422,128 @@ TEST(GcodeReaderSlic3r, CommittedSampleReadsWithTheProgramsFilament) {
   given.filament_diameter_from_program = false;
   EXPECT_NEAR(read_gcode(again, "slic3r_ball.gcode", given).commanded_volume_mm3(),
               70.0 * kPi * 1.75 * 1.75 / 4, 0.05 * kPi);
+}
+
+// ---- CuraEngine ----
+
+// CuraEngine 4.13 (Debian's cura-engine) run on its own with Cura's fdmprinter definition: the box above
+// at 0.3 mm layers, 15 % grid infill, 2.85 mm filament, absolute E. Its start code primes 3 mm of filament
+// with the head standing 15 mm above the bed ("G1 F200 E3"), retracts 6.5 mm and feeds it back at the
+// first layer. Run without the Cura front end, the header's totals are placeholders (";Filament used: 0m"),
+// so the facts come from the moves: layer markers ";LAYER:n", filament pushed out on moves in XY, and
+// filament fed with the head standing beyond what retractions drew back (the purge).
+struct CuraFacts {
+  int layer_count = -1;  // ";LAYER_COUNT:"
+  int layer_markers = 0;
+  double extruded_mm = 0.0;
+  double purged_mm = 0.0;
+  double time_elapsed_s = -1.0;  // the last ";TIME_ELAPSED:", Cura's estimate of the print time
+};
+
+CuraFacts cura_facts_of(const std::string& program) {
+  CuraFacts f;
+  std::istringstream in(program);
+  double e = 0.0;
+  double owed = 0.0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(";LAYER_COUNT:", 0) == 0) f.layer_count = std::stoi(line.substr(13));
+    if (line.rfind(";LAYER:", 0) == 0) ++f.layer_markers;
+    if (line.rfind(";TIME_ELAPSED:", 0) == 0) f.time_elapsed_s = std::stod(line.substr(14));
+    std::istringstream words(line.substr(0, line.find(';')));
+    std::map<char, double> w;
+    for (std::string word; words >> word;)
+      if (word.size() > 1) w[word[0]] = std::stod(word.substr(1));
+    if (!w.count('G') || !w.count('E')) continue;
+    if (w['G'] == 92) {
+      e = w['E'];
+      continue;
+    }
+    const double de = w['E'] - e;  // absolute E (M82)
+    e = w['E'];
+    if (w.count('X') || w.count('Y')) {
+      if (de > 0) f.extruded_mm += de;
+    } else if (de < 0) {
+      owed -= de;
+    } else {
+      const double refill = std::min(de, owed);
+      owed -= refill;
+      f.purged_mm += de - refill;
+    }
+  }
+  return f;
+}
+
+void expect_reads_as_cura_sliced(const std::string& program) {
+  const CuraFacts f = cura_facts_of(program);
+  ASSERT_GT(f.layer_markers, 0);
+  EXPECT_EQ(f.layer_count, f.layer_markers);
+  ReaderOptions o;
+  o.filament_diameter_mm = 2.85;  // Cura's programs do not say; fdmprinter's default
+  std::istringstream in(program);
+  ReadStats st;
+  const Toolpath tp = read_gcode(in, "cura_box.gcode", o, &st);
+  for (const std::string& m : st.messages) ADD_FAILURE() << "warning: " << m;
+  // Layers from Z equal Cura's markers, though the purge stands 15 mm up.
+  EXPECT_EQ(tp.layers.size(), static_cast<std::size_t>(f.layer_markers));
+  EXPECT_EQ(st.layer_markers, static_cast<std::size_t>(f.layer_markers));
+  for (const ToolpathLayer& l : tp.layers) EXPECT_NEAR(l.height_mm, 0.3, 1e-3);
+  EXPECT_NEAR(tp.layers.back().z_mm, 2.4, 1e-3);
+  // Every millimetre of filament is accounted for: laid on the paths, plus the purge.
+  const double area = kPi * 2.85 * 2.85 / 4.0;
+  EXPECT_GT(f.purged_mm, 0.0);
+  EXPECT_TRUE(near_rel(tp.commanded_volume_mm3(), area * (f.extruded_mm + f.purged_mm), 1e-9))
+      << tp.commanded_volume_mm3() << " vs " << area * (f.extruded_mm + f.purged_mm);
+  // The purge is a prime with the head standing, counted with the first layer.
+  double purge = 0.0;
+  for (const Move& m : tp.moves) {
+    if (m.kind == MoveKind::kPrint || !m.deposits()) continue;
+    EXPECT_EQ(m.event, ExtruderEvent::kPrime);
+    EXPECT_EQ(m.layer, 0);
+    purge += m.volume_mm3;
+  }
+  EXPECT_NEAR(purge, area * f.purged_mm, 1e-9);
+  std::map<Feature, int> features;
+  for (const Move& m : tp.moves)
+    if (m.kind == MoveKind::kPrint) ++features[m.feature];
+  EXPECT_GT(features[Feature::kBoundary], 0) << "WALL-OUTER, WALL-INNER";
+  EXPECT_GT(features[Feature::kFill], 0) << "SKIN, FILL";
+  EXPECT_GT(features[Feature::kPrime], 0) << "SKIRT";
+}
+
+TEST(GcodeReaderCuraEngine, CommittedSampleReadsAsSliced) {
+  std::ifstream file(std::string(BEADTWIN_SOURCE_DIR) + "/tests/data/cura_box.gcode");
+  ASSERT_TRUE(file) << "tests/data/cura_box.gcode";
+  std::stringstream text;
+  text << file.rdbuf();
+  expect_reads_as_cura_sliced(text.str());
+}
+
+// Debian's cura-engine comes without Cura's machine definitions (they are in the `cura` package, with
+// the Qt front end); the test slices afresh when both are there. BEADTWIN_CURA_DEFINITIONS may name the
+// folder that holds fdmprinter.def.json.
+TEST(GcodeReaderCuraEngine, FreshlySlicedBoxReadsAsSliced) {
+  if (std::system("command -v CuraEngine > /dev/null 2>&1") != 0) GTEST_SKIP() << "CuraEngine not installed";
+  std::filesystem::path definitions = "/usr/share/cura/resources/definitions";
+  if (const char* d = std::getenv("BEADTWIN_CURA_DEFINITIONS")) definitions = d;
+  if (!std::filesystem::exists(definitions / "fdmprinter.def.json"))
+    GTEST_SKIP() << "no fdmprinter.def.json in " << definitions << " (set BEADTWIN_CURA_DEFINITIONS)";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / fmt::format("beadtwin_cura_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "box.stl") << box_stl(15, 15, 2.4);
+  const std::filesystem::path out = dir / "box.gcode";
+  const std::string cmd = fmt::format(
+      "CuraEngine slice -j '{}' -s layer_height=0.3 -s layer_height_0=0.3 -s infill_sparse_density=15 "
+      "-l '{}' -o '{}' > '{}' 2>&1",
+      (definitions / "fdmprinter.def.json").string(), (dir / "box.stl").string(), out.string(),
+      (dir / "log.txt").string());
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  std::ifstream file(out);
+  ASSERT_TRUE(file);
+  std::stringstream text;
+  text << file.rdbuf();
+  expect_reads_as_cura_sliced(text.str());
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

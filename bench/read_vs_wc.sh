@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Reading benchmark (issue 5): a G-code program of at least 100 MB read by `beadtwin read` (lexer, reader
 # and motion timing, one thread) and counted by `wc -l`, on the same file in the same run. Prints the
-# median wall time of each over RUNS runs and their ratio.
+# median wall time of each over RUNS runs and their ratio, and two costs outside parsing, measured in
+# the same run: the binary starting (`beadtwin --version`) and writing one Move per line into the Toolpath
+# with nothing parsed (bench/toolpath_floor.cpp, compiled here).
 # Usage: bench/read_vs_wc.sh [BUILD_DIR] [RUNS] [MEGABYTES]
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -18,9 +20,16 @@ median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 
 wc_t=$(for _ in $(seq "$runs"); do wall wc -l "$work/big.gcode"; done | median)
+lines=$(wc -l < "$work/big.gcode")
+g++ -O2 -std=c++20 -I"$root" -I/usr/include/eigen3 "$root/bench/toolpath_floor.cpp" -o "$work/toolpath_floor"
+floor=$(for _ in $(seq "$runs"); do "$work/toolpath_floor" "$lines"; done | median)
+start=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" --version; done | median)
 bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done | median)
 "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff 2>/dev/null | head -4
-echo "program: $((size / 1000000)) MB, $(wc -l < "$work/big.gcode") lines"
+echo "program: $((size / 1000000)) MB, $lines lines"
 printf 'wc -l          (median of %s): %.3f s\n' "$runs" "$wc_t"
 printf 'beadtwin read  (median of %s): %.3f s\n' "$runs" "$bt"
+printf 'starting the binary (beadtwin --version): %.3f s\n' "$start"
+printf 'writing %s moves, nothing parsed: %.3f s, ratio %.1f to wc -l (the floor for any reader of this Toolpath)\n' \
+  "$lines" "$floor" "$(echo "$floor / $wc_t" | bc -l)"
 printf 'ratio beadtwin / wc -l: %.1f\n' "$(echo "$bt / $wc_t" | bc -l)"

@@ -1,19 +1,24 @@
 #include "sim/deposit.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include "core/error.hpp"
+#include "core/units.hpp"
 #include "sim/bead_sweep.hpp"
 #include "sim/fill_writer.hpp"
 #include "sim/porosity.hpp"
+#include "sim/substrate.hpp"
 #include "sim/sweep_plan.hpp"
 
 namespace beadtwin::sim {
@@ -139,54 +144,430 @@ struct LayingTotals {
   double swept_voxels = 0.0;
 };
 
-// Puts one move's material into the grids: scaled so the covered fractions carry exactly its volume.
-void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<CoverageCell>& cells,
-              double voxel_size_mm, FillWriter& writer, LayingTotals& totals) {
+// The table's height: given, or the lowest nominal bead bottom.
+double table_height_mm(const Toolpath& toolpath, const DepositOptions& options) {
+  if (std::isfinite(options.table_z_mm)) return options.table_z_mm;
+  double z = std::numeric_limits<double>::infinity();
+  for (const Move& m : toolpath.moves)
+    if (m.deposits()) z = std::min(z, std::min(m.start.z(), m.end.z()) - m.layer_height_mm);
+  return std::isfinite(z) ? z : 0.0;
+}
+
+bool keeps_round(const Move& move, const DepositOptions& options) {
+  return options.flattening != Flattening::kNozzle && !move.roller_down;
+}
+
+// Beads no flatter than this fraction of their layer height: below it the roller has ploughed the material
+// under it flat, and the bead spreads no further.
+constexpr double kMinSquash = 0.25;
+// A piece is unsupported when fewer than this fraction of its columns have anything within a layer below.
+constexpr double kMinSupported = 0.5;
+// Material standing this deep (mean, in layer heights) above a bead's top is in the way of the roller or
+// the nozzle; ploughed material above this fraction of a piece's own is reported.
+constexpr double kCollisionDepth = 0.25;
+constexpr double kPloughShare = 0.02;
+
+// The piece shaped by what lies under it (sim/substrate.hpp). A flattened bead keeps its top at the roller:
+// its material first runs into the gaps of the band below, the rest makes a bead in its own layer, flatter
+// where material already stands above its nominal bottom. A round bead (roller up) sits on the substrate.
+struct Shaped {
+  double height_mm = 0.0;  // the bead's height, the gaps it filled included
+  bool unsupported = false;
+  double over_top_mm = 0.0;
+  double gap_volume_mm3 = 0.0;  // what goes into the gaps below
+  std::vector<CoverageCell> gap_cells;
+  bool bead = true;  // false when the gaps take all of the piece's material
+};
+
+Shaped shape_piece(PlannedSweep& p, const Move& move, Substrate& sub, const DepositOptions& options,
+                   double voxel_size_mm) {
+  Shaped out;
+  out.height_mm = p.nominal_height_mm;
+  out.over_top_mm = sub.over_top_mm;
+  BeadSweep& s = p.sweep;
+  if (s.is_puddle()) return out;
+  out.unsupported = sub.supported < kMinSupported;
+  const double h = p.nominal_height_mm;
+  const double length = move.length_mm() * (p.along_end - p.along_start);
+  const double area = p.volume_mm3 / length;
+  if (keeps_round(move, options)) {
+    const double below = out.unsupported ? 0.0 : sub.gap_mm - sub.above_mm;  // how much lower it sits
+    const double r = std::sqrt(area / kPi);
+    const double lift = 2.0 * r - h - below;
+    s.profile = {0.0, r};
+    s.start_top_mm += lift;
+    s.end_top_mm += lift;
+    out.height_mm = 2.0 * r;
+    return out;
+  }
+  if (out.unsupported) return out;
+  double room = 0.0;
+  for (const CoverageCell& c : sub.gap_cells) room += c.fraction;
   const double voxel_volume = voxel_size_mm * voxel_size_mm * voxel_size_mm;
+  out.gap_volume_mm3 = std::min(p.volume_mm3, room * voxel_volume);
+  out.gap_cells = std::move(sub.gap_cells);
+  const double left = p.volume_mm3 - out.gap_volume_mm3;
+  const double footprint = sub.columns * voxel_size_mm * voxel_size_mm;
+  const double height = std::clamp(h - sub.above_mm, kMinSquash * h, h);
+  out.height_mm = height + out.gap_volume_mm3 / footprint;
+  if (left <= 1e-9 * p.volume_mm3) {
+    out.bead = false;
+    return out;
+  }
+  s.profile = moving_bead_profile(left / length, height);
+  return out;
+}
+
+// Defects found while laying, with runs of consecutive pieces merged into one.
+class DefectLog {
+ public:
+  void note(DefectKind kind, std::size_t piece, const PlannedSweep& p, const Move& move,
+            const Eigen::Vector3d& where, double size, bool add_up) {
+    auto& last = last_piece_[static_cast<std::size_t>(kind)];
+    auto& index = last_defect_[static_cast<std::size_t>(kind)];
+    if (last && *last + 1 == piece && defects_[index].layer == move.layer) {
+      Defect& d = defects_[index];
+      d.size = add_up ? d.size + size : std::max(d.size, size);
+    } else {
+      index = defects_.size();
+      defects_.push_back({kind, where, move.layer, p.move, move.source_line, size, {}});
+    }
+    last = piece;
+  }
+  void add(Defect d) { defects_.push_back(std::move(d)); }
+  // The last defect added grows to `size` when that is larger.
+  void grow_last(double size) { defects_.back().size = std::max(defects_.back().size, size); }
+  std::vector<Defect> take() { return std::move(defects_); }
+
+ private:
+  std::vector<Defect> defects_;
+  std::array<std::optional<std::size_t>, 8> last_piece_{};
+  std::array<std::size_t, 8> last_defect_{};
+};
+
+struct LayContext {
+  const Toolpath& toolpath;
+  const DepositOptions& options;
+  double voxel_size_mm;
+  double table_z_mm;
+  FillWriter& writer;
+  const openvdb::FloatGrid& fill;
+  LayingTotals& totals;
+  DefectLog& defects;
+  std::vector<LayerDeposit>& layers;
+  double ploughed_voxels = 0.0;  // what the last lay_bead pushed above the roller
+};
+
+// Puts one piece's material into the grids: first what runs into the gaps below, then the bead, each scaled
+// so the cells carry exactly its volume.
+void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<CoverageCell>& cells, Shaped& shaped,
+              int roller_k, LayContext& c) {
+  const double vs = c.voxel_size_mm;
+  const double voxel_volume = vs * vs * vs;
+  const int spread_radius = std::max(1, static_cast<int>(std::ceil(planned.sweep.profile.width_mm() / vs)));
+  double ploughed = 0.0;
+  if (shaped.gap_volume_mm3 > 0.0) {
+    double room = 0.0;
+    const auto middle = static_cast<float>(0.5 * (planned.along_start + planned.along_end));
+    for (CoverageCell& cell : shaped.gap_cells) {
+      room += cell.fraction;
+      cell.along = middle;
+    }
+    c.writer.add(shaped.gap_cells, shaped.gap_volume_mm3 / (room * voxel_volume),
+                 {move.start_s, move.duration_s, move.layer}, spread_radius, 1, roller_k);
+    ploughed += c.writer.last_ploughed_voxels();
+  }
+  if (!shaped.bead) {
+    c.ploughed_voxels = ploughed;
+    return;
+  }
+  const double bead_volume = planned.volume_mm3 - shaped.gap_volume_mm3;
   double swept = 0.0;
-  for (const CoverageCell& c : cells) swept += c.fraction;
-  totals.swept_voxels += swept;
+  for (const CoverageCell& cell : cells) swept += cell.fraction;
+  c.totals.swept_voxels += swept;
   if (swept <= 0.0) {
     // A bead thinner than the voxel sampling (or cut away entirely at sharp corners): its material goes into
     // the voxel at its middle and spreads from there, so it is still there.
     const BeadSweep& s = planned.sweep;
     const Eigen::Vector2d mid = 0.5 * (s.start_xy + s.end_xy);
     const double z = 0.5 * (s.start_top_mm + s.end_top_mm) - s.profile.radius_mm;
-    cells.assign(1, {voxel_containing({mid.x(), mid.y(), z}, voxel_size_mm), 1.0f, 0.5f});
+    cells.assign(1, {voxel_containing({mid.x(), mid.y(), z}, vs), 1.0f, 0.5f});
     swept = 1.0;
   }
-  const int spread_radius =
-      std::max(1, static_cast<int>(std::ceil(planned.sweep.profile.width_mm() / voxel_size_mm)));
+  // The cells' `along` is along the piece; the time stamp is along the move.
+  const double span = planned.along_end - planned.along_start;
+  for (CoverageCell& cell : cells)
+    cell.along = static_cast<float>(planned.along_start + span * static_cast<double>(cell.along));
   // Squeezing sideways into empty space reaches about half the bead height (the bead's round side).
   const int squeeze_radius =
-      std::max(1, static_cast<int>(std::lround(0.5 * planned.sweep.profile.height_mm() / voxel_size_mm)));
-  writer.add(cells, move.volume_mm3 / (swept * voxel_volume), {move.start_s, move.duration_s, move.layer},
-             spread_radius, squeeze_radius);
+      std::max(1, static_cast<int>(std::lround(0.5 * planned.sweep.profile.height_mm() / vs)));
+  c.writer.add(cells, bead_volume / (swept * voxel_volume), {move.start_s, move.duration_s, move.layer},
+               spread_radius, squeeze_radius, roller_k);
+  c.ploughed_voxels = ploughed + c.writer.last_ploughed_voxels();
 }
 
-// Rasterises the sweeps in parallel, batch by batch, and lays them in toolpath order, so the result does
-// not depend on the number of threads.
-LayingTotals lay_beads(const Toolpath& toolpath, const std::vector<PlannedSweep>& sweeps,
-                       const DepositOptions& options, double voxel_size_mm, FillWriter& writer) {
-  LayingTotals totals;
+// The first voxel index above a roller at `top_mm`: voxels whose centres lie at or above it.
+int roller_index(double top_mm, double voxel_size_mm) {
+  return static_cast<int>(std::ceil(top_mm / voxel_size_mm - 0.5));
+}
+
+// A travel move that runs into material standing above the nozzle's tip: how deep, mm (0 when clear).
+double travel_collision_mm(const Move& move, const openvdb::FloatGrid& fill, double voxel_size_mm,
+                           double nozzle_diameter_mm) {
+  const double s = voxel_size_mm;
+  const double length = move.length_mm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(length / s)));
+  auto acc = fill.getConstAccessor();
+  const double r = 0.5 * nozzle_diameter_mm;
+  const std::array<Eigen::Vector2d, 5> offsets = {Eigen::Vector2d(0, 0), {r, 0}, {-r, 0}, {0, r}, {0, -r}};
+  double deepest = 0.0;
+  for (int t = 0; t <= steps; ++t) {
+    const Eigen::Vector3d p = move.start + (move.end - move.start) * (static_cast<double>(t) / steps);
+    const int k_tip = roller_index(p.z() + 0.5 * s, s);  // a voxel clearly above the tip
+    for (const Eigen::Vector2d& o : offsets) {
+      if (r <= 0.0 && o != Eigen::Vector2d::Zero()) break;
+      const openvdb::Coord ij = voxel_containing({p.x() + o.x(), p.y() + o.y(), p.z()}, s);
+      // Up to a few voxels: material within reach of the tip, not a whole tall part above a travel below it.
+      for (int k = k_tip; k < k_tip + 4; ++k)
+        if (acc.getValue(openvdb::Coord(ij.x(), ij.y(), k)) >= 0.5f)
+          deepest = std::max(deepest, (k + 1) * s - p.z());
+    }
+  }
+  return deepest;
+}
+
+// Travel moves before `move` (back to the previous depositing move) that hit the part.
+void check_travels(std::size_t from, std::size_t to, LayContext& c) {
+  for (std::size_t i = from; i < to; ++i) {
+    const Move& m = c.toolpath.moves[i];
+    if (m.kind != MoveKind::kTravel || m.length_mm() <= 0.0) continue;
+    const double depth = travel_collision_mm(m, c.fill, c.voxel_size_mm, c.options.nozzle_diameter_mm);
+    if (depth <= 0.0) continue;
+    c.defects.add({DefectKind::kCollision, m.start, m.layer, i, m.source_line, depth, "travel"});
+  }
+}
+
+// Lays one toolpath layer's pieces: measures the substrate under all of them first (the deposit as it stood
+// before the layer), then rasterises them in parallel batches and lays them in toolpath order, so the result
+// does not depend on the number of threads.
+void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t end, std::size_t& next_move,
+               LayContext& c) {
+  const double vs = c.voxel_size_mm;
+  std::vector<Shaped> shaped(end - begin);
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          PlannedSweep& p = sweeps[i];
+          const Move& move = c.toolpath.moves[p.move];
+          Substrate sub;
+          if (c.options.follow_substrate && !p.sweep.is_puddle())
+            sub = measure_substrate(p.sweep, p.nominal_top_mm, p.nominal_height_mm, c.fill, vs, c.table_z_mm);
+          shaped[i - begin] = shape_piece(p, move, sub, c.options, vs);
+        }
+      });
   std::vector<std::vector<CoverageCell>> cells;
-  std::size_t begin = 0;
-  while (begin < sweeps.size()) {
-    std::size_t end = begin;
+  std::size_t batch_begin = begin;
+  while (batch_begin < end) {
+    std::size_t batch_end = batch_begin;
     double batch = 0.0;
-    while (end < sweeps.size() && (end == begin || batch < kBatchVoxels))
-      batch += sweeps[end++].sweep.bounding_voxels(voxel_size_mm);
-    cells.assign(end - begin, {});
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end),
+    while (batch_end < end && (batch_end == batch_begin || batch < kBatchVoxels))
+      batch += sweeps[batch_end++].sweep.bounding_voxels(vs);
+    cells.assign(batch_end - batch_begin, {});
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(batch_begin, batch_end),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i != r.end(); ++i)
-                          rasterize(sweeps[i].sweep, voxel_size_mm, options.supersample, cells[i - begin]);
+                          if (shaped[i - begin].bead)
+                            rasterize(sweeps[i].sweep, vs, c.options.supersample, cells[i - batch_begin]);
                       });
-    for (std::size_t i = begin; i < end; ++i)
-      lay_bead(sweeps[i], toolpath.moves[sweeps[i].move], cells[i - begin], voxel_size_mm, writer, totals);
+    for (std::size_t i = batch_begin; i < batch_end; ++i) {
+      const PlannedSweep& p = sweeps[i];
+      const Move& move = c.toolpath.moves[p.move];
+      check_travels(next_move, p.move, c);
+      next_move = std::max(next_move, p.move + 1);
+      const bool rolled = !keeps_round(move, c.options);
+      const int roller_k = rolled ? roller_index(p.nominal_top_mm, vs) : std::numeric_limits<int>::max();
+      Shaped& sh = shaped[i - begin];
+      lay_bead(p, move, cells[i - batch_begin], sh, roller_k, c);
+      const double ploughed = c.ploughed_voxels * vs * vs * vs;
+      const Eigen::Vector2d at = p.sweep.start_xy;
+      const Eigen::Vector3d where(at.x(), at.y(), p.nominal_top_mm);
+      const double plan_length = (p.sweep.end_xy - p.sweep.start_xy).norm();
+      if (move.layer >= 0 && static_cast<std::size_t>(move.layer) < c.layers.size()) {
+        LayerDeposit& l = c.layers[static_cast<std::size_t>(move.layer)];
+        l.plough_volume_mm3 += ploughed;
+        l.mean_bead_height_mm += sh.height_mm * plan_length;  // divided by the length at the end
+        if (sh.unsupported) l.unsupported_length_mm += plan_length;
+      }
+      if (ploughed > kPloughShare * p.volume_mm3)
+        c.defects.note(DefectKind::kPlough, i, p, move, where, ploughed, true);
+      if (sh.unsupported) c.defects.note(DefectKind::kUnsupported, i, p, move, where, plan_length, true);
+      if (sh.over_top_mm > kCollisionDepth * p.nominal_height_mm)
+        c.defects.note(DefectKind::kCollision, i, p, move, where, sh.over_top_mm, false);
+    }
+    batch_begin = batch_end;
+  }
+}
+
+// Lays every piece, layer by layer (a run of consecutive pieces of one toolpath layer).
+LayingTotals lay_beads(const Toolpath& toolpath, std::vector<PlannedSweep>& sweeps,
+                       const DepositOptions& options, double voxel_size_mm, FillWriter& writer,
+                       const openvdb::FloatGrid& fill, DefectLog& defects,
+                       std::vector<LayerDeposit>& layers) {
+  LayingTotals totals;
+  LayContext c{toolpath, options, voxel_size_mm, table_height_mm(toolpath, options), writer, fill,
+               totals,   defects, layers};
+  std::size_t next_move = 0;
+  std::size_t begin = 0;
+  while (begin < sweeps.size()) {
+    const int layer = toolpath.moves[sweeps[begin].move].layer;
+    std::size_t end = begin + 1;
+    while (end < sweeps.size() && toolpath.moves[sweeps[end].move].layer == layer) ++end;
+    lay_layer(sweeps, begin, end, next_move, c);
     begin = end;
   }
+  check_travels(next_move, toolpath.moves.size(), c);
   return totals;
+}
+
+double widest_nominal_bead(const Toolpath& toolpath) {
+  double widest = 0.0;
+  for (const Move& m : toolpath.moves)
+    if (m.deposits()) widest = std::max(widest, std::max(m.bead_width_mm, m.layer_height_mm));
+  return widest;
+}
+
+// Bytes per active voxel: three grids of four bytes in leaf nodes that a thin shell fills about half, the
+// tree above them, and the batches of coverage cells.
+constexpr double kBytesPerVoxel = 40.0;
+// Active voxels per voxel of material: the partly filled skin and the material pushed aside.
+constexpr double kActivePerMaterialVoxel = 1.3;
+
+double physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES);
+  const long page = ::sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 8e9;
+}
+
+// The memory the deposit will take at `voxel_size_mm`, checked against the budget before any voxel is
+// written: over it, the run stops with a voxel size that fits.
+double check_memory(const Toolpath& toolpath, const DepositOptions& options, double voxel_size_mm) {
+  const double voxels =
+      toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
+  const double estimate = voxels * kBytesPerVoxel;
+  const double budget =
+      options.memory_budget_bytes > 0.0 ? options.memory_budget_bytes : 0.75 * physical_memory_bytes();
+  if (estimate <= budget) return estimate;
+  // Memory goes as the inverse cube of the voxel size; a tenth of a millimetre up, with some room.
+  const double fits = std::ceil(voxel_size_mm * std::cbrt(1.1 * estimate / budget) * 10.0) / 10.0;
+  throw InputError(
+      {}, "voxel_size",
+      fmt::format("voxel size {} mm needs about {:.1f} GB for this toolpath ({:.3g} voxels), over the "
+                  "memory budget of {:.1f} GB; use a voxel size of {} mm or more, or raise the budget",
+                  voxel_size_mm, estimate / 1e9, voxels, budget / 1e9, fits));
+}
+
+// Corners the roller cannot follow (issue 6, item 4). A steered roller turns about the nozzle as the path
+// turns; its inner edge stands still on a turn of radius half its width, and would have to run backwards
+// on a tighter one, so it skids and lifts. The path's radius at a joint is judged over a window of half the
+// roller's width centred on it: a turn of more than one radian within it is a radius under half the width.
+void roller_corners(const Toolpath& toolpath, double roller_width_mm, DefectLog& log) {
+  const double window = 0.5 * roller_width_mm;
+  struct Joint {
+    double s = 0.0, turn = 0.0;
+    std::size_t move = 0;
+  };
+  std::vector<Joint> chain;
+  const auto flush = [&] {
+    bool open = false;  // a run of flagged joints is being built
+    double last_s = -std::numeric_limits<double>::infinity();
+    for (const Joint& j : chain) {
+      double total = 0.0;
+      for (const Joint& o : chain)
+        if (std::abs(o.s - j.s) <= 0.5 * window) total += std::abs(o.turn);
+      if (total <= 1.0) continue;
+      const Move& m = toolpath.moves[j.move];
+      const double degrees = total * 180.0 / kPi;
+      if (open && j.s - last_s <= window) {
+        log.grow_last(degrees);
+      } else {
+        log.add({DefectKind::kRollerCorner, m.start, m.layer, j.move, m.source_line, degrees, {}});
+        open = true;
+      }
+      last_s = j.s;
+    }
+    chain.clear();
+  };
+  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+  double s = 0.0;
+  std::size_t previous = kNone;
+  for (std::size_t i = 0; i < toolpath.moves.size(); ++i) {
+    const Move& m = toolpath.moves[i];
+    const Eigen::Vector2d d = (m.end - m.start).head<2>();
+    if (m.kind != MoveKind::kPrint || !m.roller_down || !m.deposits() || d.norm() <= 1e-9) {
+      if (m.length_mm() > 0.0 || m.kind == MoveKind::kPrint) {
+        flush();
+        previous = kNone;
+      }
+      continue;
+    }
+    if (previous != kNone) {
+      const Move& p = toolpath.moves[previous];
+      const Eigen::Vector2d u = (p.end - p.start).head<2>().normalized(), v = d.normalized();
+      if ((p.end - m.start).norm() <= 1e-3) {
+        chain.push_back({s, std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)), i});
+      } else {
+        flush();
+        s = 0.0;
+      }
+    }
+    s += d.norm();
+    previous = i;
+  }
+  flush();
+}
+
+// Per-layer figures once everything is laid.
+void summarise_layers(const Toolpath& toolpath, const std::vector<PlannedSweep>& sweeps, Deposit& out) {
+  std::vector<double> length(out.layers.size(), 0.0);
+  for (const PlannedSweep& p : sweeps) {
+    const int layer = toolpath.moves[p.move].layer;
+    if (layer >= 0 && static_cast<std::size_t>(layer) < length.size())
+      length[static_cast<std::size_t>(layer)] += (p.sweep.end_xy - p.sweep.start_xy).norm();
+  }
+  for (std::size_t i = 0; i < out.layers.size(); ++i) {
+    LayerDeposit& l = out.layers[i];
+    const ToolpathLayer& tl = toolpath.layers[i];
+    for (std::size_t m = tl.first_move; m < tl.end_move; ++m)
+      l.commanded_volume_mm3 += toolpath.moves[m].volume_mm3;
+    if (tl.outline_area_mm2 > 0.0 && tl.height_mm > 0.0)
+      l.fill_ratio = l.commanded_volume_mm3 / (tl.outline_area_mm2 * tl.height_mm);
+    l.mean_bead_height_mm = length[i] > 0.0 ? l.mean_bead_height_mm / length[i] : tl.height_mm;
+    out.plough_volume_mm3 += l.plough_volume_mm3;
+    out.unsupported_length_mm += l.unsupported_length_mm;
+  }
+}
+
+std::string describe(const Defect& d) {
+  switch (d.kind) {
+    case DefectKind::kVoid:
+      return fmt::format("void of {:.3g} mm³ {}", d.size, d.detail);
+    case DefectKind::kPlough:
+      return fmt::format("the roller ploughs {:.3g} mm³ of material above its gap", d.size);
+    case DefectKind::kUnsupported:
+      return fmt::format("{:.3g} mm of bead laid over nothing (no material within a layer below)", d.size);
+    case DefectKind::kRollerCorner:
+      return fmt::format(
+          "the roller stays down through a turn of {:.0f}° within half its width: tighter than it "
+          "can follow (lift it, or round the corner)",
+          d.size);
+    case DefectKind::kCollision:
+      return d.detail == "travel"
+                 ? fmt::format("a travel move runs {:.3g} mm into the part", d.size)
+                 : fmt::format(
+                       "the nozzle and roller run into material standing {:.3g} mm above the bead's top",
+                       d.size);
+  }
+  return {};
 }
 
 int widest_bead_voxels(const std::vector<PlannedSweep>& sweeps, double voxel_size_mm) {
@@ -224,15 +605,28 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.voxel_size_mm = choose_voxel_size(toolpath, options);
   const double vs = out.voxel_size_mm;
   const double voxel_volume = vs * vs * vs;
-  const std::vector<PlannedSweep> sweeps = plan_sweeps(toolpath, options.round_free_ends);
+  out.memory_estimate_bytes = check_memory(toolpath, options, vs);
+  SweepPlanOptions plan;
+  plan.round_free_ends = options.round_free_ends;
+  if (options.follow_substrate)
+    plan.max_piece_mm = std::max(vs, options.piece_bead_widths * widest_nominal_bead(toolpath));
+  std::vector<PlannedSweep> sweeps = plan_sweeps(toolpath, plan);
   check_budget(sweeps, vs);
 
   Grids grids = make_grids(vs);
   out.fill = grids.fill;
   out.time = grids.time;
   out.layer = grids.layer;
+  out.layers.resize(toolpath.layers.size());
   FillWriter writer(*grids.fill, *grids.time, *grids.layer);
-  const LayingTotals totals = lay_beads(toolpath, sweeps, options, vs, writer);
+  DefectLog defects;
+  if (options.flattening != Flattening::kNozzle && options.roller_width_mm > 0.0)
+    roller_corners(toolpath, options.roller_width_mm, defects);
+  const LayingTotals totals =
+      lay_beads(toolpath, sweeps, options, vs, writer, *grids.fill, defects, out.layers);
+  out.defects = defects.take();
+  std::stable_sort(out.defects.begin(), out.defects.end(),
+                   [](const Defect& a, const Defect& b) { return a.move < b.move; });
 
   const Porosity porosity = measure_porosity(*grids.fill, widest_bead_voxels(sweeps, vs));
   out.swept_volume_mm3 = totals.swept_voxels * voxel_volume;
@@ -242,7 +636,37 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.porosity = porosity.fraction();
   out.active_voxels = static_cast<std::size_t>(grids.fill->activeVoxelCount());
   BT_CHECK_OP(out.active_voxels, ==, static_cast<std::size_t>(grids.layer->activeVoxelCount()));
+  summarise_layers(toolpath, sweeps, out);
+  for (Defect& d : out.defects) d.detail = describe(d);
   return out;
+}
+
+std::string_view to_string(Flattening flattening) {
+  switch (flattening) {
+    case Flattening::kNozzle:
+      return "nozzle";
+    case Flattening::kRoller:
+      return "roller";
+    case Flattening::kTamper:
+      return "tamper";
+  }
+  return "?";
+}
+
+std::string_view to_string(DefectKind kind) {
+  switch (kind) {
+    case DefectKind::kVoid:
+      return "void";
+    case DefectKind::kPlough:
+      return "plough";
+    case DefectKind::kUnsupported:
+      return "unsupported";
+    case DefectKind::kRollerCorner:
+      return "roller_corner";
+    case DefectKind::kCollision:
+      return "collision";
+  }
+  return "?";
 }
 
 }  // namespace beadtwin::sim

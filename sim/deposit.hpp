@@ -22,6 +22,12 @@
 //    extrudes) leaves a puddle at its end point (sim/sweep_plan.hpp).
 #pragma once
 
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
 #include <openvdb/openvdb.h>
 #include <Eigen/Core>
 
@@ -32,6 +38,14 @@ namespace beadtwin::sim {
 // The flattened bead's section is core/bead.hpp's stadium. A bead of area below π h²/4 cannot reach the
 // roller; the deposit lays it as a round bead of that area whose top is at the roller (sim/bead_section.hpp).
 
+// What flattens a bead to the layer height.
+enum class Flattening : std::uint8_t {
+  kNozzle,  // the nozzle's tip (desktop FFF, robot cells): every bead is flattened
+  kRoller,  // a compression roller following the nozzle: flattened where Move::roller_down, round elsewhere
+  kTamper,  // a tamping foot (BAAM class): likewise, by Move::roller_down (the tamper running)
+};
+std::string_view to_string(Flattening flattening);
+
 struct DepositOptions {
   double voxel_size_mm = 0.0;  // 0: chosen from the beads (half the smallest layer height)
   int supersample = 3;  // samples per voxel edge when measuring how much of a voxel a bead covers, 1..16
@@ -41,6 +55,54 @@ struct DepositOptions {
   // footprint), which lengthens the bead by its width and so spreads the same material a little thinner.
   // Corners between joined moves are always the swept footprint: round outside, mitred inside.
   bool round_free_ends = false;
+
+  Flattening flattening = Flattening::kNozzle;
+  // The bead's bottom follows the material really below it (sim/substrate.hpp): false lays every bead at
+  // its nominal layer height, whatever is under it.
+  bool follow_substrate = true;
+  // Longest piece a move is cut into for following the substrate, in bead widths (> 0).
+  double piece_bead_widths = 2.0;
+  double roller_width_mm = 0.0;     // 0: unknown (no corner check); the roller's width across the bead
+  double roller_diameter_mm = 0.0;  // 0: unknown
+  double nozzle_diameter_mm = 0.0;  // 0: unknown; the nozzle's tip, for collisions on travel moves
+  // The build table's height, mm; NaN: the lowest nominal bead bottom of the toolpath.
+  double table_z_mm = std::numeric_limits<double>::quiet_NaN();
+  // Memory the deposit may use, bytes; 0: three quarters of the machine's physical memory. An estimate
+  // above it stops the run before any voxel is written, with a voxel size that would fit.
+  double memory_budget_bytes = 0.0;
+};
+
+// Something wrong with the deposit, where it is and what caused it (issue 6, item 4). Runs of consecutive
+// pieces with the same problem are one defect.
+enum class DefectKind : std::uint8_t {
+  kVoid,          // an enclosed void between beads (size: its volume, mm³)
+  kPlough,        // material pushed above the roller's gap (size: the volume, mm³)
+  kUnsupported,   // a bead laid over nothing within a layer height (size: the span's length, mm)
+  kRollerCorner,  // the roller engaged through a corner tighter than it can follow (size: the turn, degrees)
+  kCollision,     // the nozzle or roller runs into material standing above it (size: how deep, mm)
+};
+std::string_view to_string(DefectKind kind);
+
+struct Defect {
+  DefectKind kind = DefectKind::kVoid;
+  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  // where it starts (a void: its centre)
+  int layer = -1;
+  std::size_t move = 0;  // index into Toolpath::moves of the move that caused it (a void: a bead next to it)
+  int source_line = 0;   // the program line of that move; 0 for planned toolpaths
+  double size = 0.0;     // see DefectKind
+  std::string detail;    // one line for a person
+};
+
+// Per toolpath layer: the material it was commanded and what the deposit made of it.
+struct LayerDeposit {
+  double commanded_volume_mm3 = 0.0;
+  // Commanded over nominal: the layer's outline area times its height (ToolpathLayer::outline_area_mm2); 0
+  // when the toolpath does not know the outline. Below 1 the layer is under-filled, above it over-filled.
+  double fill_ratio = 0.0;
+  double mean_bead_height_mm = 0.0;  // the beads' height after following the substrate, length-weighted
+  double void_volume_mm3 = 0.0;      // enclosed voids next to the layer's beads
+  double plough_volume_mm3 = 0.0;    // material pushed above the roller while laying the layer
+  double unsupported_length_mm = 0.0;
 };
 
 struct Deposit {
@@ -59,6 +121,12 @@ struct Deposit {
   double porosity = 0.0;                  // void fraction inside the printed envelope
   double void_volume_mm3 = 0.0;           // empty volume inside the printed envelope (sim/porosity.hpp)
   std::size_t active_voxels = 0;
+
+  std::vector<Defect> defects;       // in toolpath order; voids last
+  std::vector<LayerDeposit> layers;  // parallel to Toolpath::layers
+  double plough_volume_mm3 = 0.0;
+  double unsupported_length_mm = 0.0;
+  double memory_estimate_bytes = 0.0;  // what the deposit was estimated to need before it started
 };
 
 // Deposits every print move of `toolpath`. Throws InputError for a toolpath that cannot be deposited

@@ -16,13 +16,15 @@ void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, int layer) {
 }
 
 void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fraction,
-                     const MoveStamp& stamp_of_move, int spread_radius, int squeeze_radius) {
+                     const MoveStamp& stamp_of_move, int spread_radius, int squeeze_radius, int roller_k) {
   BT_CHECK_OP(fill_per_fraction, >, 0.0);
   BT_CHECK_OP(spread_radius, >=, 1);
   BT_CHECK_OP(squeeze_radius, >=, 1);
   // Every cell first takes what fits, so the excess of one cell never lands in another cell the same move is
   // about to fill; only then is the excess spread, in the cells' order.
   overflow_.clear();
+  ploughed_ = 0.0;
+  roller_k_ = roller_k;
   for (const CoverageCell& cell : cells) {
     const double before = fill_.getValue(cell.ijk);
     const double after = before + cell.fraction * fill_per_fraction;
@@ -73,6 +75,7 @@ void FillWriter::spread(const Overflow& overflow, int layer, int spread_radius, 
       stamp(ijk, overflow.time_s, layer);
     }
     excess -= share * room;
+    if (k >= roller_k_) ploughed_ += share * room;
     return share < 1.0 || excess <= 0.0;
   };
   // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty

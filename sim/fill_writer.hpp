@@ -9,6 +9,7 @@
 // material is stamped with the time and layer of the move.
 #pragma once
 
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -32,8 +33,11 @@ class FillWriter {
   // Adds `fill_per_fraction` · fraction (in voxel volumes) to every cell. Excess goes into partly filled
   // neighbours within `spread_radius` (>= 1) voxels in plan, then into any free voxel within
   // `squeeze_radius` (>= 1), then upward.
+  // Material pushed into voxels at index k >= `roller_k` (above the roller's gap) counts as ploughed.
   void add(std::span<const CoverageCell> cells, double fill_per_fraction, const MoveStamp& stamp,
-           int spread_radius, int squeeze_radius);
+           int spread_radius, int squeeze_radius, int roller_k = std::numeric_limits<int>::max());
+  // Material the last add() pushed above the roller, in voxel volumes.
+  double last_ploughed_voxels() const { return ploughed_; }
 
   // Material moved out of overfull voxels so far, in voxel volumes.
   double redistributed_voxels() const { return redistributed_; }
@@ -53,6 +57,8 @@ class FillWriter {
   openvdb::Int32Grid::Accessor layer_;
   std::vector<Overflow> overflow_;
   double redistributed_ = 0.0;
+  double ploughed_ = 0.0;
+  int roller_k_ = std::numeric_limits<int>::max();
 };
 
 }  // namespace beadtwin::sim

@@ -1,5 +1,6 @@
 #include "sim/sweep_plan.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -55,7 +56,8 @@ void join(BeadSweep& first, BeadSweep& second, const Eigen::Vector2d& bisector) 
 
 }  // namespace
 
-std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, bool round_free_ends) {
+std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, const SweepPlanOptions& options) {
+  BT_CHECK_OP(options.max_piece_mm, >, 0.0);
   std::vector<PlannedSweep> out;
   std::size_t chain_first = 0;  // index into `out` of the current continuous bead's first move
   bool moved_dry = false;       // a move with length but without material since the last depositing move
@@ -72,16 +74,35 @@ std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, bool round_free_
       continue;
     }
     BT_CHECK_OP(move.layer_height_mm, >, 0.0);
-    PlannedSweep planned{i, sweep_of(move, round_free_ends)};
-    std::optional<Eigen::Vector2d> bisector;
-    if (!out.empty() && !moved_dry) bisector = joint(out.back().sweep, planned.sweep);
-    if (bisector) {
-      join(out.back().sweep, planned.sweep, *bisector);
-    } else {
-      close_chain();
-      chain_first = out.size();
+    const BeadSweep whole = sweep_of(move, options.round_free_ends);
+    const double plan_length = (whole.end_xy - whole.start_xy).norm();
+    const int pieces =
+        whole.is_puddle() ? 1 : std::max(1, static_cast<int>(std::ceil(plan_length / options.max_piece_mm)));
+    for (int k = 0; k < pieces; ++k) {
+      const double a = static_cast<double>(k) / pieces, b = static_cast<double>(k + 1) / pieces;
+      PlannedSweep planned{i, whole, a, b, move.volume_mm3 / pieces, 0.0, move.layer_height_mm};
+      BeadSweep& s = planned.sweep;
+      if (pieces > 1) {
+        s.start_xy = whole.start_xy + a * (whole.end_xy - whole.start_xy);
+        s.end_xy = whole.start_xy + b * (whole.end_xy - whole.start_xy);
+        s.start_top_mm = whole.start_top_mm + a * (whole.end_top_mm - whole.start_top_mm);
+        s.end_top_mm = whole.start_top_mm + b * (whole.end_top_mm - whole.start_top_mm);
+        // Inner cuts are square, so the pieces join into one seamless bead; the move's own ends keep theirs.
+        const Eigen::Vector2d axis = direction(whole);
+        if (k > 0) s.start_cut = axis;
+        if (k + 1 < pieces) s.end_cut = axis;
+      }
+      planned.nominal_top_mm = 0.5 * (s.start_top_mm + s.end_top_mm);
+      std::optional<Eigen::Vector2d> bisector;
+      if (k == 0 && !out.empty() && !moved_dry) bisector = joint(out.back().sweep, s);
+      if (bisector) {
+        join(out.back().sweep, s, *bisector);
+      } else if (k == 0) {
+        close_chain();
+        chain_first = out.size();
+      }
+      out.push_back(planned);
     }
-    out.push_back(planned);
     moved_dry = false;
   }
   close_chain();

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "core/toolpath.hpp"
@@ -21,12 +22,27 @@
 
 namespace beadtwin::sim {
 
+// One piece of a depositing move: a move longer than the piece length is cut into equal pieces, so the
+// deposit can follow the substrate under it (sim/substrate.hpp) piece by piece.
 struct PlannedSweep {
   std::size_t move = 0;  // index into Toolpath::moves
-  BeadSweep sweep;
+  BeadSweep sweep;       // with the nominal profile: flattened to the move's layer height
+  double along_start = 0.0, along_end = 1.0;  // the piece's part of its move, 0 (start) .. 1 (end)
+  double volume_mm3 = 0.0;                    // the material the piece lays: its share of the move's
+  // The nominal top and bottom of the bead (the roller's height, the move's z, and that less the layer
+  // height), at the piece's middle.
+  double nominal_top_mm = 0.0;
+  double nominal_height_mm = 0.0;
+};
+
+struct SweepPlanOptions {
+  bool round_free_ends = false;  // see DepositOptions::round_free_ends
+  // Longest piece, mm (> 0): moves are cut into equal pieces no longer than this. Infinity keeps every move
+  // whole.
+  double max_piece_mm = std::numeric_limits<double>::infinity();
 };
 
 // Precondition: the toolpath's depositing moves have finite coordinates and positive layer heights.
-std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, bool round_free_ends);
+std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, const SweepPlanOptions& options);
 
 }  // namespace beadtwin::sim

@@ -209,7 +209,7 @@ Shaped shape_piece(PlannedSweep& p, const Move& move, Substrate& sub, const Depo
   const double left = p.volume_mm3 - out.gap_volume_mm3;
   const double footprint = sub.columns * voxel_size_mm * voxel_size_mm;
   const double height = std::clamp(h - sub.above_mm, kMinSquash * h, h);
-  out.height_mm = height + out.gap_volume_mm3 / footprint;
+  out.height_mm = height + (footprint > 0.0 ? out.gap_volume_mm3 / footprint : 0.0);
   if (left <= 1e-9 * p.volume_mm3) {
     out.bead = false;
     return out;

@@ -1,0 +1,305 @@
+// The deposit following what is really under each bead (sim/substrate.hpp), and the defects it finds
+// (issue 6, items 1, 3 and 4).
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/bead.hpp"
+#include "core/error.hpp"
+#include "core/toolpath.hpp"
+#include "core/units.hpp"
+#include "sim/deposit.hpp"
+
+namespace beadtwin {
+namespace {
+
+// The LSAM bead of the patent: 0.83 in wide, 0.20 in tall after the roller.
+constexpr double kW = 0.83 * kMmPerInch;
+constexpr double kH = 0.20 * kMmPerInch;
+
+Move bead(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer, double flow_scale = 1.0) {
+  Move m;
+  m.start = from;
+  m.end = to;
+  m.kind = MoveKind::kPrint;
+  m.feature = Feature::kFill;
+  m.roller_down = true;
+  m.feed_mm_s = 100.0;
+  m.bead_width_mm = kW;
+  m.layer_height_mm = kH;
+  m.layer = layer;
+  m.volume_mm3 = flow_scale * bead_area_mm2(kW, kH) * m.length_mm();
+  m.source_line = 100 + static_cast<int>(layer);
+  return m;
+}
+
+Move travel(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer) {
+  Move m;
+  m.start = from;
+  m.end = to;
+  m.kind = MoveKind::kTravel;
+  m.feature = Feature::kTravel;
+  m.feed_mm_s = 400.0;
+  m.layer = layer;
+  return m;
+}
+
+Toolpath timed(std::vector<Move> moves) {
+  Toolpath toolpath;
+  toolpath.moves = std::move(moves);
+  int layers = 0;
+  for (const Move& m : toolpath.moves) layers = std::max(layers, m.layer + 1);
+  toolpath.layers.resize(static_cast<std::size_t>(layers));
+  for (int l = 0; l < layers; ++l) {
+    toolpath.layers[static_cast<std::size_t>(l)].z_mm = (l + 1) * kH;
+    toolpath.layers[static_cast<std::size_t>(l)].height_mm = kH;
+  }
+  time_toolpath(toolpath, MotionLimits{});
+  return toolpath;
+}
+
+// The ideal pitch for flattened beads side by side: the section's area over its height (docs/physics.md).
+double ideal_pitch() {
+  return bead_area_mm2(kW, kH) / kH;
+}
+
+// `count` beads 200 mm long at the ideal pitch, `layers` layers; layer `scaled` gets `flow_scale` of the
+// material.
+Toolpath block(int count, int layers, int scaled = -1, double flow_scale = 1.0) {
+  std::vector<Move> moves;
+  Eigen::Vector3d at(0, 0, kH);
+  for (int l = 0; l < layers; ++l) {
+    const double z = (l + 1) * kH;
+    for (int n = 0; n < count; ++n) {
+      const Eigen::Vector3d a(0, n * ideal_pitch(), z), b(200, n * ideal_pitch(), z);
+      moves.push_back(travel(at, a, l));
+      moves.push_back(bead(a, b, l, l == scaled ? flow_scale : 1.0));
+      at = b;
+    }
+  }
+  return timed(std::move(moves));
+}
+
+std::size_t count(const sim::Deposit& d, sim::DefectKind kind) {
+  return static_cast<std::size_t>(std::count_if(d.defects.begin(), d.defects.end(),
+                                                [&](const sim::Defect& x) { return x.kind == kind; }));
+}
+
+// Layers at the ideal pitch leave only the cusps between rounded flanks for the next layer to fill: every
+// layer keeps its height (within the few per cent the cusps are of a layer) and nothing ploughs.
+TEST(Substrate, LayersAtTheIdealPitchKeepTheirHeight) {
+  const sim::Deposit d = sim::deposit(block(5, 4));
+  ASSERT_EQ(d.layers.size(), 4u);
+  for (const sim::LayerDeposit& l : d.layers) {
+    EXPECT_NEAR(l.mean_bead_height_mm / kH, 1.0, 0.03);
+    EXPECT_LT(l.plough_volume_mm3, 1e-3 * l.commanded_volume_mm3);
+  }
+  EXPECT_EQ(count(d, sim::DefectKind::kPlough), 0u);
+  EXPECT_EQ(count(d, sim::DefectKind::kUnsupported), 0u);
+  EXPECT_LT(std::abs(d.deposited_volume_mm3 / d.commanded_volume_mm3 - 1.0), 0.005);
+}
+
+// Issue 6 test: an under-extruded layer makes the next layer's beads taller. Layer 0 at 70 % of the
+// material has the same beads at the same pitch, so it leaves gaps of 30 % of its volume between them;
+// layer 1 runs into them before it makes its own bead. Its material then reaches down into layer 0's band.
+TEST(Substrate, UnderExtrudedLayerMakesTheNextLayerTaller) {
+  const sim::Deposit d = sim::deposit(block(5, 2, 0, 0.7));
+  ASSERT_EQ(d.layers.size(), 2u);
+  EXPECT_NEAR(d.layers[0].mean_bead_height_mm, kH, 1e-9);
+  // Up to 30 % of a layer can go into the gaps; the flanks of the outer beads are not gaps between beads.
+  EXPECT_GT(d.layers[1].mean_bead_height_mm, 1.15 * kH);
+  EXPECT_LT(d.layers[1].mean_bead_height_mm, 1.35 * kH);
+  int laid_low = 0;  // voxels of layer 0's band that layer 1 put material into
+  for (auto it = d.layer->cbeginValueOn(); it; ++it)
+    if (*it == 1 && sim::voxel_center_mm(it.getCoord(), d.voxel_size_mm).z() < kH) ++laid_low;
+  EXPECT_GT(laid_low, 100);
+  EXPECT_LT(std::abs(d.deposited_volume_mm3 / d.commanded_volume_mm3 - 1.0), 0.005);
+  // Without following the substrate, layer 1 keeps its nominal height and stays in its own band.
+  sim::DepositOptions flat;
+  flat.follow_substrate = false;
+  const sim::Deposit f = sim::deposit(block(5, 2, 0, 0.7), flat);
+  EXPECT_NEAR(f.layers[1].mean_bead_height_mm, kH, 1e-9);
+}
+
+// An over-extruded layer (150 %) at the ideal pitch overfills its own band: the roller ploughs the excess
+// as it lays it, and the next layer's roller ploughs into what stands above its nominal bottom. Each plough
+// is reported with its layer and the program line of the bead that ploughed.
+TEST(Substrate, OverExtrudedLayerMakesTheRollerPlough) {
+  const sim::Deposit d = sim::deposit(block(5, 2, 0, 1.5));
+  EXPECT_GT(d.layers[0].plough_volume_mm3, 0.05 * d.layers[0].commanded_volume_mm3);
+  EXPECT_GT(d.layers[1].plough_volume_mm3, 0.05 * d.layers[1].commanded_volume_mm3);
+  std::set<int> layers;
+  for (const sim::Defect& x : d.defects) {
+    if (x.kind != sim::DefectKind::kPlough) continue;
+    layers.insert(x.layer);
+    EXPECT_EQ(x.source_line, 100 + x.layer);
+    EXPECT_NE(x.detail.find("plough"), std::string::npos);
+  }
+  EXPECT_EQ(layers, (std::set<int>{0, 1}));
+  // A flatter, wider bead where material already stands in its band.
+  EXPECT_LT(d.layers[1].mean_bead_height_mm, 0.95 * kH);
+  EXPECT_LT(std::abs(d.deposited_volume_mm3 / d.commanded_volume_mm3 - 1.0), 0.005);
+  // At the right flow nothing ploughs (Substrate.LayersAtTheIdealPitchKeepTheirHeight).
+}
+
+// A roller machine with the roller up: the bead keeps a round section of its area A (diameter √(4A/π)),
+// sitting on the table, instead of the flattened stadium.
+TEST(Substrate, BeadIsRoundWhereTheRollerIsUp) {
+  Move m = bead({0, 0, kH}, {200, 0, kH}, 0);
+  m.roller_down = false;
+  sim::DepositOptions o;
+  o.flattening = sim::Flattening::kRoller;
+  o.voxel_size_mm = 0.5;
+  const sim::Deposit d = sim::deposit(timed({m}), o);
+  const double diameter = std::sqrt(4.0 * bead_area_mm2(kW, kH) / kPi);
+  double top = 0.0, half_width = 0.0;
+  for (auto it = d.fill->cbeginValueOn(); it; ++it) {
+    if (*it < 0.5f) continue;
+    const Eigen::Vector3d c = sim::voxel_center_mm(it.getCoord(), d.voxel_size_mm);
+    top = std::max(top, c.z() + 0.5 * d.voxel_size_mm);
+    half_width = std::max(half_width, std::abs(c.y()) + 0.5 * d.voxel_size_mm);
+  }
+  EXPECT_NEAR(top, diameter, 2 * d.voxel_size_mm);
+  EXPECT_NEAR(2 * half_width, diameter, 2 * d.voxel_size_mm);
+  EXPECT_GT(diameter, 1.5 * kH);  // clearly not the flattened bead
+  // The same bead under the roller is flattened to the layer height.
+  m.roller_down = true;
+  const sim::Deposit flat = sim::deposit(timed({m}), o);
+  double flat_top = 0.0;
+  for (auto it = flat.fill->cbeginValueOn(); it; ++it)
+    if (*it >= 0.5f) flat_top = std::max(flat_top, sim::voxel_center_mm(it.getCoord(), 0.5).z() + 0.25);
+  EXPECT_NEAR(flat_top, kH, 0.5);
+  // A machine whose nozzle flattens every bead ignores the roller flag.
+  m.roller_down = false;
+  EXPECT_NEAR(
+      sim::deposit(timed({m}), sim::DepositOptions{.voxel_size_mm = 0.5}).layers[0].mean_bead_height_mm, kH,
+      1e-9);
+}
+
+// A bead laid two layers up with nothing under it spans unsupported, for its whole length.
+TEST(Defects, UnsupportedSpanIsReportedWithItsLength) {
+  std::vector<Move> moves = {bead({0, 0, kH}, {100, 0, kH}, 0), travel({100, 0, kH}, {0, 100, 3 * kH}, 1),
+                             bead({0, 100, 3 * kH}, {150, 100, 3 * kH}, 1)};
+  const sim::Deposit d = sim::deposit(timed(moves));
+  ASSERT_EQ(count(d, sim::DefectKind::kUnsupported), 1u);
+  const auto it = std::find_if(d.defects.begin(), d.defects.end(),
+                               [](const sim::Defect& x) { return x.kind == sim::DefectKind::kUnsupported; });
+  EXPECT_EQ(it->layer, 1);
+  EXPECT_EQ(it->move, 2u);
+  EXPECT_NEAR(it->size, 150.0, 1e-6);
+  EXPECT_NEAR(it->position_mm.y(), 100.0, 1e-9);
+  EXPECT_NEAR(d.unsupported_length_mm, 150.0, 1e-6);
+}
+
+// A square with the roller down through its corners: a 90° turn at a point is tighter than any roller
+// follows. The same square with corners rounded to 40 mm (in 10° steps) is fine for a 50 mm roller, whose
+// inner edge stands still on a 25 mm radius.
+TEST(Defects, RollerCornersTighterThanItFollows) {
+  const auto square = [](double radius) {
+    std::vector<Move> moves;
+    std::vector<Eigen::Vector3d> points;
+    const double half = 200.0;
+    const Eigen::Vector2d centres[4] = {{half - radius, -half + radius},
+                                        {half - radius, half - radius},
+                                        {-half + radius, half - radius},
+                                        {-half + radius, -half + radius}};
+    for (int c = 0; c < 4; ++c)
+      for (int k = 0; k <= 9; ++k) {
+        const double a = (c * 90.0 - 90.0 + k * 10.0) * kPi / 180.0;
+        points.emplace_back(centres[c].x() + radius * std::cos(a), centres[c].y() + radius * std::sin(a), kH);
+      }
+    points.push_back(points.front());
+    for (std::size_t i = 0; i + 1 < points.size(); ++i)
+      if ((points[i + 1] - points[i]).norm() > 1e-9) moves.push_back(bead(points[i], points[i + 1], 0));
+    return timed(moves);
+  };
+  sim::DepositOptions o;
+  o.flattening = sim::Flattening::kRoller;
+  o.roller_width_mm = 50.0;
+  o.voxel_size_mm = 2.54;
+  const sim::Deposit sharp = sim::deposit(square(0.0), o);
+  EXPECT_EQ(count(sharp, sim::DefectKind::kRollerCorner), 3u);  // the fourth corner is the loop's seam
+  for (const sim::Defect& x : sharp.defects) {
+    if (x.kind == sim::DefectKind::kRollerCorner) {
+      EXPECT_NEAR(x.size, 90.0, 1e-6);
+    }
+  }
+  EXPECT_EQ(count(sim::deposit(square(40.0), o), sim::DefectKind::kRollerCorner), 0u);
+  // Lifted through the corner (the planner's corner pull-back), no defect.
+  Toolpath lifted = square(0.0);
+  for (Move& m : lifted.moves) m.roller_down = false;
+  EXPECT_EQ(count(sim::deposit(lifted, o), sim::DefectKind::kRollerCorner), 0u);
+}
+
+// A travel move at the first layer's height back through the second layer's bead hits it.
+TEST(Defects, TravelThroughThePartIsACollision) {
+  std::vector<Move> moves = {bead({0, 0, kH}, {100, 0, kH}, 0), travel({100, 0, kH}, {100, 0, 2 * kH}, 1),
+                             bead({100, 0, 2 * kH}, {0, 0, 2 * kH}, 1),
+                             travel({0, 0, 2 * kH}, {50, -50, kH}, 1),
+                             travel({50, -50, kH}, {50, 50, kH}, 1)};
+  const sim::Deposit d = sim::deposit(timed(moves));
+  ASSERT_EQ(count(d, sim::DefectKind::kCollision), 1u);
+  const auto it = std::find_if(d.defects.begin(), d.defects.end(),
+                               [](const sim::Defect& x) { return x.kind == sim::DefectKind::kCollision; });
+  EXPECT_EQ(it->move, 4u);
+  EXPECT_GT(it->size, 0.5 * kH);
+  EXPECT_NE(it->detail.find("travel"), std::string::npos);
+}
+
+// A memory budget the deposit would exceed stops it before any voxel is written, with a voxel size that
+// would fit: memory goes as the inverse cube of the voxel size.
+TEST(Deposit, MemoryBudgetStopsWithAVoxelSizeThatFits) {
+  sim::DepositOptions o;
+  o.voxel_size_mm = 0.5;
+  o.memory_budget_bytes = 1e6;
+  try {
+    sim::deposit(block(5, 2), o);
+    FAIL() << "expected the budget to stop the deposit";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "voxel_size");
+    const std::string m = e.what();
+    EXPECT_NE(m.find("memory budget"), std::string::npos) << m;
+    const auto at = m.find("use a voxel size of ");
+    ASSERT_NE(at, std::string::npos) << m;
+    o.voxel_size_mm = std::stod(m.substr(at + 20));
+    EXPECT_GT(o.voxel_size_mm, 0.5);
+  }
+  const sim::Deposit d = sim::deposit(block(5, 2), o);  // the suggested size fits
+  EXPECT_LE(d.memory_estimate_bytes, 1e6);
+}
+
+// Coast (issue 6, item 3): the planner writes a coast as steps whose material falls off linearly to zero
+// (slicer/melt_events.hpp); the deposit lays each step's material where it is, so the bead thins out.
+TEST(Deposit, CoastThinsTheBeadOut) {
+  std::vector<Move> moves = {bead({0, 0, kH}, {100, 0, kH}, 0)};
+  const double per_mm = bead_area_mm2(kW, kH);
+  for (int k = 0; k < 4; ++k) {  // four 25 mm steps with the exact integral of the linear decay
+    Move m = bead({100 + 25.0 * k, 0, kH}, {125 + 25.0 * k, 0, kH}, 0);
+    m.feature = Feature::kCoast;
+    m.event = ExtruderEvent::kCoast;
+    m.volume_mm3 = per_mm * 25.0 * (1.0 - (k + 0.5) / 4.0);
+    moves.push_back(m);
+  }
+  const Toolpath tp = timed(moves);
+  const sim::Deposit d = sim::deposit(tp);
+  EXPECT_LT(std::abs(d.deposited_volume_mm3 / tp.commanded_volume_mm3() - 1.0), 1e-6);
+  // Material per length in slices across the bead: full before the coast, falling through it.
+  const auto slice = [&](double x0, double x1) {
+    double sum = 0.0;
+    for (auto it = d.fill->cbeginValueOn(); it; ++it) {
+      const double x = sim::voxel_center_mm(it.getCoord(), d.voxel_size_mm).x();
+      if (x >= x0 && x < x1) sum += *it;
+    }
+    return sum * std::pow(d.voxel_size_mm, 3) / (x1 - x0);
+  };
+  const double before = slice(40, 60), early = slice(105, 120), late = slice(180, 195);
+  EXPECT_NEAR(before / per_mm, 1.0, 0.05);
+  EXPECT_LT(early, 0.95 * before);
+  EXPECT_LT(late, 0.5 * early);
+}
+
+}  // namespace
+}  // namespace beadtwin

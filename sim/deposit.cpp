@@ -20,6 +20,7 @@
 #include "sim/porosity.hpp"
 #include "sim/substrate.hpp"
 #include "sim/sweep_plan.hpp"
+#include "sim/voids.hpp"
 
 namespace beadtwin::sim {
 
@@ -33,6 +34,8 @@ constexpr double kBatchVoxels = 4e6;
 constexpr double kMaxVoxelIndex = 1e9;
 constexpr int kMaxSupersample = 16;
 constexpr std::size_t kMaxListedProblems = 20;
+// Voids listed by position (the largest); all of them count in the layers' void volumes.
+constexpr std::size_t kMaxListedVoids = 200;
 
 struct Problem {
   SourceLocation where;
@@ -124,19 +127,22 @@ void check_budget(const std::vector<PlannedSweep>& sweeps, double voxel_size_mm)
 
 struct Grids {
   openvdb::FloatGrid::Ptr fill, time;
-  openvdb::Int32Grid::Ptr layer;
+  openvdb::Int32Grid::Ptr layer, move;
 };
 
 Grids make_grids(double voxel_size_mm) {
-  Grids g{openvdb::FloatGrid::create(0.0f), openvdb::FloatGrid::create(0.0f), openvdb::Int32Grid::create(-1)};
+  Grids g{openvdb::FloatGrid::create(0.0f), openvdb::FloatGrid::create(0.0f), openvdb::Int32Grid::create(-1),
+          openvdb::Int32Grid::create(-1)};
   g.fill->setName("fill");
   g.fill->setGridClass(openvdb::GRID_FOG_VOLUME);
   g.time->setName("time");
   g.layer->setName("layer");
+  g.move->setName("move");
   const auto transform = deposit_transform(voxel_size_mm);
   g.fill->setTransform(transform);
   g.time->setTransform(transform->copy());
   g.layer->setTransform(transform->copy());
+  g.move->setTransform(transform->copy());
   return g;
 }
 
@@ -274,7 +280,8 @@ void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<Coverag
       cell.along = middle;
     }
     c.writer.add(shaped.gap_cells, shaped.gap_volume_mm3 / (room * voxel_volume),
-                 {move.start_s, move.duration_s, move.layer}, spread_radius, 1, roller_k);
+                 {move.start_s, move.duration_s, move.layer, static_cast<int>(planned.move)}, spread_radius,
+                 1, roller_k);
     ploughed += c.writer.last_ploughed_voxels();
   }
   if (!shaped.bead) {
@@ -301,8 +308,9 @@ void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<Coverag
   // Squeezing sideways into empty space reaches about half the bead height (the bead's round side).
   const int squeeze_radius =
       std::max(1, static_cast<int>(std::lround(0.5 * planned.sweep.profile.height_mm() / vs)));
-  c.writer.add(cells, bead_volume / (swept * voxel_volume), {move.start_s, move.duration_s, move.layer},
-               spread_radius, squeeze_radius, roller_k);
+  c.writer.add(cells, bead_volume / (swept * voxel_volume),
+               {move.start_s, move.duration_s, move.layer, static_cast<int>(planned.move)}, spread_radius,
+               squeeze_radius, roller_k);
   c.ploughed_voxels = ploughed + c.writer.last_ploughed_voxels();
 }
 
@@ -436,9 +444,9 @@ double widest_nominal_bead(const Toolpath& toolpath) {
   return widest;
 }
 
-// Bytes per active voxel: three grids of four bytes in leaf nodes that a thin shell fills about half, the
+// Bytes per active voxel: four grids of four bytes in leaf nodes that a thin shell fills about half, the
 // tree above them, and the batches of coverage cells.
-constexpr double kBytesPerVoxel = 40.0;
+constexpr double kBytesPerVoxel = 50.0;
 // Active voxels per voxel of material: the partly filled skin and the material pushed aside.
 constexpr double kActivePerMaterialVoxel = 1.3;
 
@@ -617,8 +625,9 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.fill = grids.fill;
   out.time = grids.time;
   out.layer = grids.layer;
+  out.move = grids.move;
   out.layers.resize(toolpath.layers.size());
-  FillWriter writer(*grids.fill, *grids.time, *grids.layer);
+  FillWriter writer(*grids.fill, *grids.time, *grids.layer, *grids.move);
   DefectLog defects;
   if (options.flattening != Flattening::kNozzle && options.roller_width_mm > 0.0)
     roller_corners(toolpath, options.roller_width_mm, defects);
@@ -628,7 +637,8 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   std::stable_sort(out.defects.begin(), out.defects.end(),
                    [](const Defect& a, const Defect& b) { return a.move < b.move; });
 
-  const Porosity porosity = measure_porosity(*grids.fill, widest_bead_voxels(sweeps, vs));
+  openvdb::MaskGrid gaps;
+  const Porosity porosity = measure_porosity(*grids.fill, widest_bead_voxels(sweeps, vs), &gaps);
   out.swept_volume_mm3 = totals.swept_voxels * voxel_volume;
   out.redistributed_volume_mm3 = writer.redistributed_voxels() * voxel_volume;
   out.deposited_volume_mm3 = porosity.material_voxels * voxel_volume;
@@ -637,6 +647,11 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.active_voxels = static_cast<std::size_t>(grids.fill->activeVoxelCount());
   BT_CHECK_OP(out.active_voxels, ==, static_cast<std::size_t>(grids.layer->activeVoxelCount()));
   summarise_layers(toolpath, sweeps, out);
+  VoidsFound voids = locate_voids(gaps, out, toolpath, voxel_volume, kMaxListedVoids);
+  out.void_count = voids.count;
+  for (std::size_t i = 0; i < out.layers.size(); ++i)
+    out.layers[i].void_volume_mm3 = voids.layer_volume_mm3[i];
+  out.defects.insert(out.defects.end(), voids.defects.begin(), voids.defects.end());
   for (Defect& d : out.defects) d.detail = describe(d);
   return out;
 }

@@ -16,8 +16,9 @@
 //    transform is deposit_transform(voxel_size_mm): it maps index (i,j,k) to the voxel's centre
 //    ((i+½)·s, (j+½)·s, (k+½)·s), as OpenVDB expects (a value sits at the centre of its voxel), so
 //    grid->transform().worldToIndexCellCentered(p) and voxel_containing(p, s) name the same voxel.
-//  - fill, time and layer share one active topology: a voxel is active iff it holds material (fill > 0).
-//    Inactive voxels read the backgrounds: fill 0, time 0, layer -1.
+//  - fill, time, layer and move share one active topology: a voxel is active iff it holds material (fill >
+//  0).
+//    Inactive voxels read the backgrounds: fill 0, time 0, layer -1, move -1.
 //  - Every move with volume_mm3 > 0 deposits, whatever its kind; a move without plan length (a dwell that
 //    extrudes) leaves a puddle at its end point (sim/sweep_plan.hpp).
 #pragma once
@@ -113,6 +114,8 @@ struct Deposit {
   openvdb::FloatGrid::Ptr time;
   // Toolpath layer index of the material in the voxel (-1 background, and for moves without a layer).
   openvdb::Int32Grid::Ptr layer;
+  // Index into Toolpath::moves of the move that last put material in the voxel (-1 background).
+  openvdb::Int32Grid::Ptr move;
 
   double commanded_volume_mm3 = 0.0;      // sum of the toolpath's move volumes
   double deposited_volume_mm3 = 0.0;      // sum of fill fractions times the voxel volume
@@ -126,7 +129,9 @@ struct Deposit {
   std::vector<LayerDeposit> layers;  // parallel to Toolpath::layers
   double plough_volume_mm3 = 0.0;
   double unsupported_length_mm = 0.0;
-  double memory_estimate_bytes = 0.0;  // what the deposit was estimated to need before it started
+  double memory_estimate_bytes = 0.0;
+  std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)  //
+                               // what the deposit was estimated to need before it started
 };
 
 // Deposits every print move of `toolpath`. Throws InputError for a toolpath that cannot be deposited

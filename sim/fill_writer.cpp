@@ -7,12 +7,17 @@
 
 namespace beadtwin::sim {
 
-FillWriter::FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openvdb::Int32Grid& layer)
-    : fill_(fill.getAccessor()), time_(time.getAccessor()), layer_(layer.getAccessor()) {}
+FillWriter::FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openvdb::Int32Grid& layer,
+                       openvdb::Int32Grid& move)
+    : fill_(fill.getAccessor()),
+      time_(time.getAccessor()),
+      layer_(layer.getAccessor()),
+      move_(move.getAccessor()) {}
 
-void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, int layer) {
+void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of) {
   time_.setValue(ijk, time_s);
-  layer_.setValue(ijk, layer);
+  layer_.setValue(ijk, of.layer);
+  move_.setValue(ijk, of.move);
 }
 
 void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fraction,
@@ -29,7 +34,7 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
     const double before = fill_.getValue(cell.ijk);
     const double after = before + cell.fraction * fill_per_fraction;
     const auto time_s = static_cast<float>(stamp_of_move.start_s + cell.along * stamp_of_move.duration_s);
-    if (before < 1.0) stamp(cell.ijk, time_s, stamp_of_move.layer);
+    if (before < 1.0) stamp(cell.ijk, time_s, stamp_of_move);
     if (after > 1.0) {
       fill_.setValue(cell.ijk, 1.0f);
       overflow_.push_back({cell.ijk, after - 1.0, time_s});
@@ -37,11 +42,11 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
       fill_.setValue(cell.ijk, static_cast<float>(after));
     }
   }
-  for (const Overflow& overflow : overflow_)
-    spread(overflow, stamp_of_move.layer, spread_radius, squeeze_radius);
+  for (const Overflow& overflow : overflow_) spread(overflow, stamp_of_move, spread_radius, squeeze_radius);
 }
 
-void FillWriter::spread(const Overflow& overflow, int layer, int spread_radius, int squeeze_radius) {
+void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int spread_radius,
+                        int squeeze_radius) {
   double excess = overflow.excess;
   redistributed_ += excess;
   // The voxels of one ring are offered the excess together, in proportion to their free room, so material
@@ -72,7 +77,7 @@ void FillWriter::spread(const Overflow& overflow, int layer, int spread_radius, 
     const double share = std::min(1.0, excess / room);
     for (const auto& [ijk, free] : ring_cells) {
       fill_.setValue(ijk, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
-      stamp(ijk, overflow.time_s, layer);
+      stamp(ijk, overflow.time_s, of);
     }
     excess -= share * room;
     if (k >= roller_k_) ploughed_ += share * room;

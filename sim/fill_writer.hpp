@@ -6,7 +6,7 @@
 // space right beside it (the bead squeezes a little wider), then upward (the roller ploughs). Each ring of
 // neighbours shares the excess in proportion to its free room, so it spreads evenly to every side. Nothing
 // is ever dropped, so the grid holds exactly what was added, to float rounding. Each voxel that receives
-// material is stamped with the time and layer of the move.
+// material is stamped with the time, layer and index of the move.
 #pragma once
 
 #include <limits>
@@ -23,12 +23,14 @@ struct MoveStamp {
   double start_s = 0.0;     // time the move starts
   double duration_s = 0.0;  // the voxel at `along` gets start_s + along · duration_s
   int layer = -1;
+  int move = -1;  // index into Toolpath::moves
 };
 
 class FillWriter {
  public:
-  // The three grids share one active topology: a voxel is active iff it holds material.
-  FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openvdb::Int32Grid& layer);
+  // The four grids share one active topology: a voxel is active iff it holds material.
+  FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openvdb::Int32Grid& layer,
+             openvdb::Int32Grid& move);
 
   // Adds `fill_per_fraction` · fraction (in voxel volumes) to every cell. Excess goes into partly filled
   // neighbours within `spread_radius` (>= 1) voxels in plan, then into any free voxel within
@@ -49,12 +51,13 @@ class FillWriter {
     float time_s = 0.0f;
   };
 
-  void stamp(const openvdb::Coord& ijk, float time_s, int layer);
-  void spread(const Overflow& overflow, int layer, int spread_radius, int squeeze_radius);
+  void stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of);
+  void spread(const Overflow& overflow, const MoveStamp& of, int spread_radius, int squeeze_radius);
 
   openvdb::FloatGrid::Accessor fill_;
   openvdb::FloatGrid::Accessor time_;
   openvdb::Int32Grid::Accessor layer_;
+  openvdb::Int32Grid::Accessor move_;
   std::vector<Overflow> overflow_;
   double redistributed_ = 0.0;
   double ploughed_ = 0.0;

@@ -53,7 +53,7 @@ double sum_over_leaves(const openvdb::FloatGrid& fill, const Leaves& leaves, F p
 
 }  // namespace
 
-Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels) {
+Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels, openvdb::MaskGrid* gaps_out) {
   BT_CHECK_OP(max_gap_voxels, >=, 1);
   const Leaves leaves(fill.tree());
   Porosity result;
@@ -104,6 +104,7 @@ Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels) {
         }
         return void_voxels;
       });
+  if (gaps_out) gaps_out->tree().merge(enclosed.tree());
   return result;
 }
 

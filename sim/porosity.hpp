@@ -28,7 +28,9 @@ struct Porosity {
   }
 };
 
-// Deterministic whatever the number of threads. Precondition: max_gap_voxels >= 1.
-Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels);
+// Deterministic whatever the number of threads. Precondition: max_gap_voxels >= 1. When `gaps` is given it
+// receives the enclosed gap voxels (the runs above), for locating the voids (sim/voids.hpp).
+Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels,
+                          openvdb::MaskGrid* gaps = nullptr);
 
 }  // namespace beadtwin::sim

@@ -303,3 +303,81 @@ TEST(Deposit, CoastThinsTheBeadOut) {
 
 }  // namespace
 }  // namespace beadtwin
+
+namespace beadtwin {
+namespace {
+
+std::vector<const sim::Defect*> voids_of(const sim::Deposit& d) {
+  std::vector<const sim::Defect*> out;
+  for (const sim::Defect& x : d.defects)
+    if (x.kind == sim::DefectKind::kVoid) out.push_back(&x);
+  return out;
+}
+
+// Beads at 1.5 times the ideal pitch leave a channel between each pair: voids between fill beads, each
+// found between its two beads, in its layer.
+TEST(Defects, WidePitchLeavesVoidsBetweenFillBeads) {
+  std::vector<Move> moves;
+  const double pitch = 1.5 * ideal_pitch();
+  Eigen::Vector3d at(0, 0, kH);
+  for (int n = 0; n < 4; ++n) {
+    const Eigen::Vector3d a(0, n * pitch, kH), b(200, n * pitch, kH);
+    moves.push_back(travel(at, a, 0));
+    moves.push_back(bead(a, b, 0));
+    at = b;
+  }
+  const sim::Deposit d = sim::deposit(timed(moves));
+  const auto voids = voids_of(d);
+  ASSERT_EQ(voids.size(), 3u);
+  for (const sim::Defect* v : voids) {
+    EXPECT_EQ(v->layer, 0);
+    EXPECT_NE(v->detail.find("between fill beads"), std::string::npos) << v->detail;
+    // In the middle of a channel: half a pitch off a bead's centre line.
+    const double offset = std::fmod(v->position_mm.y(), pitch) / pitch;
+    EXPECT_NEAR(offset, 0.5, 0.15) << v->position_mm.transpose();
+    EXPECT_GT(v->size, 1000.0);  // mm³: a channel 200 mm long
+  }
+  EXPECT_EQ(d.void_count, 3u);
+  // The channels are most of the porosity measure's void; the rest is the not-quite-full voxels beside them.
+  EXPECT_LE(d.layers[0].void_volume_mm3, d.void_volume_mm3);
+  EXPECT_GT(d.layers[0].void_volume_mm3, 0.8 * d.void_volume_mm3);
+  // At the ideal pitch there is no channel.
+  EXPECT_TRUE(voids_of(sim::deposit(block(4, 1))).empty());
+}
+
+// A zigzag fill inside a boundary loop, its legs steep and wide apart: the V between two legs opening from
+// each turn is a void at a zigzag turn; where the legs leave the boundary uncovered, voids between fill and
+// boundary.
+TEST(Defects, ZigzagTurnsLeaveVoidsAgainstTheBoundary) {
+  std::vector<Move> moves;
+  const double side = 200.0, inset = 0.5 * (kW + ideal_pitch());
+  const Eigen::Vector3d corners[5] = {{0, 0, kH}, {side, 0, kH}, {side, side, kH}, {0, side, kH}, {0, 0, kH}};
+  for (int c = 0; c < 4; ++c) {
+    Move m = bead(corners[c], corners[c + 1], 0);
+    m.feature = Feature::kBoundary;
+    m.pass = 0;
+    moves.push_back(m);
+  }
+  moves.push_back(travel(corners[0], {inset, inset, kH}, 0));
+  Eigen::Vector3d at(inset, inset, kH);
+  const double step = 2.0 * ideal_pitch() * std::sqrt(2.0);
+  for (int k = 1; at.x() + step <= side - inset; ++k) {
+    const Eigen::Vector3d next(at.x() + step, k % 2 ? side - inset : inset, kH);
+    moves.push_back(bead(at, next, 0));
+    at = next;
+  }
+  const sim::Deposit d = sim::deposit(timed(moves));
+  const auto voids = voids_of(d);
+  ASSERT_FALSE(voids.empty());
+  int at_turns = 0, at_boundary = 0;
+  for (const sim::Defect* v : voids) {
+    at_turns += v->detail.find("at a zigzag turn") != std::string::npos;
+    at_boundary += v->detail.find("between fill and boundary") != std::string::npos;
+    EXPECT_EQ(v->layer, 0);
+  }
+  EXPECT_GT(at_boundary, 0);
+  EXPECT_GT(at_turns, 0);
+}
+
+}  // namespace
+}  // namespace beadtwin

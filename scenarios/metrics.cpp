@@ -47,6 +47,16 @@ const MetricDef kMetrics[] = {
     {"planned_voids", [](const Metrics& m) -> std::optional<double> { return m.planned_voids; }},
     {"planned_void_area_mm2",
      [](const Metrics& m) -> std::optional<double> { return m.planned_void_area_mm2; }},
+    {"defects.voids", [](const Metrics& m) -> std::optional<double> { return m.voids; }},
+    {"defects.void_volume_mm3", [](const Metrics& m) -> std::optional<double> { return m.void_volume_mm3; }},
+    {"defects.plough_volume_mm3",
+     [](const Metrics& m) -> std::optional<double> { return m.plough_volume_mm3; }},
+    {"defects.unsupported_length_mm",
+     [](const Metrics& m) -> std::optional<double> { return m.unsupported_length_mm; }},
+    {"defects.roller_corners", [](const Metrics& m) -> std::optional<double> { return m.roller_corners; }},
+    {"defects.collisions", [](const Metrics& m) -> std::optional<double> { return m.collisions; }},
+    {"layer_fill.min", [](const Metrics& m) { return m.min_layer_fill; }},
+    {"layer_fill.max", [](const Metrics& m) { return m.max_layer_fill; }},
 };
 
 }  // namespace

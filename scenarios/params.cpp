@@ -305,6 +305,15 @@ constexpr ParamSpec kMachine[] = {
      "gantry acceleration for the motion model", "estimate"},
     {"junction_deviation", T::kQuantity, D::kLength, "0.02 in", 0, kInf, true,
      "corner deviation the controller allows; sets cornering speed", "estimate"},
+    {"roller.width", T::kQuantity, D::kLength, "0", 0, 1000, false,
+     "width of the compression roller (or tamper) across the bead; corners tighter than half of it are "
+     "reported where the roller stays down (0: unknown, no check)",
+     "estimate per machine"},
+    {"roller.diameter", T::kQuantity, D::kLength, "0", 0, 1000, false, "diameter of the compression roller",
+     "estimate per machine"},
+    {"nozzle_diameter", T::kQuantity, D::kLength, "0", 0, 100, false,
+     "diameter of the nozzle's tip; travel moves are checked for collisions over it (0: its centre only)",
+     "machine data"},
     {"extruder.output", T::kQuantity, D::kMassFlow, "150 lb/h", 0, kInf, true,
      "nominal extruder output, which sets the print speed where a section gives none",
      "Thermwood PH15 print head"},
@@ -397,6 +406,10 @@ constexpr ParamSpec kMaterial[] = {
 constexpr ParamSpec kOutput[] = {
     {"voxel_size", T::kQuantity, D::kLength, "0", 0, 1000, false,
      "voxel edge of the deposit model; 0 picks half the smallest layer height", "docs/physics.md"},
+    {"memory_budget", T::kQuantity, D::kDimensionless, "0", 0, 1e6, false,
+     "memory the deposit may use, GB; above it the run stops with a voxel size that fits (0: three "
+     "quarters of the machine's memory)",
+     ""},
     {"image_width", T::kInteger, D::kDimensionless, "1280", 16, 8192, false,
      "width of rendered images, pixels", ""},
     {"image_height", T::kInteger, D::kDimensionless, "800", 16, 8192, false,

@@ -1,6 +1,8 @@
 #include "scenarios/report.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,10 @@
 
 namespace beadtwin::scenarios {
 namespace {
+
+// Defects listed by position: in report.json, and in the html (report.json has the rest).
+constexpr std::size_t kDefectsInJson = 1000;
+constexpr std::size_t kDefectsInHtml = 20;
 
 using nlohmann::json;
 
@@ -161,47 +167,73 @@ json variant_json(const VariantResult& r) {
                       {"healing_min", number_or_null(l.healing)},
                       {"too_hot", l.too_hot ? 1 : 0},
                       {"too_cold", l.too_cold ? 1 : 0},
-                      {"verdict", l.verdict}});
+                      {"verdict", l.verdict},
+                      {"fill_ratio", l.fill_ratio > 0 ? json(l.fill_ratio) : json(nullptr)},
+                      {"bead_height_mm", l.bead_height_mm},
+                      {"void_mm3", l.void_mm3},
+                      {"plough_mm3", l.plough_mm3},
+                      {"unsupported_mm", l.unsupported_mm}});
+  json defects = json::array();
+  for (std::size_t i = 0; i < std::min(r.defects.size(), kDefectsInJson); ++i) {
+    const sim::Defect& d = r.defects[i];
+    defects.push_back({{"kind", sim::to_string(d.kind)},
+                       {"position_mm", {d.position_mm.x(), d.position_mm.y(), d.position_mm.z()}},
+                       {"layer", d.layer},
+                       {"move", d.move},
+                       {"source_line", d.source_line > 0 ? json(d.source_line) : json(nullptr)},
+                       {"size", d.size},
+                       {"detail", d.detail}});
+  }
   json stages = json::object();
   for (const auto& s : r.stage_times) stages[s.name] = s.seconds;
-  return {{"name", r.name},
-          {"passed", r.passed},
-          {"gates", gates},
-          {"metrics",
-           {{"layers", m.layers},
-            {"print_time_s", m.print_time_s},
-            {"print_length_mm", m.print_length_mm},
-            {"travel_length_mm", m.travel_length_mm},
-            {"commanded_volume_mm3", m.commanded_volume_mm3},
-            {"deposited_volume_mm3", m.deposited_volume_mm3},
-            {"mass_kg", m.mass_kg},
-            {"material_cost", m.material_cost},
-            {"porosity", m.porosity},
-            {"min_stock_mm", optional_json(m.min_stock_mm)},
-            {"undercut_fraction", optional_json(m.undercut_fraction)},
-            {"interfaces",
-             {{"count", m.interfaces},
-              {"too_hot_fraction", m.too_hot_fraction},
-              {"too_cold_fraction", m.too_cold_fraction},
-              {"min_healing", optional_json(m.get("interfaces.min_healing"))},
-              {"mean_healing", optional_json(m.get("interfaces.mean_healing"))}}},
-            {"layer_time_s", stats_json(m.layer_time_s)},
-            {"planned_voids", m.planned_voids},
-            {"extruder_demand", m.extruder_demand},
-            {"planned_void_area_mm2", m.planned_void_area_mm2},
-            {"deposit",
-             {{"voxel_size_mm", m.voxel_size_mm},
-              {"voxels", m.voxels},
-              {"swept_volume_mm3", m.swept_volume_mm3},
-              {"redistributed_volume_mm3", m.redistributed_volume_mm3}}},
-            {"thermal",
-             {{"energy_balance_rel_error", m.thermal_energy_error}, {"cvode_steps", m.thermal_steps}}}}},
-          {"layers", layers},
-          {"images", r.images},
-          {"program", r.program},
-          {"deposit", r.deposit_file},
-          {"stage_seconds", stages},
-          {"parameters", r.variant ? parameters_json(*r.variant) : json(nullptr)}};
+  return {
+      {"name", r.name},
+      {"passed", r.passed},
+      {"gates", gates},
+      {"metrics",
+       {{"layers", m.layers},
+        {"print_time_s", m.print_time_s},
+        {"print_length_mm", m.print_length_mm},
+        {"travel_length_mm", m.travel_length_mm},
+        {"commanded_volume_mm3", m.commanded_volume_mm3},
+        {"deposited_volume_mm3", m.deposited_volume_mm3},
+        {"mass_kg", m.mass_kg},
+        {"material_cost", m.material_cost},
+        {"porosity", m.porosity},
+        {"min_stock_mm", optional_json(m.min_stock_mm)},
+        {"undercut_fraction", optional_json(m.undercut_fraction)},
+        {"interfaces",
+         {{"count", m.interfaces},
+          {"too_hot_fraction", m.too_hot_fraction},
+          {"too_cold_fraction", m.too_cold_fraction},
+          {"min_healing", optional_json(m.get("interfaces.min_healing"))},
+          {"mean_healing", optional_json(m.get("interfaces.mean_healing"))}}},
+        {"layer_time_s", stats_json(m.layer_time_s)},
+        {"planned_voids", m.planned_voids},
+        {"extruder_demand", m.extruder_demand},
+        {"planned_void_area_mm2", m.planned_void_area_mm2},
+        {"defects",
+         {{"voids", m.voids},
+          {"void_volume_mm3", m.void_volume_mm3},
+          {"plough_volume_mm3", m.plough_volume_mm3},
+          {"unsupported_length_mm", m.unsupported_length_mm},
+          {"roller_corners", m.roller_corners},
+          {"collisions", m.collisions}}},
+        {"layer_fill", {{"min", optional_json(m.min_layer_fill)}, {"max", optional_json(m.max_layer_fill)}}},
+        {"deposit",
+         {{"voxel_size_mm", m.voxel_size_mm},
+          {"voxels", m.voxels},
+          {"swept_volume_mm3", m.swept_volume_mm3},
+          {"redistributed_volume_mm3", m.redistributed_volume_mm3}}},
+        {"thermal",
+         {{"energy_balance_rel_error", m.thermal_energy_error}, {"cvode_steps", m.thermal_steps}}}}},
+      {"layers", layers},
+      {"defects", defects},
+      {"images", r.images},
+      {"program", r.program},
+      {"deposit", r.deposit_file},
+      {"stage_seconds", stages},
+      {"parameters", r.variant ? parameters_json(*r.variant) : json(nullptr)}};
 }
 
 std::string esc(std::string_view s) {
@@ -228,6 +260,32 @@ std::string esc(std::string_view s) {
     }
   }
   return out;
+}
+
+// The deposit's defects: how many of each kind, and the first ones with where they are.
+std::string defects_html(const std::vector<sim::Defect>& defects) {
+  if (defects.empty()) return "<p>The deposit found no defects.</p>";
+  std::map<std::string, int> counts;
+  for (const sim::Defect& d : defects) ++counts[std::string(sim::to_string(d.kind))];
+  std::string summary;
+  for (const auto& [kind, n] : counts)
+    summary += fmt::format("{}{} {}", summary.empty() ? "" : ", ", n, kind);
+  std::string h = fmt::format(
+      "<details><summary>Defects: {}</summary><table><tr><th class=l>kind</th><th>layer</th>"
+      "<th>x, y, z mm</th><th>program line</th><th class=l>what</th></tr>",
+      esc(summary));
+  for (std::size_t i = 0; i < std::min(defects.size(), kDefectsInHtml); ++i) {
+    const sim::Defect& d = defects[i];
+    h += fmt::format(
+        "<tr><td class=l>{}</td><td>{}</td><td>{:.1f}, {:.1f}, {:.1f}</td><td>{}</td><td "
+        "class=l>{}</td></tr>",
+        sim::to_string(d.kind), d.layer, d.position_mm.x(), d.position_mm.y(), d.position_mm.z(),
+        d.source_line > 0 ? std::to_string(d.source_line) : "–", esc(d.detail));
+  }
+  if (defects.size() > kDefectsInHtml)
+    h += fmt::format("<tr><td class=l colspan=5>… and {} more in report.json</td></tr>",
+                     defects.size() - kDefectsInHtml);
+  return h + "</table></details>";
 }
 
 std::string fmt_opt(const std::optional<double>& v, const char* spec = "{:.4g}") {
@@ -395,6 +453,14 @@ details{margin:1em 0} .muted{color:#777}
                                                       m.extruder_demand > 1 ? " — more than it gives" : ""));
     row("voids found by the slicer",
         fmt::format("{} ({:.0f} mm²)", m.planned_voids, m.planned_void_area_mm2));
+    row("voids (deposit)", fmt::format("{} ({:.0f} cm³)", m.voids, m.void_volume_mm3 / 1000));
+    row("ploughed by the roller", fmt::format("{:.1f} cm³", m.plough_volume_mm3 / 1000));
+    row("bead laid over nothing", fmt::format("{:.0f} mm", m.unsupported_length_mm));
+    row("corners too tight for the roller", fmt::format("{}", m.roller_corners));
+    row("collisions", fmt::format("{}", m.collisions));
+    if (m.min_layer_fill)
+      row("layer fill (material / outline × height)",
+          fmt::format("{:.3f} .. {:.3f}", *m.min_layer_fill, m.max_layer_fill.value_or(0)));
     row("min stock", fmt_opt(m.min_stock_mm));
     row("voxels", fmt::format("{} at {:.2f} mm", m.voxels, m.voxel_size_mm));
     row("thermal energy balance error", fmt::format("{:.1e}", m.thermal_energy_error));
@@ -418,6 +484,7 @@ details{margin:1em 0} .muted{color:#777}
           std::isfinite(l.healing) ? fmt::format("{:.3f}", l.healing) : "–", l.verdict);
     }
     h += "</table></details>";
+    h += defects_html(v.defects);
     h += "<details><summary>Time per stage</summary><table>";
     for (const auto& s : v.stage_times) row(s.name, fmt::format("{:.2f} s", s.seconds));
     h += "</table></details>";

@@ -8,6 +8,7 @@
 
 #include "core/stages.hpp"
 #include "scenarios/scenario.hpp"
+#include "sim/deposit.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -37,6 +38,16 @@ struct Metrics {
   double voxel_size_mm = 0;
   double thermal_energy_error = 0;
   long thermal_steps = 0;
+  // Defects the deposit found (sim::Defect): voids of at least a voxel, material the roller ploughed,
+  // bead laid over nothing, corners the roller cannot follow, the nozzle or roller running into the part.
+  int voids = 0;
+  double void_volume_mm3 = 0;
+  double plough_volume_mm3 = 0;
+  double unsupported_length_mm = 0;
+  int roller_corners = 0;
+  int collisions = 0;
+  // Layers' commanded material over their outline times height (1: exactly full), the lowest and highest.
+  std::optional<double> min_layer_fill, max_layer_fill;
 
   // The value of a gate metric by its dotted name; nullopt when not measured. Throws InternalError on a
   // name not in gate_metrics().
@@ -53,6 +64,9 @@ struct LayerRow {
   double healing = 0;  // NaN for layer 0 (no interface below it)
   bool too_hot = false, too_cold = false;
   std::string verdict;
+  // The deposit (sim::LayerDeposit): fill ratio (0: outline unknown), bead height after following the
+  // substrate, void and ploughed volume, unsupported length.
+  double fill_ratio = 0, bead_height_mm = 0, void_mm3 = 0, plough_mm3 = 0, unsupported_mm = 0;
 };
 
 struct GateResult {
@@ -73,6 +87,7 @@ struct VariantResult {
   std::string program;              // relative path of the print program
   std::string deposit_file;         // relative path of the .vdb
   std::vector<StageTime> stage_times;
+  std::vector<sim::Defect> defects;  // what the deposit found, in toolpath order (voids last, largest first)
   bool passed = true;
 };
 

@@ -131,6 +131,19 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
   m.redistributed_volume_mm3 = d.redistributed_volume_mm3;
   m.voxels = d.active_voxels;
   m.voxel_size_mm = d.voxel_size_mm;
+  m.void_volume_mm3 = d.void_volume_mm3;
+  m.voids = static_cast<int>(d.void_count);
+  m.plough_volume_mm3 = d.plough_volume_mm3;
+  m.unsupported_length_mm = d.unsupported_length_mm;
+  for (const sim::Defect& x : d.defects) {
+    m.roller_corners += x.kind == sim::DefectKind::kRollerCorner;
+    m.collisions += x.kind == sim::DefectKind::kCollision;
+  }
+  for (const sim::LayerDeposit& l : d.layers) {
+    if (!(l.fill_ratio > 0)) continue;
+    m.min_layer_fill = std::min(m.min_layer_fill.value_or(l.fill_ratio), l.fill_ratio);
+    m.max_layer_fill = std::max(m.max_layer_fill.value_or(l.fill_ratio), l.fill_ratio);
+  }
   m.thermal_energy_error = th.energy_balance_rel_error;
   m.thermal_steps = th.steps;
   std::vector<double> durations, healing;
@@ -155,7 +168,7 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
 }
 
 std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalStack& stack,
-                                 const thermal::ThermalResult& th) {
+                                 const thermal::ThermalResult& th, const sim::Deposit& d) {
   std::vector<LayerRow> rows;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
@@ -172,6 +185,14 @@ std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalStack& stack,
     row.too_hot = r.verdict == thermal::Verdict::kTooHot;
     row.too_cold = r.verdict == thermal::Verdict::kTooCold;
     row.verdict = std::string(thermal::to_string(r.verdict));
+    if (i < d.layers.size()) {
+      const sim::LayerDeposit& ld = d.layers[i];
+      row.fill_ratio = ld.fill_ratio;
+      row.bead_height_mm = ld.mean_bead_height_mm;
+      row.void_mm3 = ld.void_volume_mm3;
+      row.plough_mm3 = ld.plough_volume_mm3;
+      row.unsupported_mm = ld.unsupported_length_mm;
+    }
     rows.push_back(row);
   }
   return rows;
@@ -217,6 +238,13 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   const sim::Deposit deposit = stages.run("deposit", [&] {
     sim::DepositOptions o;
     o.voxel_size_mm = v.output.voxel_size_mm;
+    o.flattening = v.machine.kind == "roller-gantry"   ? sim::Flattening::kRoller
+                   : v.machine.kind == "tamper-gantry" ? sim::Flattening::kTamper
+                                                       : sim::Flattening::kNozzle;
+    o.roller_width_mm = v.machine.roller_width_mm;
+    o.roller_diameter_mm = v.machine.roller_diameter_mm;
+    o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
+    o.memory_budget_bytes = v.output.memory_budget_gb * 1e9;
     try {
       return sim::deposit(tp, o);
     } catch (const InputError& e) {
@@ -265,7 +293,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;
   res.metrics.planned_voids = plan_stats.voids_found;
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
-  res.layers = layer_rows(tp, stack, th);
+  res.layers = layer_rows(tp, stack, th, deposit);
+  res.defects = deposit.defects;
   res.gates = evaluate_gates(sc.gates, res.metrics);
   res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });
   res.stage_times = stages.times();

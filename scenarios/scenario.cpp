@@ -117,6 +117,15 @@ YAML::Node resolve_library(const YAML::Node& root, const std::string& kind,
   return node;
 }
 
+// How the machine's programs are read: its dialect and extruder, and its roller engaged from the start when
+// it has a roller or tamper but no codes for it.
+slicer::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
+  slicer::ReaderOptions o = slicer::reader_options_for(m.dialect, extruder);
+  o.roller_down_at_start =
+      (m.kind == "roller-gantry" || m.kind == "tamper-gantry") && m.dialect.roller_down.empty();
+  return o;
+}
+
 Machine read_machine(BlockReader& r) {
   const auto t = machine_params();
   Machine m;
@@ -132,6 +141,9 @@ Machine read_machine(BlockReader& r) {
   m.motion.max_travel_mm_s = r.quantity(spec(t, "max_travel"));
   m.motion.acceleration_mm_s2 = r.quantity(spec(t, "acceleration"));
   m.motion.junction_deviation_mm = r.quantity(spec(t, "junction_deviation"));
+  m.roller_width_mm = r.quantity(spec(t, "roller.width"));
+  m.roller_diameter_mm = r.quantity(spec(t, "roller.diameter"));
+  m.nozzle_diameter_mm = r.quantity(spec(t, "nozzle_diameter"));
   m.extruder_output_kg_s = r.quantity(spec(t, "extruder.output"));
   m.extruder_max_output_kg_s = r.quantity(spec(t, "extruder.max_output"));
   {
@@ -791,6 +803,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
   v.output.voxel_size_at = out_r.where(out_r.take("voxel_size"), "voxel_size");
+  v.output.memory_budget_gb = out_r.quantity(spec(output_params(), "memory_budget"));
   v.output.image_width = out_r.integer(spec(output_params(), "image_width"));
   v.output.image_height = out_r.integer(spec(output_params(), "image_height"));
   out_r.finish(output_params());
@@ -814,8 +827,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
     slicer::ReadStats stats;
     const Extruder* extruder = v.machine.extruder.has_commands() ? &v.machine.extruder : nullptr;
-    v.program = std::make_shared<const Toolpath>(slicer::read_gcode(
-        in, v.program_file.string(), slicer::reader_options_for(v.machine.dialect, extruder), &stats));
+    v.program = std::make_shared<const Toolpath>(
+        slicer::read_gcode(in, v.program_file.string(), reader_options(v.machine, extruder), &stats));
     v.program_summary = fmt::format("{}: {} lines, {} layers, {} moves", v.program_file.filename().string(),
                                     stats.lines, v.program->layers.size(), v.program->moves.size());
     for (const std::string& w : stats.messages) meshes.warnings.push_back(w);

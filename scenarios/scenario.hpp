@@ -24,6 +24,9 @@ struct Machine {
   std::string description;
   std::string kind;
   MotionLimits motion;
+  double roller_width_mm = 0.0;     // 0: unknown
+  double roller_diameter_mm = 0.0;  // 0: unknown
+  double nozzle_diameter_mm = 0.0;  // 0: unknown
   double extruder_output_kg_s = 0.0;
   double extruder_max_output_kg_s = 0.0;
   Extruder extruder;  // its max flow is set from max_output once the material's density is known
@@ -46,7 +49,8 @@ struct PartSpec {
 
 struct OutputSpec {
   double voxel_size_mm = 0.0;
-  SourceLocation voxel_size_at;  // where it was set, for messages found when depositing
+  SourceLocation voxel_size_at;   // where it was set, for messages found when depositing
+  double memory_budget_gb = 0.0;  // 0: automatic
   int image_width = 1280;
   int image_height = 800;
 };

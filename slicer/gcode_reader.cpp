@@ -38,7 +38,8 @@ class GcodeReader::State {
         inches_(o.inches),
         absolute_e_(o.absolute_e),
         volumetric_(o.volumetric_e),
-        filament_area_mm2_(kPi * o.filament_diameter_mm * o.filament_diameter_mm / 4.0) {}
+        filament_area_mm2_(kPi * o.filament_diameter_mm * o.filament_diameter_mm / 4.0),
+        roller_(o.roller_down_at_start) {}
 
   bool ended() const { return ended_; }
   void reserve(std::size_t moves) { builder_.reserve(std::min(moves, opt_.max_moves)); }
@@ -587,7 +588,7 @@ class GcodeReader::State {
   bool reversing_ = false;
   bool prime_pending_ = false;
   bool reverse_pending_ = false;
-  bool roller_ = false;
+  bool roller_;
 
   // What comments said.
   Feature feature_ = Feature::kUnknown;

@@ -81,6 +81,9 @@ struct ReaderOptions {
   std::vector<std::string> heat_off = {"M28"};  // extruder heaters off
   std::vector<std::string> roller_down;         // compression roller engaged
   std::vector<std::string> roller_up;           // compression roller lifted
+  // The roller is engaged from the start (until a roller-up code): a roller machine whose programs carry no
+  // roller codes rolls every bead.
+  bool roller_down_at_start = false;
   std::vector<std::string> prime;               // a prime starts (its time: the G4 after it)
   std::vector<std::string> reverse_on;          // the pump turns backwards (its S is the reverse speed)
   std::vector<std::string> reverse_off;         // it stops turning backwards

@@ -78,6 +78,18 @@ TEST(Run, SmallScenarioEndToEnd) {
       EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
     EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
     EXPECT_TRUE(std::filesystem::exists(out / v["deposit"].get<std::string>()));
+    // The deposit's defects: counted in the metrics, listed with where they are. The box's square corners
+    // are tighter than the LSAM roller (1.5 in wide) follows, and no pull-back lifts it there.
+    for (const char* key : {"voids", "void_volume_mm3", "plough_volume_mm3", "unsupported_length_mm",
+                            "roller_corners", "collisions"})
+      EXPECT_TRUE(m["defects"].contains(key)) << key;
+    EXPECT_GE(m["defects"]["roller_corners"].get<int>(), 4 * 6);
+    ASSERT_FALSE(v["defects"].empty());
+    for (const char* key : {"kind", "position_mm", "layer", "move", "source_line", "size", "detail"})
+      EXPECT_TRUE(v["defects"][0].contains(key)) << key;
+    for (const char* key : {"fill_ratio", "bead_height_mm", "void_mm3", "plough_mm3", "unsupported_mm"})
+      EXPECT_TRUE(v["layers"][0].contains(key)) << key;
+    EXPECT_NEAR(v["layers"][0]["bead_height_mm"].get<double>(), 5.0, 0.5);
   }
   // The slow variant prints the same part with longer layer times, so its substrate is colder.
   const auto& fast = j["variants"][0];

@@ -87,7 +87,9 @@ struct VariantResult {
   std::string program;              // relative path of the print program
   std::string deposit_file;         // relative path of the .vdb
   std::vector<StageTime> stage_times;
-  std::vector<sim::Defect> defects;  // what the deposit found, in toolpath order (voids last, largest first)
+  std::vector<sim::Defect> defects;
+  std::vector<std::string> notes;  // what the stages chose for the user (a coarser voxel size, ...)  // what
+                                   // the deposit found, in toolpath order (voids last, largest first)
   bool passed = true;
 };
 

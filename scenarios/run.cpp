@@ -295,6 +295,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   res.layers = layer_rows(tp, stack, th, deposit);
   res.defects = deposit.defects;
+  res.notes = deposit.notes;
+  if (log)
+    for (const std::string& n : res.notes) log(fmt::format("[{}] note: {}", v.name, n));
   res.gates = evaluate_gates(sc.gates, res.metrics);
   res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });
   res.stage_times = stages.times();

@@ -456,22 +456,49 @@ double physical_memory_bytes() {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 8e9;
 }
 
-// The memory the deposit will take at `voxel_size_mm`, checked against the budget before any voxel is
-// written: over it, the run stops with a voxel size that fits.
-double check_memory(const Toolpath& toolpath, const DepositOptions& options, double voxel_size_mm) {
-  const double voxels =
-      toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
-  const double estimate = voxels * kBytesPerVoxel;
-  const double budget =
+// The memory the deposit will take at a voxel size, against the budget.
+struct MemoryCheck {
+  double estimate_bytes = 0.0, budget_bytes = 0.0, voxels = 0.0;
+  double fitting_voxel_mm = 0.0;  // the smallest size (to 0.1 mm, with some room) within the budget
+  bool fits() const { return estimate_bytes <= budget_bytes; }
+};
+
+MemoryCheck check_memory(const Toolpath& toolpath, const DepositOptions& options, double voxel_size_mm) {
+  MemoryCheck c;
+  c.voxels = toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
+  c.estimate_bytes = c.voxels * kBytesPerVoxel;
+  c.budget_bytes =
       options.memory_budget_bytes > 0.0 ? options.memory_budget_bytes : 0.75 * physical_memory_bytes();
-  if (estimate <= budget) return estimate;
-  // Memory goes as the inverse cube of the voxel size; a tenth of a millimetre up, with some room.
-  const double fits = std::ceil(voxel_size_mm * std::cbrt(1.1 * estimate / budget) * 10.0) / 10.0;
-  throw InputError(
-      {}, "voxel_size",
-      fmt::format("voxel size {} mm needs about {:.1f} GB for this toolpath ({:.3g} voxels), over the "
-                  "memory budget of {:.1f} GB; use a voxel size of {} mm or more, or raise the budget",
-                  voxel_size_mm, estimate / 1e9, voxels, budget / 1e9, fits));
+  // Memory goes as the inverse cube of the voxel size.
+  c.fitting_voxel_mm =
+      c.fits() ? voxel_size_mm
+               : std::ceil(voxel_size_mm * std::cbrt(1.1 * c.estimate_bytes / c.budget_bytes) * 10.0) / 10.0;
+  return c;
+}
+
+// The voxel size the deposit uses: the one asked for, which must fit the memory budget (checked before any
+// voxel is written: over it, the run stops with a size that fits), or, when none is asked for, half the
+// smallest layer height, made coarser when that would not fit.
+double settle_voxel_size(const Toolpath& toolpath, const DepositOptions& options, Deposit& out) {
+  const double chosen = choose_voxel_size(toolpath, options);
+  MemoryCheck c = check_memory(toolpath, options, chosen);
+  if (!c.fits() && options.voxel_size_mm > 0.0)
+    throw InputError(
+        {}, "voxel_size",
+        fmt::format("voxel size {} mm needs about {:.1f} GB for this toolpath ({:.3g} voxels), over the "
+                    "memory budget of {:.1f} GB; use a voxel size of {} mm or more, or raise the budget",
+                    chosen, c.estimate_bytes / 1e9, c.voxels, c.budget_bytes / 1e9, c.fitting_voxel_mm));
+  double size = chosen;
+  if (!c.fits()) {
+    size = c.fitting_voxel_mm;
+    out.notes.push_back(
+        fmt::format("voxel size {} mm (half the smallest layer height) would need about {:.1f} GB, "
+                    "over the memory budget of {:.1f} GB: {} mm used instead",
+                    chosen, c.estimate_bytes / 1e9, c.budget_bytes / 1e9, size));
+    c = check_memory(toolpath, options, size);
+  }
+  out.memory_estimate_bytes = c.estimate_bytes;
+  return size;
 }
 
 // Corners the roller cannot follow (issue 6, item 4). A steered roller turns about the nozzle as the path
@@ -610,10 +637,9 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
 
   Deposit out;
   out.commanded_volume_mm3 = toolpath.commanded_volume_mm3();
-  out.voxel_size_mm = choose_voxel_size(toolpath, options);
+  out.voxel_size_mm = settle_voxel_size(toolpath, options, out);
   const double vs = out.voxel_size_mm;
   const double voxel_volume = vs * vs * vs;
-  out.memory_estimate_bytes = check_memory(toolpath, options, vs);
   SweepPlanOptions plan;
   plan.round_free_ends = options.round_free_ends;
   if (options.follow_substrate)

@@ -48,7 +48,8 @@ enum class Flattening : std::uint8_t {
 std::string_view to_string(Flattening flattening);
 
 struct DepositOptions {
-  double voxel_size_mm = 0.0;  // 0: chosen from the beads (half the smallest layer height)
+  double voxel_size_mm = 0.0;  // 0: chosen from the beads (half the smallest layer height, coarser when that
+                               // would not fit the memory budget)
   int supersample = 3;  // samples per voxel edge when measuring how much of a voxel a bead covers, 1..16
                         // (in plan; the height a bead covers above each sample is exact)
   // Ends of a bead that do not join another move (path start and stop): false cuts them square at the
@@ -130,6 +131,7 @@ struct Deposit {
   double plough_volume_mm3 = 0.0;
   double unsupported_length_mm = 0.0;
   double memory_estimate_bytes = 0.0;
+  std::vector<std::string> notes;  // what the deposit chose for the user (a coarser voxel, ...)
   std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)  //
                                // what the deposit was estimated to need before it started
 };

@@ -271,6 +271,18 @@ TEST(Deposit, MemoryBudgetStopsWithAVoxelSizeThatFits) {
   EXPECT_LE(d.memory_estimate_bytes, 1e6);
 }
 
+// Without a voxel size asked for, one that would not fit the budget is made coarser, and the deposit says so.
+TEST(Deposit, AutomaticVoxelSizeFitsTheMemoryBudget) {
+  sim::DepositOptions o;
+  o.memory_budget_bytes = 2e5;  // the default 2.54 mm voxels need about 0.9 MB
+  const sim::Deposit d = sim::deposit(block(5, 2), o);
+  EXPECT_GT(d.voxel_size_mm, 0.5 * kH);  // coarser than half the layer height
+  EXPECT_LE(d.memory_estimate_bytes, 2e5);
+  ASSERT_EQ(d.notes.size(), 1u);
+  EXPECT_NE(d.notes[0].find("memory budget"), std::string::npos) << d.notes[0];
+  EXPECT_TRUE(sim::deposit(block(5, 2)).notes.empty());
+}
+
 // Coast (issue 6, item 3): the planner writes a coast as steps whose material falls off linearly to zero
 // (slicer/melt_events.hpp); the deposit lays each step's material where it is, so the bead thins out.
 TEST(Deposit, CoastThinsTheBeadOut) {

@@ -431,7 +431,21 @@ TEST(Deposit, ResultDoesNotDependOnThreads) {
     ASSERT_EQ(*it, fill2.getValue(it.getCoord()));
     ASSERT_EQ(one.time->tree().getValue(it.getCoord()), time2.getValue(it.getCoord()));
     ASSERT_EQ(layer1.getValue(it.getCoord()), layer2.getValue(it.getCoord()));
+    ASSERT_EQ(one.move->tree().getValue(it.getCoord()), two.move->tree().getValue(it.getCoord()));
   }
+  // What it found is the same too: the substrate under every bead, the ploughs, the voids.
+  ASSERT_EQ(one.defects.size(), two.defects.size());
+  for (std::size_t i = 0; i < one.defects.size(); ++i) {
+    EXPECT_EQ(one.defects[i].kind, two.defects[i].kind);
+    EXPECT_EQ(one.defects[i].move, two.defects[i].move);
+    EXPECT_EQ(one.defects[i].size, two.defects[i].size);
+  }
+  ASSERT_EQ(one.layers.size(), two.layers.size());
+  for (std::size_t i = 0; i < one.layers.size(); ++i) {
+    EXPECT_EQ(one.layers[i].mean_bead_height_mm, two.layers[i].mean_bead_height_mm);
+    EXPECT_EQ(one.layers[i].plough_volume_mm3, two.layers[i].plough_volume_mm3);
+  }
+  EXPECT_GT(one.plough_volume_mm3, 0.0);  // the messy beads overlap: there is something to compare
 }
 
 // ---- porosity -----------------------------------------------------------------------------------------

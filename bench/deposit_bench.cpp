@@ -1,0 +1,111 @@
+// The deposition benchmark (issue 6): one run of either route to a voxel model of a scenario's print, timed
+// inside the process so the slicing before it is not counted. bench/bench_deposit.sh runs each route in a
+// process of its own (peak memory from /usr/bin/time) and reports the ratio.
+//
+//   deposit_bench SCENARIO deposit   beadtwin's deposit (sim::deposit): beads swept with roller squash and
+//                                    conserved volume, substrate following, defects
+//   deposit_bench SCENARIO mesh      what a user would do instead: every bead as a closed tube of its
+//                                    stadium section (12 sides) in one surface mesh, voxelised with
+//                                    OpenVDB's mesh-to-volume at the same voxel size
+//
+// Prints one line: route, seconds, bead length (m), active voxels, triangles (mesh route).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "scenarios/scenario.hpp"
+#include "sim/bead_section.hpp"
+#include "sim/deposit.hpp"
+#include "slicer/plan.hpp"
+
+using namespace beadtwin;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Every depositing move as a closed tube: its stadium section (core half-width a, radius r) in 12 points,
+// swept along the move, with flat end caps.
+void append_tube(const Move& m, std::vector<openvdb::Vec3s>& points, std::vector<openvdb::Vec3I>& triangles) {
+  const Eigen::Vector3d axis = m.end - m.start;
+  const Eigen::Vector2d plan = axis.head<2>();
+  if (plan.norm() < 1e-6) return;
+  const sim::BeadProfile p = sim::moving_bead_profile(m.volume_mm3 / m.length_mm(), m.layer_height_mm);
+  const Eigen::Vector3d side(-plan.y() / plan.norm(), plan.x() / plan.norm(), 0.0);
+  constexpr int kSides = 12;
+  std::vector<Eigen::Vector2d> section;  // (across, up from the bead's centre)
+  for (int k = 0; k < kSides; ++k) {
+    const double t = (k + 0.5) * 2.0 * kPi / kSides;
+    const double across =
+        std::cos(t) * p.radius_mm + (std::cos(t) >= 0 ? p.core_half_width_mm : -p.core_half_width_mm);
+    section.emplace_back(across, std::sin(t) * p.radius_mm);
+  }
+  const auto base = static_cast<unsigned>(points.size());
+  for (const Eigen::Vector3d& end : {m.start, m.end})
+    for (const Eigen::Vector2d& s : section) {
+      const Eigen::Vector3d q = end + side * s.x() + Eigen::Vector3d(0, 0, s.y() - p.radius_mm);
+      points.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+    }
+  for (unsigned k = 0; k < kSides; ++k) {
+    const unsigned j = (k + 1) % kSides;
+    triangles.emplace_back(base + k, base + j, base + kSides + j);
+    triangles.emplace_back(base + k, base + kSides + j, base + kSides + k);
+  }
+  for (unsigned k = 1; k + 1 < kSides; ++k) {
+    triangles.emplace_back(base, base + k + 1, base + k);
+    triangles.emplace_back(base + kSides, base + kSides + k, base + kSides + k + 1);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3 || (std::string(argv[2]) != "deposit" && std::string(argv[2]) != "mesh")) {
+    std::fprintf(stderr, "usage: deposit_bench SCENARIO deposit|mesh\n");
+    return 2;
+  }
+  try {
+    openvdb::initialize();
+    const scenarios::Scenario sc = scenarios::load_scenario(argv[1]);
+    const scenarios::Variant& v = sc.variants.front();
+    const Toolpath tp =
+        slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, nullptr, &v.machine.extruder);
+    const double length_m = tp.print_length_mm() / 1000.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    if (std::string(argv[2]) == "deposit") {
+      sim::DepositOptions o;
+      o.voxel_size_mm = v.output.voxel_size_mm;
+      o.flattening = sim::Flattening::kRoller;
+      o.roller_width_mm = v.machine.roller_width_mm;
+      o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
+      const sim::Deposit d = sim::deposit(tp, o);
+      std::printf("deposit %.3f s, %.1f m of bead, %zu voxels, porosity %.4f, %zu defects\n",
+                  seconds_since(t0), length_m, d.active_voxels, d.porosity, d.defects.size());
+    } else {
+      std::vector<openvdb::Vec3s> points;
+      std::vector<openvdb::Vec3I> triangles;
+      for (const Move& m : tp.moves)
+        if (m.kind == MoveKind::kPrint && m.deposits()) append_tube(m, points, triangles);
+      const auto transform = sim::deposit_transform(v.output.voxel_size_mm);
+      // Points in index space, as mesh-to-volume takes them.
+      for (openvdb::Vec3s& p : points) p = transform->worldToIndex(p);
+      openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec3I> mesh(points, triangles);
+      const auto level_set = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, *transform, 3.0f, 3.0f);
+      std::printf("mesh %.3f s, %.1f m of bead, %llu voxels, %zu triangles\n", seconds_since(t0), length_m,
+                  static_cast<unsigned long long>(level_set->activeVoxelCount()), triangles.size());
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,5 +1,6 @@
 #include "core/atomic_file.hpp"
 
+#include <cerrno>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -28,6 +29,21 @@ void AtomicPath::commit() {
     throw std::runtime_error("cannot move " + temp_.string() + " to " + target_.string() + ": " +
                              ec.message());
   committed_ = true;
+}
+
+AtomicStream::AtomicStream(std::filesystem::path target) : path_(std::move(target)) {
+  out_.open(path_.temp(), std::ios::binary | std::ios::trunc);
+  if (!out_)
+    throw std::runtime_error("cannot write " + path_.target().string() + ": " +
+                             std::generic_category().message(errno));
+}
+
+void AtomicStream::commit() {
+  out_.flush();
+  if (!out_) throw std::runtime_error("error while writing " + path_.target().string());
+  out_.close();
+  if (!out_) throw std::runtime_error("error while closing " + path_.target().string());
+  path_.commit();
 }
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {

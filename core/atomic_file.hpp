@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -28,6 +29,23 @@ class AtomicPath {
   std::filesystem::path target_;
   std::filesystem::path temp_;
   bool committed_ = false;
+};
+
+// For writers that stream their content: a binary stream to a temporary file beside the target, renamed
+// into place by commit() once everything is written. Errors (the folder missing or not writable, a full
+// disk) throw std::runtime_error naming the target; without commit() nothing is left behind.
+class AtomicStream {
+ public:
+  explicit AtomicStream(std::filesystem::path target);
+
+  std::ostream& stream() { return out_; }
+  const std::filesystem::path& target() const { return path_.target(); }
+  // Flushes, checks that every byte was written, and renames the file into place.
+  void commit();
+
+ private:
+  AtomicPath path_;
+  std::ofstream out_;
 };
 
 }  // namespace beadtwin

@@ -414,6 +414,18 @@ constexpr ParamSpec kOutput[] = {
      "width of rendered images, pixels", ""},
     {"image_height", T::kInteger, D::kDimensionless, "800", 16, 8192, false,
      "height of rendered images, pixels", ""},
+    {"skin", T::kString, D::kDimensionless, "ply", 0, 0, false,
+     "the as-printed outer skin as a triangle mesh in mm (the deposit's surface fill = 0.5): ply, stl "
+     "or none",
+     "sim/skin.hpp"},
+    {"skin_adaptivity", T::kQuantity, D::kDimensionless, "0.2", 0, 1, false,
+     "how much the skin mesh merges triangles where the surface is flat: 0 about two per voxel face crossed; "
+     "0.2 keeps the ridges between beads within about a voxel; near 1 it may cut through thin walls",
+     "OpenVDB tools::volumeToMesh"},
+    {"fields", T::kString, D::kDimensionless, "none", 0, 0, false,
+     "the voxel fields fill, time_s and layer for ParaView: vtu (VTK XML unstructured grid, one cell "
+     "per voxel holding material; about 60 bytes a voxel, 200 MB for the default scenario) or none",
+     "sim/deposit_files.hpp"},
 };
 
 constexpr ParamSpec kThermal[] = {

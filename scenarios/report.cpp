@@ -146,6 +146,24 @@ json parameters_json(const Variant& v) {
           {"overrides", v.overrides},  {"sections", sections}};
 }
 
+// The files for other programs, with their sizes; a file not written is null.
+json files_json(const VariantResult& r) {
+  const ExportedFiles& f = r.exported;
+  json skin = nullptr, fields = nullptr;
+  if (!f.skin.empty())
+    skin = {{"path", f.skin},
+            {"bytes", f.skin_bytes},
+            {"triangles", f.skin_triangles},
+            {"bead_by_bead_stl_bytes", f.bead_stl_bytes},
+            {"bead_by_bead_stl_over_skin", f.skin_bytes > 0 ? json(static_cast<double>(f.bead_stl_bytes) /
+                                                                   static_cast<double>(f.skin_bytes))
+                                                            : json(nullptr)}};
+  if (!f.fields.empty()) fields = {{"path", f.fields}, {"bytes", f.fields_bytes}, {"cells", f.fields_cells}};
+  return {{"deposit", {{"path", r.deposit_file}, {"bytes", f.deposit_bytes}}},
+          {"skin", skin},
+          {"fields", fields}};
+}
+
 json variant_json(const VariantResult& r) {
   const Metrics& m = r.metrics;
   json gates = json::array();
@@ -232,6 +250,7 @@ json variant_json(const VariantResult& r) {
       {"images", r.images},
       {"program", r.program},
       {"deposit", r.deposit_file},
+      {"files", files_json(r)},
       {"stage_seconds", stages},
       {"parameters", r.variant ? parameters_json(*r.variant) : json(nullptr)}};
 }
@@ -286,6 +305,43 @@ std::string defects_html(const std::vector<sim::Defect>& defects) {
     h += fmt::format("<tr><td class=l colspan=5>… and {} more in report.json</td></tr>",
                      defects.size() - kDefectsInHtml);
   return h + "</table></details>";
+}
+
+std::string byte_size(std::uintmax_t bytes) {
+  const double b = static_cast<double>(bytes);
+  if (b >= 1e9) return fmt::format("{:.2f} GB", b / 1e9);
+  if (b >= 1e6) return fmt::format("{:.1f} MB", b / 1e6);
+  if (b >= 1e3) return fmt::format("{:.0f} kB", b / 1e3);
+  return fmt::format("{} bytes", bytes);
+}
+
+// How many times the skin's file a bead-by-bead STL would be.
+std::string ratio_text(const ExportedFiles& f) {
+  const double ratio =
+      static_cast<double>(f.bead_stl_bytes) / static_cast<double>(std::max<std::uintmax_t>(f.skin_bytes, 1));
+  return ratio >= 10 ? fmt::format("{:.0f}", ratio) : fmt::format("{:.2g}", ratio);
+}
+
+// Links to the files for other programs, with what they hold.
+std::string files_html(const VariantResult& r) {
+  const ExportedFiles& f = r.exported;
+  std::string h = "<h3>Files for other programs</h3><table>";
+  const auto link = [](const std::string& path) { return fmt::format("<a href=\"{0}\">{0}</a>", esc(path)); };
+  h += fmt::format(
+      "<tr><td class=l>{}</td><td>{}</td><td class=l>voxel fields fill, time_s, layer and "
+      "density (= fill) for Blender or Houdini; lengths in mm</td></tr>",
+      link(r.deposit_file), byte_size(f.deposit_bytes));
+  if (!f.skin.empty())
+    h += fmt::format(
+        "<tr><td class=l>{}</td><td>{}</td><td class=l>as-printed skin, {} triangles, mm; a bead-by-bead STL "
+        "(16 facets around each bead) would be about {}, {} times this file</td></tr>",
+        link(f.skin), byte_size(f.skin_bytes), f.skin_triangles, byte_size(f.bead_stl_bytes), ratio_text(f));
+  if (!f.fields.empty())
+    h += fmt::format(
+        "<tr><td class=l>{}</td><td>{}</td><td class=l>voxel fields for ParaView, {} cells "
+        "(one per voxel holding material)</td></tr>",
+        link(f.fields), byte_size(f.fields_bytes), f.fields_cells);
+  return h + "</table>";
 }
 
 std::string fmt_opt(const std::optional<double>& v, const char* spec = "{:.4g}") {
@@ -467,6 +523,7 @@ details{margin:1em 0} .muted{color:#777}
     h += "</table>";
     h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a> · deposit: <a href=\"{1}\">{1}</a></p>",
                      esc(v.program), esc(v.deposit_file));
+    h += files_html(v);
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
          "class=l>section</th><th>start s</th>"
          "<th>duration s</th><th>substrate °C at start</th><th>substrate °C "

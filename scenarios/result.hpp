@@ -2,6 +2,7 @@
 // files written. The report writers read only these types.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -77,6 +78,19 @@ struct GateResult {
   std::string message;  // why it failed, when it did
 };
 
+// Files for other programs (sim/skin.hpp, sim/deposit_files.hpp): paths relative to the output directory,
+// empty when not written.
+struct ExportedFiles {
+  std::uintmax_t deposit_bytes = 0;  // the .vdb
+  std::string skin;                  // as-printed skin mesh, .ply or .stl
+  std::uintmax_t skin_bytes = 0;
+  std::size_t skin_triangles = 0;
+  std::uintmax_t bead_stl_bytes = 0;  // estimated size of a bead-by-bead STL of the same print
+  std::string fields;                 // voxel fields for ParaView, .vtu
+  std::uintmax_t fields_bytes = 0;
+  std::size_t fields_cells = 0;
+};
+
 struct VariantResult {
   std::string name;
   const Variant* variant = nullptr;
@@ -86,6 +100,7 @@ struct VariantResult {
   std::vector<std::string> images;  // relative to the output directory
   std::string program;              // relative path of the print program
   std::string deposit_file;         // relative path of the .vdb
+  ExportedFiles exported;
   std::vector<StageTime> stage_times;
   std::vector<sim::Defect> defects;
   std::vector<std::string> notes;  // what the stages chose for the user (a coarser voxel size, ...)  // what

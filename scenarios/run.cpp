@@ -6,7 +6,6 @@
 #include <limits>
 
 #include <fmt/format.h>
-#include <openvdb/io/File.h>
 
 #include "core/atomic_file.hpp"
 #include "render/image.hpp"
@@ -14,6 +13,8 @@
 #include "scenarios/colours.hpp"
 #include "scenarios/report.hpp"
 #include "sim/deposit.hpp"
+#include "sim/deposit_files.hpp"
+#include "sim/skin.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 #include "thermal/thermal.hpp"
@@ -87,21 +88,6 @@ ThermalStack thermal_stack(const Toolpath& tp) {
     stack.of_layer.push_back(stack.layers.size() - 1);
   }
   return stack;
-}
-
-void write_vdb(const sim::Deposit& d, const std::filesystem::path& path) {
-  AtomicPath out(path);
-  openvdb::GridPtrVec grids;
-  d.fill->setName("fill");
-  d.time->setName("time_s");
-  d.layer->setName("layer");
-  grids.push_back(d.fill);
-  grids.push_back(d.time);
-  grids.push_back(d.layer);
-  openvdb::io::File file(out.temp().string());
-  file.write(grids);
-  file.close();
-  out.commit();
 }
 
 Stats3 stats_of(const std::vector<double>& values) {
@@ -216,6 +202,30 @@ bool compare(double value, GateOp op, double threshold) {
   return false;
 }
 
+// The as-printed skin as a mesh file, with what the report says of it.
+void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
+                const std::filesystem::path& dir, ExportedFiles& files) {
+  const auto* format =
+      std::find_if(std::begin(sim::kMeshFormats), std::end(sim::kMeshFormats),
+                   [&](sim::MeshFormat f) { return sim::to_string(f) == v.output.skin_format; });
+  BT_CHECK(format != std::end(sim::kMeshFormats));  // the loader accepts only these
+  const std::string name = "skin." + v.output.skin_format;
+  const sim::SkinMesh skin = sim::extract_skin(deposit, v.output.skin_adaptivity);
+  sim::write_mesh(skin, dir / name, *format);
+  files.skin = (std::filesystem::path(v.name) / name).string();
+  files.skin_bytes = std::filesystem::file_size(dir / name);
+  files.skin_triangles = skin.triangles.size();
+  files.bead_stl_bytes = sim::bead_by_bead_stl(tp).bytes;
+}
+
+// The voxel fields for ParaView.
+void write_fields(const Variant& v, const sim::Deposit& deposit, const std::filesystem::path& dir,
+                  ExportedFiles& files) {
+  files.fields_cells = sim::write_deposit_vtu(deposit, dir / "fields.vtu").cells;
+  files.fields = (std::filesystem::path(v.name) / "fields.vtu").string();
+  files.fields_bytes = std::filesystem::file_size(dir / "fields.vtu");
+}
+
 VariantResult run_variant(const Scenario& sc, const Variant& v, const std::filesystem::path& out_dir,
                           const std::function<void(const std::string&)>& log) {
   VariantResult res;
@@ -287,8 +297,12 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     render::write_png(render::render_deposit(deposit, by_section, o), dir / "sections.png");
     res.images.push_back((std::filesystem::path(v.name) / "sections.png").string());
   });
-  stages.run("vdb", [&] { write_vdb(deposit, dir / "deposit.vdb"); });
+  stages.run("vdb", [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
+  res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
+  if (!v.output.skin_format.empty())
+    stages.run("skin", [&] { write_skin(v, tp, deposit, dir, res.exported); });
+  if (v.output.write_fields) stages.run("fields", [&] { write_fields(v, deposit, dir, res.exported); });
   res.metrics = measure(v, tp, deposit, th);
   res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;
   res.metrics.planned_voids = plan_stats.voids_found;

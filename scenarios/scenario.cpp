@@ -806,6 +806,15 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.output.memory_budget_gb = out_r.quantity(spec(output_params(), "memory_budget"));
   v.output.image_width = out_r.integer(spec(output_params(), "image_width"));
   v.output.image_height = out_r.integer(spec(output_params(), "image_height"));
+  const std::string skin = out_r.string(spec(output_params(), "skin"));
+  if (skin != "ply" && skin != "stl" && skin != "none")
+    out_r.fail(out_r.take("skin"), "skin", fmt::format("expected ply, stl or none but found '{}'", skin));
+  v.output.skin_format = skin == "none" ? "" : skin;
+  v.output.skin_adaptivity = out_r.quantity(spec(output_params(), "skin_adaptivity"));
+  const std::string fields = out_r.string(spec(output_params(), "fields"));
+  if (fields != "vtu" && fields != "none")
+    out_r.fail(out_r.take("fields"), "fields", fmt::format("expected vtu or none but found '{}'", fields));
+  v.output.write_fields = fields == "vtu";
   out_r.finish(output_params());
 
   BlockReader th_r(tree.root["thermal"], "thermal", tree.scenario_src, &tree.overridden);

@@ -53,6 +53,9 @@ struct OutputSpec {
   double memory_budget_gb = 0.0;  // 0: automatic
   int image_width = 1280;
   int image_height = 800;
+  std::string skin_format = "ply";  // file type of the as-printed skin, ply or stl; empty: not written
+  double skin_adaptivity = 0.2;     // 0..1 (sim::extract_skin)
+  bool write_fields = true;         // fields.vtu for ParaView
 };
 
 struct ThermalSpec {

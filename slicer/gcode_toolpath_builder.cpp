@@ -70,9 +70,12 @@ void GcodeToolpathBuilder::start_layer(double z) {
   layer_ = static_cast<int>(tp_.layers.size()) - 1;
   layer_z_ = z;
   layer_height_mm_ = h;
-  if (layer_ == 0) {  // the first layer takes what was fed before it
+  if (layer_ == 0) {  // the first layer takes what was fed before it, at its height
     for (Move& m : tp_.moves)
-      if (m.layer < 0 && m.deposits()) m.layer = 0;
+      if (m.layer < 0 && m.deposits()) {
+        m.layer = 0;
+        if (!(m.layer_height_mm > 0.0)) m.layer_height_mm = h;
+      }
   }
   for (std::size_t k = tp_.moves.size(); k-- > 0;) {
     Move& m = tp_.moves[k];

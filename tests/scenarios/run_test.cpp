@@ -19,14 +19,14 @@ machine: lsam-ph15
 material: cf-abs-20
 part:
   open_box: {size: [240, 180, 30], wall: 40, floor: 10}
-output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100}
+output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100, fields: vtu}
 sections:
   - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
   - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
 variants:
   - name: fast
   - name: slow
-    set: {sections.walls.speed: 10 mm/s, sections.floor.speed: 10 mm/s}
+    set: {sections.walls.speed: 10 mm/s, sections.floor.speed: 10 mm/s, output.skin: stl, output.fields: none}
 gates:
   - porosity < 0.5
   - interfaces.too_hot_fraction <= 0.5
@@ -91,6 +91,42 @@ TEST(Run, SmallScenarioEndToEnd) {
       EXPECT_TRUE(v["layers"][0].contains(key)) << key;
     EXPECT_NEAR(v["layers"][0]["bead_height_mm"].get<double>(), 5.0, 0.5);
   }
+  // Files for other programs: by default the skin as PLY, and here the fields as .vtu, beside deposit.vdb;
+  // the slow variant asks for an STL skin and no fields.
+  const auto& fast_files = j["variants"][0]["files"];
+  EXPECT_EQ(fast_files["deposit"]["path"], "fast/deposit.vdb");
+  EXPECT_EQ(fast_files["deposit"]["bytes"].get<std::uintmax_t>(),
+            std::filesystem::file_size(out / "fast/deposit.vdb"));
+  EXPECT_EQ(fast_files["skin"]["path"], "fast/skin.ply");
+  EXPECT_EQ(fast_files["skin"]["bytes"].get<std::uintmax_t>(),
+            std::filesystem::file_size(out / "fast/skin.ply"));
+  EXPECT_GT(fast_files["skin"]["triangles"].get<std::size_t>(), 1000u);
+  EXPECT_GT(fast_files["skin"]["bead_by_bead_stl_bytes"].get<std::uintmax_t>(), 84u);
+  EXPECT_NEAR(
+      fast_files["skin"]["bead_by_bead_stl_over_skin"].get<double>(),
+      fast_files["skin"]["bead_by_bead_stl_bytes"].get<double>() / fast_files["skin"]["bytes"].get<double>(),
+      1e-9);
+  EXPECT_EQ(fast_files["fields"]["path"], "fast/fields.vtu");
+  EXPECT_EQ(fast_files["fields"]["bytes"].get<std::uintmax_t>(),
+            std::filesystem::file_size(out / "fast/fields.vtu"));
+  EXPECT_EQ(fast_files["fields"]["cells"], j["variants"][0]["metrics"]["deposit"]["voxels"]);
+  EXPECT_EQ(read(out / "fast/skin.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+  EXPECT_NE(read(out / "fast/fields.vtu").find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
+  const auto& slow_files = j["variants"][1]["files"];
+  EXPECT_EQ(slow_files["skin"]["path"], "slow/skin.stl");
+  EXPECT_TRUE(std::filesystem::exists(out / "slow/skin.stl"));
+  EXPECT_TRUE(slow_files["fields"].is_null());
+  EXPECT_FALSE(std::filesystem::exists(out / "slow/fields.vtu"));
+  const std::string html = read(out / "report.html");
+  EXPECT_NE(html.find("<a href=\"fast/skin.ply\">fast/skin.ply</a>"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"fast/fields.vtu\">fast/fields.vtu</a>"), std::string::npos);
+  EXPECT_NE(html.find("times this file"), std::string::npos);
+  for (const auto& v : r.variants) {
+    bool skin_stage = false;
+    for (const auto& t : v.stage_times) skin_stage = skin_stage || t.name == "skin";
+    EXPECT_TRUE(skin_stage) << v.name;
+  }
+
   // The slow variant prints the same part with longer layer times, so its substrate is colder.
   const auto& fast = j["variants"][0];
   const auto& slow = j["variants"][1];
@@ -127,7 +163,7 @@ TEST(Run, SingleLayerHasNoHealingToReport) {
 units: {length: mm}
 machine: lsam-ph15
 material: cf-abs-20
-output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100}
+output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100, fields: vtu}
 sections:
   - {name: ring, layers: 1, layer_height: 5, bead_width: 20, outline: {points: [[0, 0], [200, 0], [200, 100], [0, 100]]}}
 gates:

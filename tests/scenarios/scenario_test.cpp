@@ -143,6 +143,40 @@ TEST(Scenario, OverriddenValueErrorsPointAtTheVariant) {
   EXPECT_EQ(e.key(), "machine.environment.bed_temp");
 }
 
+// The skin by default; the voxel fields for ParaView (about 60 bytes a voxel) when asked for.
+TEST(Scenario, OutputFilesForOtherProgramsHaveDefaultsAndCanBeChosen) {
+  const Variant def = load_scenario_text(kGood, "test.yaml").variants[0];
+  EXPECT_EQ(def.output.skin_format, "ply");
+  EXPECT_DOUBLE_EQ(def.output.skin_adaptivity, 0.2);
+  EXPECT_FALSE(def.output.write_fields);
+  const Scenario chosen = load_scenario_text(
+      replace(replace(kGood, "variants:\n",
+                      "output: {skin: stl, skin_adaptivity: 0.5, fields: none}\nvariants:\n"),
+              "bed_temp: 90 C}", "bed_temp: 90 C, output.skin: none, output.fields: vtu}"),
+      "test.yaml");
+  EXPECT_EQ(chosen.variants[0].output.skin_format, "stl");
+  EXPECT_DOUBLE_EQ(chosen.variants[0].output.skin_adaptivity, 0.5);
+  EXPECT_FALSE(chosen.variants[0].output.write_fields);
+  EXPECT_EQ(chosen.variants[1].output.skin_format, "");
+  EXPECT_TRUE(chosen.variants[1].output.write_fields);
+}
+
+TEST(Scenario, UnknownOutputFileTypesNameTheKeyAndTheChoices) {
+  const auto with_output = [](const std::string& output) {
+    return replace(kGood, "variants:\n", "output: " + output + "\nvariants:\n");
+  };
+  const InputError skin = load_error(with_output("{skin: obj}"));
+  EXPECT_EQ(skin.key(), "output.skin");
+  EXPECT_NE(std::string(skin.what()).find("expected ply, stl or none but found 'obj'"), std::string::npos)
+      << skin.what();
+  const InputError fields = load_error(with_output("{fields: vti}"));
+  EXPECT_EQ(fields.key(), "output.fields");
+  EXPECT_NE(std::string(fields.what()).find("expected vtu or none but found 'vti'"), std::string::npos)
+      << fields.what();
+  const InputError adaptivity = load_error(with_output("{skin_adaptivity: 2}"));
+  EXPECT_EQ(adaptivity.key(), "output.skin_adaptivity");
+}
+
 TEST(Gates, ParseAndEvaluate) {
   const InputError bad = load_error(replace(kGood, "porosity < 0.05", "prosity < 0.05"));
   EXPECT_EQ(bad.where().line, 25);

@@ -499,6 +499,7 @@ void expect_reads_as_cura_sliced(const std::string& program) {
     if (m.kind == MoveKind::kPrint || !m.deposits()) continue;
     EXPECT_EQ(m.event, ExtruderEvent::kPrime);
     EXPECT_EQ(m.layer, 0);
+    EXPECT_NEAR(m.layer_height_mm, 0.3, 1e-9);  // the deposit lays it as a puddle of the first layer's height
     purge += m.volume_mm3;
   }
   EXPECT_NEAR(purge, area * f.purged_mm, 1e-9);

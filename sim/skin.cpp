@@ -1,0 +1,173 @@
+#include "sim/skin.hpp"
+
+#include <array>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <openvdb/tools/VolumeToMesh.h>
+
+#include "core/atomic_file.hpp"
+
+namespace beadtwin::sim {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "PLY and STL are written as little-endian: the machine's bytes are copied as they are");
+
+constexpr double kIsoFill = 0.5;  // half full: the surface between material and air
+
+// The triangles of quad (a, b, c, d), split along its shorter diagonal (the better shaped pair), keeping
+// the quad's winding.
+std::array<openvdb::Vec3I, 2> split_quad(const openvdb::Vec4I& q, const std::vector<openvdb::Vec3s>& p) {
+  const float ac = (p[q[2]] - p[q[0]]).lengthSqr();
+  const float bd = (p[q[3]] - p[q[1]]).lengthSqr();
+  if (ac <= bd) return {openvdb::Vec3I(q[0], q[1], q[2]), openvdb::Vec3I(q[0], q[2], q[3])};
+  return {openvdb::Vec3I(q[0], q[1], q[3]), openvdb::Vec3I(q[1], q[2], q[3])};
+}
+
+bool degenerate(const openvdb::Vec3I& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
+
+// volumeToMesh winds its polygons clockwise seen from outside (Houdini's convention; for a fog volume it
+// inverts its level-set test so that outside stays outside). STL and PLY take counter-clockwise: swap two
+// corners. Points no triangle uses (adaptive meshing leaves some) are dropped.
+SkinMesh outward_triangles(const std::vector<openvdb::Vec3s>& points,
+                           const std::vector<openvdb::Vec3I>& triangles,
+                           const std::vector<openvdb::Vec4I>& quads) {
+  constexpr auto kUnused = std::numeric_limits<openvdb::Index32>::max();
+  SkinMesh mesh;
+  std::vector<openvdb::Index32> new_index(points.size(), kUnused);
+  const auto add = [&](const openvdb::Vec3I& t) {
+    if (degenerate(t)) return;
+    openvdb::Vec3I out;
+    for (int c = 0; c < 3; ++c) {
+      openvdb::Index32& n = new_index[t[c]];
+      if (n == kUnused) {
+        n = static_cast<openvdb::Index32>(mesh.points_mm.size());
+        mesh.points_mm.push_back(points[t[c]]);
+      }
+      out[c] = n;
+    }
+    mesh.triangles.emplace_back(out[0], out[2], out[1]);
+  };
+  mesh.triangles.reserve(triangles.size() + 2 * quads.size());
+  for (const openvdb::Vec3I& t : triangles) add(t);
+  for (const openvdb::Vec4I& q : quads)
+    for (const openvdb::Vec3I& t : split_quad(q, points)) add(t);
+  return mesh;
+}
+
+template <class T>
+void put(std::ostream& out, const T& value) {
+  out.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+void write_ply(const SkinMesh& mesh, std::ostream& out) {
+  out << "ply\nformat binary_little_endian 1.0\n"
+      << "comment beadtwin as-printed skin: the iso-surface fill = 0.5 of the deposit, lengths in mm\n"
+      << "element vertex " << mesh.points_mm.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "element face " << mesh.triangles.size()
+      << "\nproperty list uchar uint vertex_indices\nend_header\n";
+  for (const openvdb::Vec3s& p : mesh.points_mm) out.write(reinterpret_cast<const char*>(p.asPointer()), 12);
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    put(out, std::uint8_t{3});
+    out.write(reinterpret_cast<const char*>(t.asPointer()), 12);
+  }
+}
+
+void write_stl(const SkinMesh& mesh, std::ostream& out, const std::filesystem::path& path) {
+  if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument(
+        fmt::format("cannot write {}: {} triangles are more than binary STL can count", path.string(),
+                    mesh.triangles.size()));
+  // An ASCII STL starts with "solid"; this header must not.
+  std::array<char, 80> header{};
+  const std::string_view text = "beadtwin as-printed skin (iso-surface fill = 0.5 of the deposit), mm";
+  std::memcpy(header.data(), text.data(), text.size());
+  out.write(header.data(), header.size());
+  put(out, static_cast<std::uint32_t>(mesh.triangles.size()));
+  std::array<char, 50> facet{};  // normal, three corners (float32 x 3 each), attribute count (uint16 0)
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    const openvdb::Vec3s& a = mesh.points_mm[t[0]];
+    const openvdb::Vec3s& b = mesh.points_mm[t[1]];
+    const openvdb::Vec3s& c = mesh.points_mm[t[2]];
+    openvdb::Vec3s n = (b - a).cross(c - a);
+    n.normalize();  // leaves a zero normal as it is
+    std::memcpy(facet.data(), n.asPointer(), 12);
+    std::memcpy(facet.data() + 12, a.asPointer(), 12);
+    std::memcpy(facet.data() + 24, b.asPointer(), 12);
+    std::memcpy(facet.data() + 36, c.asPointer(), 12);
+    out.write(facet.data(), facet.size());
+  }
+}
+
+}  // namespace
+
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity) {
+  if (!(adaptivity >= 0.0 && adaptivity <= 1.0))
+    throw std::invalid_argument(fmt::format("skin adaptivity must be between 0 and 1, got {}", adaptivity));
+  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return {};
+  // The mesher treats grids that are not level sets as fog volumes (inside above the iso value); say so
+  // whatever the caller's grid claims.
+  openvdb::FloatGrid::ConstPtr fill = deposit.fill;
+  if (fill->getGridClass() != openvdb::GRID_FOG_VOLUME) {
+    openvdb::FloatGrid::Ptr fog = deposit.fill->copy();  // shares the tree
+    fog->setGridClass(openvdb::GRID_FOG_VOLUME);
+    fill = fog;
+  }
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  openvdb::tools::volumeToMesh(*fill, points, triangles, quads, kIsoFill, adaptivity);
+  return outward_triangles(points, triangles, quads);
+}
+
+double enclosed_volume_mm3(const SkinMesh& mesh) {
+  // Sum of the signed tetrahedra between the origin and each triangle.
+  double six_v = 0.0;
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    const openvdb::Vec3d a(mesh.points_mm[t[0]]), b(mesh.points_mm[t[1]]), c(mesh.points_mm[t[2]]);
+    six_v += a.dot(b.cross(c));
+  }
+  return six_v / 6.0;
+}
+
+std::string_view to_string(MeshFormat format) {
+  switch (format) {
+    case MeshFormat::kPly:
+      return "ply";
+    case MeshFormat::kStl:
+      return "stl";
+  }
+  return "?";
+}
+
+void write_mesh(const SkinMesh& mesh, const std::filesystem::path& path, MeshFormat format) {
+  if (mesh.triangles.empty())
+    throw std::invalid_argument(fmt::format(
+        "cannot write {}: the skin has no triangles (the deposit holds no material)", path.string()));
+  AtomicStream file(path);
+  if (format == MeshFormat::kPly)
+    write_ply(mesh, file.stream());
+  else
+    write_stl(mesh, file.stream(), path);
+  file.commit();
+}
+
+BeadStlEstimate bead_by_bead_stl(const Toolpath& toolpath, int facets_around) {
+  if (facets_around < 3)
+    throw std::invalid_argument(fmt::format("a tube needs at least 3 facets around, got {}", facets_around));
+  BeadStlEstimate e;
+  for (const Move& m : toolpath.moves) e.moves += m.deposits() ? 1 : 0;
+  const auto per_move = static_cast<std::size_t>(2 * facets_around + 2 * (facets_around - 2));
+  e.triangles = e.moves * per_move;
+  e.bytes = 84 + 50 * static_cast<std::uintmax_t>(e.triangles);
+  return e;
+}
+
+}  // namespace beadtwin::sim

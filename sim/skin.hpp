@@ -1,0 +1,62 @@
+// The as-printed skin: the deposit's outer surface as a triangle mesh, for programs that open meshes
+// (Blender, MeshLab, a CAD package comparing it with the part) rather than volumes.
+//
+// The skin is the iso-surface fill = 0.5 of the deposit's fill grid (a fog volume: 1 in full voxels, 0
+// outside), meshed by OpenVDB's tools::volumeToMesh. Adaptivity merges the small faces of flat regions into
+// larger ones; ridges between beads and corners keep their detail. The triangles face outwards: seen from
+// outside, their corners run counter-clockwise (the right-hand rule gives the outward normal), as STL and PLY
+// readers expect, so the mesh's signed volume is the volume it encloses.
+//
+// A skin is orders of magnitude smaller than a bead-by-bead model of the same print (every move a swept
+// tube): bead_by_bead_stl() gives that model's size for the report to compare with.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string_view>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+
+#include "core/toolpath.hpp"
+#include "sim/deposit.hpp"
+
+namespace beadtwin::sim {
+
+struct SkinMesh {
+  std::vector<openvdb::Vec3s> points_mm;  // machine frame; every point is used by a triangle
+  std::vector<openvdb::Vec3I> triangles;  // indices into points_mm, counter-clockwise seen from outside
+};
+
+// Meshes the skin of `deposit`. `adaptivity` in [0, 1]: 0 keeps about one quad (two triangles) per voxel face
+// crossed by the surface; larger values merge faces where the surface is flat. A deposit without material
+// has no skin: the mesh is empty. Throws std::invalid_argument for an adaptivity outside [0, 1].
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity);
+
+// The volume the mesh encloses, mm³: positive when its triangles face outwards.
+double enclosed_volume_mm3(const SkinMesh& mesh);
+
+enum class MeshFormat { kPly, kStl };
+constexpr MeshFormat kMeshFormats[] = {MeshFormat::kPly, MeshFormat::kStl};
+// "ply" or "stl", also the file extension.
+std::string_view to_string(MeshFormat format);
+
+// Writes `mesh` atomically as binary PLY (little-endian float vertices, uint32 triangle indices) or binary
+// STL (80-byte header, facet normals). Lengths in mm. Throws std::invalid_argument for an empty mesh (a file
+// without triangles helps nobody) and std::runtime_error when the file cannot be written, both naming `path`;
+// nothing is left at `path` then.
+void write_mesh(const SkinMesh& mesh, const std::filesystem::path& path, MeshFormat format);
+
+// The size a binary STL would have that models the print bead by bead. Assumptions: every depositing move
+// (Move::deposits) is one tube of `facets_around` flat sides around its section (2 triangles each) closed by
+// two flat end caps (a fan of facets_around - 2 triangles each), so 4 · facets_around - 4 triangles per move;
+// 50 bytes per triangle and an 84-byte header, as binary STL stores them. Nothing is shared between moves.
+struct BeadStlEstimate {
+  std::size_t moves = 0;
+  std::size_t triangles = 0;
+  std::uintmax_t bytes = 0;
+};
+BeadStlEstimate bead_by_bead_stl(const Toolpath& toolpath, int facets_around = 16);
+
+}  // namespace beadtwin::sim

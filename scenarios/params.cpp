@@ -309,7 +309,9 @@ constexpr ParamSpec kMachine[] = {
      "width of the compression roller (or tamper) across the bead; corners tighter than half of it are "
      "reported where the roller stays down (0: unknown, no check)",
      "estimate per machine"},
-    {"roller.diameter", T::kQuantity, D::kLength, "0", 0, 1000, false, "diameter of the compression roller",
+    {"roller.diameter", T::kQuantity, D::kLength, "0", 0, 1000, false,
+     "diameter of the compression roller: material standing up to its radius above a bead's top is in its "
+     "way (0: unknown, a layer height is looked at)",
      "estimate per machine"},
     {"nozzle_diameter", T::kQuantity, D::kLength, "0", 0, 100, false,
      "diameter of the nozzle's tip; travel moves are checked for collisions over it (0: its centre only)",

@@ -163,6 +163,12 @@ bool keeps_round(const Move& move, const DepositOptions& options) {
   return options.flattening != Flattening::kNozzle && !move.roller_down;
 }
 
+// How high above a bead's top the roller meets material standing in its way: its radius (0 when unknown:
+// then a layer height is looked at).
+double roller_reach(const DepositOptions& options) {
+  return options.flattening == Flattening::kRoller ? 0.5 * options.roller_diameter_mm : 0.0;
+}
+
 // Beads no flatter than this fraction of their layer height: below it the roller has ploughed the material
 // under it flat, and the bead spreads no further.
 constexpr double kMinSquash = 0.25;
@@ -362,17 +368,20 @@ void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t
                LayContext& c) {
   const double vs = c.voxel_size_mm;
   std::vector<Shaped> shaped(end - begin);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(begin, end), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) {
-          PlannedSweep& p = sweeps[i];
-          const Move& move = c.toolpath.moves[p.move];
-          Substrate sub;
-          if (c.options.follow_substrate && !p.sweep.is_puddle())
-            sub = measure_substrate(p.sweep, p.nominal_top_mm, p.nominal_height_mm, c.fill, vs, c.table_z_mm);
-          shaped[i - begin] = shape_piece(p, move, sub, c.options, vs);
-        }
-      });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        PlannedSweep& p = sweeps[i];
+                        const Move& move = c.toolpath.moves[p.move];
+                        Substrate sub;
+                        if (c.options.follow_substrate && !p.sweep.is_puddle())
+                          sub = measure_substrate(
+                              p.sweep, p.nominal_top_mm, p.nominal_height_mm,
+                              keeps_round(move, c.options) ? p.nominal_height_mm : roller_reach(c.options),
+                              c.fill, vs, c.table_z_mm);
+                        shaped[i - begin] = shape_piece(p, move, sub, c.options, vs);
+                      }
+                    });
   std::vector<std::vector<CoverageCell>> cells;
   std::size_t batch_begin = begin;
   while (batch_begin < end) {

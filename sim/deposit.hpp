@@ -65,7 +65,7 @@ struct DepositOptions {
   // Longest piece a move is cut into for following the substrate, in bead widths (> 0).
   double piece_bead_widths = 2.0;
   double roller_width_mm = 0.0;     // 0: unknown (no corner check); the roller's width across the bead
-  double roller_diameter_mm = 0.0;  // 0: unknown
+  double roller_diameter_mm = 0.0;  // 0: unknown; the roller meets material up to its radius above a bead
   double nozzle_diameter_mm = 0.0;  // 0: unknown; the nozzle's tip, for collisions on travel moves
   // The build table's height, mm; NaN: the lowest nominal bead bottom of the toolpath.
   double table_z_mm = std::numeric_limits<double>::quiet_NaN();

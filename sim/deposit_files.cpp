@@ -65,7 +65,7 @@ class Chunked {
 // The corners of every voxel that holds material, numbered in the tree's order: value = point index.
 // VTK_VOXEL's corner order: x fastest, then y, then z.
 const openvdb::Coord kCorner[8] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0},
-                                       {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+                                   {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
 constexpr std::uint8_t kVtkVoxel = 11;
 
 openvdb::Int64Tree number_corners(const openvdb::FloatTree& fill, std::size_t& count) {
@@ -164,7 +164,7 @@ void write_deposit_vdb(const Deposit& deposit, const std::filesystem::path& path
   const openvdb::FloatGrid::Ptr density = named<openvdb::FloatGrid>(deposit.fill, "density", "fraction");
   density->setGridClass(openvdb::GRID_FOG_VOLUME);
   openvdb::GridPtrVec grids = {fill, density, named<openvdb::FloatGrid>(deposit.time, "time_s", "s"),
-                                     named<openvdb::Int32Grid>(deposit.layer, "layer", "layer index")};
+                               named<openvdb::Int32Grid>(deposit.layer, "layer", "layer index")};
   if (deposit.move) grids.push_back(named<openvdb::Int32Grid>(deposit.move, "move", "toolpath move index"));
   openvdb::MetaMap meta;
   meta.insertMeta("creator", openvdb::StringMetadata("beadtwin"));

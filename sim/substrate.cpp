@@ -24,7 +24,7 @@ double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, c
 
 }  // namespace
 
-Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm,
+Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm, double reach_mm,
                             const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm) {
   BT_CHECK_OP(voxel_size_mm, >, 0.0);
   BT_CHECK_OP(height_mm, >, 0.0);
@@ -37,7 +37,7 @@ Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height
   const int j0 = static_cast<int>(std::floor(lo.y() / s)), j1 = static_cast<int>(std::floor(hi.y() / s));
   // Voxels whose centres lie in [bottom - h, top + h).
   const int k0 = static_cast<int>(std::ceil((bottom - height_mm) / s - 0.5));
-  const int k1 = static_cast<int>(std::ceil((top_mm + height_mm) / s - 0.5));
+  const int k1 = static_cast<int>(std::ceil((top_mm + std::max(height_mm, reach_mm)) / s - 0.5));
   const int k_bottom = static_cast<int>(std::ceil(bottom / s - 0.5));  // the first voxel centred above it
   auto acc = fill.getConstAccessor();
   Substrate out;

@@ -11,8 +11,8 @@
 //  - the material above: what already stands above the nominal bottom. An over-filled layer below
 //    leaves less room; the bead comes out flatter and wider, and where the material below reaches the
 //    roller the roller ploughs through it.
-//  - the material over the top: what stands above the bead's top, where the roller and the nozzle pass:
-//    they run into it.
+//  - the material over the top: what stands above the bead's top, up to `reach_mm` above it (a layer
+//    height, or the roller's radius), where the roller and the nozzle pass: they run into it.
 //  - support: whether a column has material, or the table, within the band; a bead over nothing spans
 //    unsupported.
 // Below `table_z_mm` (the build table) everything counts as solid. Each measure is the mean over the
@@ -31,7 +31,7 @@ namespace beadtwin::sim {
 struct Substrate {
   double gap_mm = 0.0;       // mean empty depth in the band below the nominal bottom
   double above_mm = 0.0;     // mean depth of material between the nominal bottom and top
-  double over_top_mm = 0.0;  // mean depth of material within one layer height above the top
+  double over_top_mm = 0.0;  // mean depth of material within `reach_mm` above the top
   double supported = 1.0;    // fraction of the columns with material or the table within the band, 0..1
   int columns = 0;           // columns measured
   // The empty voxels of the band (fraction: the empty part of each, (0, 1]), in a fixed order.
@@ -41,7 +41,7 @@ struct Substrate {
 // `sweep`: the piece with its nominal (flattened to the layer height) profile; `top_mm`, `height_mm`: its
 // nominal top and layer height at the middle. Reads `fill` only (thread-safe while nobody writes it).
 // Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along each axis.
-Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm,
+Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm, double reach_mm,
                             const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm);
 
 }  // namespace beadtwin::sim

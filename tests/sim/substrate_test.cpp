@@ -249,6 +249,30 @@ TEST(Defects, TravelThroughThePartIsACollision) {
   EXPECT_NE(it->detail.find("travel"), std::string::npos);
 }
 
+// A bead laid at the first layer's height beside a stack, in the stack's fourth layer (after its third):
+// the nozzle and the roller run into the stack. A 3 in roller meets both layers standing above the bead's
+// top (the second and third; the fourth is laid with it); without its diameter only the layer just above
+// the top is looked at, so half as deep.
+TEST(Defects, BeadBesideATallStackCollides) {
+  std::vector<Move> moves;
+  for (int l = 0; l < 4; ++l) moves.push_back(bead({0, 0, (l + 1) * kH}, {100, 0, (l + 1) * kH}, l));
+  Move late = bead({0, 0.5 * kW, kH}, {100, 0.5 * kW, kH}, 3);
+  moves.push_back(late);
+  const Toolpath tp = timed(moves);
+  const auto depth = [&](double roller_diameter_mm) {
+    sim::DepositOptions o;
+    o.flattening = sim::Flattening::kRoller;
+    o.roller_diameter_mm = roller_diameter_mm;
+    double deepest = 0.0;
+    for (const sim::Defect& x : sim::deposit(tp, o).defects)
+      if (x.kind == sim::DefectKind::kCollision && x.move == 4) deepest = std::max(deepest, x.size);
+    return deepest;
+  };
+  const double near = depth(0.0), roller = depth(3 * kMmPerInch);
+  EXPECT_GT(near, 0.25 * kH);
+  EXPECT_NEAR(roller / near, 2.0, 0.05);
+}
+
 // A memory budget the deposit would exceed stops it before any voxel is written, with a voxel size that
 // would fit: memory goes as the inverse cube of the voxel size.
 TEST(Deposit, MemoryBudgetStopsWithAVoxelSizeThatFits) {

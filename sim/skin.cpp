@@ -37,7 +37,7 @@ bool degenerate(const openvdb::Vec3I& t) {
 // corners. Points no triangle uses (adaptive meshing leaves some) are dropped.
 SkinMesh outward_triangles(const std::vector<openvdb::Vec3s>& points,
                            const std::vector<openvdb::Vec3I>& triangles,
-                           const std::vector<openvdb::Vec4I>& quads) {
+                           const std::vector<openvdb::Vec4I>& quads, bool swap = true) {
   constexpr auto kUnused = std::numeric_limits<openvdb::Index32>::max();
   SkinMesh mesh;
   std::vector<openvdb::Index32> new_index(points.size(), kUnused);
@@ -52,13 +52,45 @@ SkinMesh outward_triangles(const std::vector<openvdb::Vec3s>& points,
       }
       out[c] = n;
     }
-    mesh.triangles.emplace_back(out[0], out[2], out[1]);
+    if (swap) {
+      mesh.triangles.emplace_back(out[0], out[2], out[1]);
+    } else {
+      mesh.triangles.emplace_back(out[0], out[1], out[2]);
+    }
   };
   mesh.triangles.reserve(triangles.size() + 2 * quads.size());
   for (const openvdb::Vec3I& t : triangles) add(t);
   for (const openvdb::Vec4I& q : quads)
     for (const openvdb::Vec3I& t : split_quad(q, points)) add(t);
   return mesh;
+}
+
+// Connected pieces of the mesh (triangles sharing a point) whose signed volume is negative face into a
+// void inside the part: dropped, with the points only they used.
+void drop_void_shells(SkinMesh& mesh) {
+  std::vector<openvdb::Index32> parent(mesh.points_mm.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<openvdb::Index32>(i);
+  const auto find = [&parent](openvdb::Index32 i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    const openvdb::Index32 a = find(t[0]);
+    for (int c = 1; c < 3; ++c) {
+      const openvdb::Index32 b = find(t[c]);
+      if (a != b) parent[b] = a;
+    }
+  }
+  std::vector<double> six_v(mesh.points_mm.size(), 0.0);  // by piece root
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    const openvdb::Vec3d a(mesh.points_mm[t[0]]), b(mesh.points_mm[t[1]]), c(mesh.points_mm[t[2]]);
+    six_v[find(t[0])] += a.dot(b.cross(c));
+  }
+  std::vector<openvdb::Vec3I> kept;
+  kept.reserve(mesh.triangles.size());
+  for (const openvdb::Vec3I& t : mesh.triangles)
+    if (six_v[find(t[0])] > 0.0) kept.push_back(t);
+  mesh = outward_triangles(mesh.points_mm, kept, {}, false);
 }
 
 template <class T>
@@ -108,7 +140,7 @@ void write_stl(const SkinMesh& mesh, std::ostream& out, const std::filesystem::p
 
 }  // namespace
 
-SkinMesh extract_skin(const Deposit& deposit, double adaptivity) {
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only) {
   if (!(adaptivity >= 0.0 && adaptivity <= 1.0))
     throw std::invalid_argument(fmt::format("skin adaptivity must be between 0 and 1, got {}", adaptivity));
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return {};
@@ -124,7 +156,9 @@ SkinMesh extract_skin(const Deposit& deposit, double adaptivity) {
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
   openvdb::tools::volumeToMesh(*fill, points, triangles, quads, kIsoFill, adaptivity);
-  return outward_triangles(points, triangles, quads);
+  SkinMesh mesh = outward_triangles(points, triangles, quads);
+  if (outer_only) drop_void_shells(mesh);
+  return mesh;
 }
 
 double enclosed_volume_mm3(const SkinMesh& mesh) {

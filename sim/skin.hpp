@@ -7,8 +7,9 @@
 // outside, their corners run counter-clockwise (the right-hand rule gives the outward normal), as STL and PLY
 // readers expect, so the mesh's signed volume is the volume it encloses.
 //
-// A skin is orders of magnitude smaller than a bead-by-bead model of the same print (every move a swept
-// tube): bead_by_bead_stl() gives that model's size for the report to compare with.
+// The skin grows with the part's surface, a bead-by-bead model of the same print (every move a swept tube)
+// with the number of moves: bead_by_bead_stl() gives that model's size for the report to compare with.
+// Measured: 2.8 times smaller on the default box (few long moves), 6.7 times on a desktop ball.
 #pragma once
 
 #include <cstddef>
@@ -31,8 +32,10 @@ struct SkinMesh {
 
 // Meshes the skin of `deposit`. `adaptivity` in [0, 1]: 0 keeps about one quad (two triangles) per voxel face
 // crossed by the surface; larger values merge faces where the surface is flat. A deposit without material
-// has no skin: the mesh is empty. Throws std::invalid_argument for an adaptivity outside [0, 1].
-SkinMesh extract_skin(const Deposit& deposit, double adaptivity);
+// has no skin: the mesh is empty. With `outer_only`, the closed shells around voids inside the part (pieces
+// of the mesh facing inwards, negative signed volume) are left out: the outer skin. Throws
+// std::invalid_argument for an adaptivity outside [0, 1].
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only = true);
 
 // The volume the mesh encloses, mm³: positive when its triangles face outwards.
 double enclosed_volume_mm3(const SkinMesh& mesh);

@@ -237,3 +237,45 @@ TEST(Skin, BeadByBeadStlSizeFollowsItsAssumptions) {
 
 }  // namespace
 }  // namespace beadtwin::sim
+
+namespace beadtwin::sim {
+namespace {
+
+// A block of beads with a closed hole in its middle layer (one bead broken for 60 mm, sealed by the layers
+// above and below and the beads beside it; laid without following the substrate, so the layer above does
+// not sink into it): the outer skin leaves the void's shell out, the full skin keeps it, facing inwards.
+TEST(Skin, OuterSkinLeavesVoidShellsOut) {
+  testing::Ring r;
+  std::vector<Move> moves;
+  const double pitch = bead_area_mm2(r.bead_width_mm, r.layer_height_mm) / r.layer_height_mm;
+  for (int l = 0; l < 3; ++l) {
+    const double z = (l + 1) * r.layer_height_mm;
+    for (int n = 0; n < 5; ++n) {
+      const double y = n * pitch;
+      if (l == 1 && n == 2) {
+        moves.push_back(testing::ring_bead({0, y, z}, {70, y, z}, l, r));
+        moves.push_back(testing::ring_bead({130, y, z}, {200, y, z}, l, r));
+      } else {
+        moves.push_back(testing::ring_bead({0, y, z}, {200, y, z}, l, r));
+      }
+    }
+  }
+  Toolpath tp;
+  tp.moves = moves;
+  tp.layers.resize(3);
+  time_toolpath(tp, MotionLimits{});
+  DepositOptions o;
+  o.voxel_size_mm = r.voxel_mm;
+  o.follow_substrate = false;
+  const Deposit d = deposit(tp, o);
+  const SkinMesh outer = extract_skin(d, 0.0);
+  const SkinMesh full = extract_skin(d, 0.0, false);
+  EXPECT_LT(outer.triangles.size(), full.triangles.size());
+  // The void's shell subtracts its volume from the full skin's; the outer skin encloses the void too.
+  const double hole = 60.0 * bead_area_mm2(r.bead_width_mm, r.layer_height_mm);
+  EXPECT_NEAR(enclosed_volume_mm3(outer) - enclosed_volume_mm3(full), hole, 0.3 * hole);
+  EXPECT_GT(enclosed_volume_mm3(outer), d.deposited_volume_mm3);
+}
+
+}  // namespace
+}  // namespace beadtwin::sim

@@ -46,3 +46,7 @@ pkg_check_modules(POLYCLIPPING REQUIRED IMPORTED_TARGET polyclipping)
 # so those are dropped rather than linked into each program.
 find_package(assimp 5 CONFIG REQUIRED)
 set_target_properties(assimp::assimp PROPERTIES INTERFACE_LINK_LIBRARIES "")
+
+# meshoptimizer simplifies the as-printed skin to a tolerance (quadric edge collapse, sim/skin.cpp): a small,
+# well-kept library that does this better than code of our own would.
+find_package(meshoptimizer CONFIG REQUIRED)

@@ -424,6 +424,10 @@ constexpr ParamSpec kOutput[] = {
      "how much the skin mesh merges triangles where the surface is flat: 0 about two per voxel face crossed; "
      "0.2 keeps the ridges between beads within about a voxel; near 1 it may cut through thin walls",
      "OpenVDB tools::volumeToMesh"},
+    {"skin_tolerance", T::kQuantity, D::kLength, "0.3 mm", 0, 100, false,
+     "the skin mesh is then simplified (edge collapse) as long as its surface moves less than this; 0 keeps "
+     "the mesher's triangles",
+     "meshoptimizer meshopt_simplify"},
     {"fields", T::kString, D::kDimensionless, "none", 0, 0, false,
      "the voxel fields fill, time_s and layer for ParaView: vtu (VTK XML unstructured grid, one cell "
      "per voxel holding material; about 60 bytes a voxel, 200 MB for the default scenario) or none",

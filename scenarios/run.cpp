@@ -210,7 +210,8 @@ void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposi
                    [&](sim::MeshFormat f) { return sim::to_string(f) == v.output.skin_format; });
   BT_CHECK(format != std::end(sim::kMeshFormats));  // the loader accepts only these
   const std::string name = "skin." + v.output.skin_format;
-  const sim::SkinMesh skin = sim::extract_skin(deposit, v.output.skin_adaptivity);
+  const sim::SkinMesh skin =
+      sim::extract_skin(deposit, v.output.skin_adaptivity, true, v.output.skin_tolerance_mm);
   sim::write_mesh(skin, dir / name, *format);
   files.skin = (std::filesystem::path(v.name) / name).string();
   files.skin_bytes = std::filesystem::file_size(dir / name);

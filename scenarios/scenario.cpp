@@ -811,6 +811,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     out_r.fail(out_r.take("skin"), "skin", fmt::format("expected ply, stl or none but found '{}'", skin));
   v.output.skin_format = skin == "none" ? "" : skin;
   v.output.skin_adaptivity = out_r.quantity(spec(output_params(), "skin_adaptivity"));
+  v.output.skin_tolerance_mm = out_r.quantity(spec(output_params(), "skin_tolerance"));
   const std::string fields = out_r.string(spec(output_params(), "fields"));
   if (fields != "vtu" && fields != "none")
     out_r.fail(out_r.take("fields"), "fields", fmt::format("expected vtu or none but found '{}'", fields));

@@ -55,6 +55,7 @@ struct OutputSpec {
   int image_height = 800;
   std::string skin_format = "ply";  // file type of the as-printed skin, ply or stl; empty: not written
   double skin_adaptivity = 0.2;     // 0..1 (sim::extract_skin)
+  double skin_tolerance_mm = 0.3;   // simplification tolerance (sim::extract_skin)
   bool write_fields = true;         // fields.vtu for ParaView
 };
 

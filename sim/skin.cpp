@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <meshoptimizer.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include "core/atomic_file.hpp"
@@ -93,6 +94,27 @@ void drop_void_shells(SkinMesh& mesh) {
   mesh = outward_triangles(mesh.points_mm, kept, {}, false);
 }
 
+// Collapses edges (quadric error metric, meshoptimizer) while the surface moves less than `tolerance_mm`:
+// flat and gently curved stretches become a few long triangles, the ridges between beads stay.
+void simplify(SkinMesh& mesh, double tolerance_mm) {
+  if (mesh.triangles.empty()) return;
+  static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) &&
+                sizeof(openvdb::Vec3I) == 3 * sizeof(unsigned));
+  const float* positions = mesh.points_mm[0].asPointer();
+  const auto* indices = reinterpret_cast<const unsigned*>(mesh.triangles[0].asPointer());
+  const std::size_t index_count = 3 * mesh.triangles.size();
+  const float scale = meshopt_simplifyScale(positions, mesh.points_mm.size(), sizeof(openvdb::Vec3s));
+  if (!(scale > 0.0f)) return;
+  std::vector<unsigned> out(index_count);
+  const std::size_t kept =
+      meshopt_simplify(out.data(), indices, index_count, positions, mesh.points_mm.size(),
+                       sizeof(openvdb::Vec3s), 0, static_cast<float>(tolerance_mm) / scale);
+  std::vector<openvdb::Vec3I> triangles;
+  triangles.reserve(kept / 3);
+  for (std::size_t i = 0; i + 2 < kept; i += 3) triangles.emplace_back(out[i], out[i + 1], out[i + 2]);
+  mesh = outward_triangles(mesh.points_mm, triangles, {}, false);
+}
+
 template <class T>
 void put(std::ostream& out, const T& value) {
   out.write(reinterpret_cast<const char*>(&value), sizeof value);
@@ -140,7 +162,7 @@ void write_stl(const SkinMesh& mesh, std::ostream& out, const std::filesystem::p
 
 }  // namespace
 
-SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only) {
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only, double tolerance_mm) {
   if (!(adaptivity >= 0.0 && adaptivity <= 1.0))
     throw std::invalid_argument(fmt::format("skin adaptivity must be between 0 and 1, got {}", adaptivity));
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return {};
@@ -158,6 +180,7 @@ SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only
   openvdb::tools::volumeToMesh(*fill, points, triangles, quads, kIsoFill, adaptivity);
   SkinMesh mesh = outward_triangles(points, triangles, quads);
   if (outer_only) drop_void_shells(mesh);
+  if (tolerance_mm > 0.0) simplify(mesh, tolerance_mm);
   return mesh;
 }
 

@@ -33,9 +33,11 @@ struct SkinMesh {
 // Meshes the skin of `deposit`. `adaptivity` in [0, 1]: 0 keeps about one quad (two triangles) per voxel face
 // crossed by the surface; larger values merge faces where the surface is flat. A deposit without material
 // has no skin: the mesh is empty. With `outer_only`, the closed shells around voids inside the part (pieces
-// of the mesh facing inwards, negative signed volume) are left out: the outer skin. Throws
-// std::invalid_argument for an adaptivity outside [0, 1].
-SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only = true);
+// of the mesh facing inwards, negative signed volume) are left out: the outer skin. With `tolerance_mm` > 0
+// the mesh is then simplified by edge collapse (meshoptimizer's quadric simplifier) as long as the surface
+// moves less than that. Throws std::invalid_argument for an adaptivity outside [0, 1].
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only = true,
+                      double tolerance_mm = 0.0);
 
 // The volume the mesh encloses, mm³: positive when its triangles face outwards.
 double enclosed_volume_mm3(const SkinMesh& mesh);

@@ -279,3 +279,39 @@ TEST(Skin, OuterSkinLeavesVoidShellsOut) {
 
 }  // namespace
 }  // namespace beadtwin::sim
+
+namespace beadtwin::sim {
+namespace {
+
+// Simplified to a tolerance (edge collapse), the skin keeps its volume and every point stays within the
+// tolerance of the surface it came from, with far fewer triangles.
+TEST(Skin, SimplifiedToAToleranceKeepsItsShape) {
+  const Deposit d = testing::ring_deposit();
+  const SkinMesh exact = extract_skin(d, 0.0);
+  const SkinMesh simple = extract_skin(d, 0.0, true, 0.3);
+  EXPECT_LT(simple.triangles.size(), exact.triangles.size() / 2);
+  EXPECT_NEAR(enclosed_volume_mm3(simple) / enclosed_volume_mm3(exact), 1.0, 0.01);
+  // Simplification keeps a subset of the points, so each stays on the exact mesh's surface; the check is
+  // that the surface it spans stays near: every simplified triangle's centre lies within the tolerance
+  // (and a voxel's rounding) of the fill = 0.5 surface, judged by the fill interpolated there.
+  const auto fill = d.fill->getConstAccessor();
+  int far = 0;
+  for (const openvdb::Vec3I& t : simple.triangles) {
+    const openvdb::Vec3s c =
+        (simple.points_mm[t[0]] + simple.points_mm[t[1]] + simple.points_mm[t[2]]) / 3.0f;
+    const openvdb::Coord ijk = d.fill->transform().worldToIndexCellCentered(openvdb::Vec3d(c));
+    // Within a voxel of the surface: the voxel holds some material or a face neighbour does.
+    bool near = fill.getValue(ijk) > 0.0f;
+    for (int a = 0; a < 3 && !near; ++a)
+      for (const int s : {-1, 1}) {
+        openvdb::Coord n = ijk;
+        n[a] += s;
+        near = near || fill.getValue(n) > 0.0f;
+      }
+    far += !near;
+  }
+  EXPECT_EQ(far, 0);
+}
+
+}  // namespace
+}  // namespace beadtwin::sim

@@ -92,6 +92,22 @@ class Palette {
   Vec3 unknown_;
 };
 
+// The colour of a surface point, in linear light: its layer's from the palette made up front, or the
+// caller's colour of the point itself.
+class Albedo {
+ public:
+  explicit Albedo(const Palette& palette) : palette_(&palette) {}
+  explicit Albedo(const SurfaceColour& colour) : colour_(&colour) {}
+
+  Vec3 operator()(const Vec3& point, int layer) const {
+    return colour_ ? to_linear((*colour_)(point.cast<double>(), layer)) : (*palette_)(layer);
+  }
+
+ private:
+  const Palette* palette_ = nullptr;
+  const SurfaceColour* colour_ = nullptr;
+};
+
 embree::Scene build_scene(const embree::Device& device, const SurfaceMesh& mesh) {
   embree::Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto points = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -133,11 +149,11 @@ struct Lights {
 
 class Shader {
  public:
-  Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Palette& palette, const Lights& lights,
+  Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Albedo& albedo, const Lights& lights,
          const RenderOptions& options, float shadow_offset_mm)
       : scene_(scene),
         mesh_(mesh),
-        palette_(palette),
+        albedo_(albedo),
         lights_(lights),
         shadows_(options.shadows),
         ground_shadow_(options.ground_shadow),
@@ -154,7 +170,7 @@ class Shader {
     Vec3 geometric = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
     if (geometric.dot(ray.direction) > 0.0f) geometric = -geometric;  // face the viewer
     const Vec3 normal = shading_normal(rh.hit, geometric);
-    const Vec3 albedo = palette_(probe.layer_at(point, -geometric));
+    const Vec3 albedo = albedo_(point, probe.layer_at(point, -geometric));
     const Vec3 to_eye = -ray.direction;
 
     const float hemisphere = 0.5f + 0.5f * normal.z();  // machine frame: z up
@@ -217,7 +233,7 @@ class Shader {
 
   const embree::Scene& scene_;
   const SurfaceMesh& mesh_;
-  const Palette& palette_;
+  const Albedo& albedo_;
   const Lights& lights_;
   bool shadows_;
   bool ground_shadow_;
@@ -268,16 +284,9 @@ float shadow_offset_mm(const SurfaceMesh& mesh, double voxel_mm) {
                   16.0f * std::numeric_limits<float>::epsilon() * extent);
 }
 
-}  // namespace
-
-Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, const RenderOptions& options) {
-  validate(options);
-  BT_CHECK(static_cast<bool>(colour));
-  if (!deposit.fill) throw InputError("nothing was deposited: the deposit has no fill grid");
-  BT_CHECK(deposit.layer != nullptr);
-
-  const SurfaceMesh mesh = extract_surface(*deposit.fill, kSurfaceFill);
-  const Palette palette(*deposit.layer, colour, options.unknown_layer);
+// The image of `mesh` (the deposit's surface) coloured by `albedo`.
+Image render_surface(const sim::Deposit& deposit, const SurfaceMesh& mesh, const Albedo& albedo,
+                     const RenderOptions& options) {
   const embree::Device device;
   const embree::Scene scene = build_scene(device, mesh);
   const auto frame = [&](const Eigen::AlignedBox3f& bounds) {
@@ -289,7 +298,7 @@ Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, con
   // mostly behind the part, and framing it would only push the part off centre.
   if (options.ground_shadow && camera.forward().z() < -0.9f)
     camera = frame(with_ground_shadow(mesh.bounds, lights.to_key));
-  const Shader shader(scene, mesh, palette, lights, options,
+  const Shader shader(scene, mesh, albedo, lights, options,
                       shadow_offset_mm(mesh, deposit.fill->voxelSize()[0]));
 
   const int width = options.width, height = options.height;
@@ -317,6 +326,30 @@ Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, con
     }
   });
   return image;
+}
+
+// The deposit's surface, after the checks both colourings share.
+SurfaceMesh checked_surface(const sim::Deposit& deposit) {
+  if (!deposit.fill) throw InputError("nothing was deposited: the deposit has no fill grid");
+  BT_CHECK(deposit.layer != nullptr);
+  return extract_surface(*deposit.fill, kSurfaceFill);
+}
+
+}  // namespace
+
+Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, const RenderOptions& options) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(colour));
+  const SurfaceMesh mesh = checked_surface(deposit);
+  const Palette palette(*deposit.layer, colour, options.unknown_layer);
+  return render_surface(deposit, mesh, Albedo(palette), options);
+}
+
+Image render_deposit(const sim::Deposit& deposit, const SurfaceColour& colour, const RenderOptions& options) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(colour));
+  const SurfaceMesh mesh = checked_surface(deposit);
+  return render_surface(deposit, mesh, Albedo(colour), options);
 }
 
 }  // namespace beadtwin::render

@@ -13,6 +13,10 @@ struct MetricDef {
   std::optional<double> (*read)(const Metrics&);
 };
 
+std::optional<double> cad_metric(const Metrics& m, double CadMetrics::*field) {
+  return m.cad ? std::optional<double>((*m.cad).*field) : std::nullopt;
+}
+
 const MetricDef kMetrics[] = {
     {"layers", [](const Metrics& m) -> std::optional<double> { return m.layers; }},
     {"print_time_s", [](const Metrics& m) -> std::optional<double> { return m.print_time_s; }},
@@ -26,6 +30,14 @@ const MetricDef kMetrics[] = {
     {"porosity", [](const Metrics& m) -> std::optional<double> { return m.porosity; }},
     {"min_stock_mm", [](const Metrics& m) { return m.min_stock_mm; }},
     {"undercut_fraction", [](const Metrics& m) { return m.undercut_fraction; }},
+    // The rest of the part-versus-CAD comparison, unset like min_stock_mm when there is no CAD.
+    {"max_stock_mm", [](const Metrics& m) { return cad_metric(m, &CadMetrics::max_stock_mm); }},
+    {"mean_stock_mm", [](const Metrics& m) { return cad_metric(m, &CadMetrics::mean_stock_mm); }},
+    {"below_requested_stock_fraction",
+     [](const Metrics& m) { return cad_metric(m, &CadMetrics::below_requested_stock_fraction); }},
+    {"deviation_rms_mm", [](const Metrics& m) { return cad_metric(m, &CadMetrics::deviation_rms_mm); }},
+    {"machining_waste_fraction",
+     [](const Metrics& m) { return cad_metric(m, &CadMetrics::machining_waste_fraction); }},
     {"interfaces.count", [](const Metrics& m) -> std::optional<double> { return m.interfaces; }},
     {"interfaces.too_hot_fraction",
      [](const Metrics& m) -> std::optional<double> { return m.too_hot_fraction; }},

@@ -73,6 +73,38 @@ std::string healing_text(const Metrics& m) {
   return m.interfaces > 0 ? fmt::format("{:.3f}", m.min_healing) : std::string("—");
 }
 
+// The rest of the part-versus-CAD comparison, or null without a CAD.
+json cad_json(const Metrics& m) {
+  if (!m.cad) return nullptr;
+  const CadMetrics& c = *m.cad;
+  return {{"max_stock_mm", number_or_null(c.max_stock_mm)},
+          {"mean_stock_mm", number_or_null(c.mean_stock_mm)},
+          {"stock_percentiles_mm",
+           {{"p05", number_or_null(c.p05_stock_mm)},
+            {"p50", number_or_null(c.median_stock_mm)},
+            {"p95", number_or_null(c.p95_stock_mm)}}},
+          {"min_stock_at_least", c.min_stock_at_least},
+          {"max_stock_at_least", c.max_stock_at_least},
+          {"requested_stock_mm", number_or_null(c.requested_stock_mm)},
+          {"below_requested_stock_fraction", number_or_null(c.below_requested_stock_fraction)},
+          {"cad_area_mm2", number_or_null(c.cad_area_mm2)},
+          {"plate_area_mm2", number_or_null(c.plate_area_mm2)},
+          {"deviation_mm",
+           {{"mean", number_or_null(c.deviation_mean_mm)},
+            {"rms", number_or_null(c.deviation_rms_mm)},
+            {"min", number_or_null(c.deviation_min_mm)},
+            {"max", number_or_null(c.deviation_max_mm)},
+            {"min_at_least", c.deviation_min_at_least},
+            {"max_at_least", c.deviation_max_at_least}}},
+          {"outside_volume_mm3", number_or_null(c.outside_volume_mm3)},
+          {"machining_waste_fraction", number_or_null(c.machining_waste_fraction)},
+          {"band_mm", number_or_null(c.band_mm)},
+          {"deviation_map",
+           {{"white_at_mm", number_or_null(c.requested_stock_mm)},
+            {"blue_at_mm", number_or_null(c.requested_stock_mm - c.map_half_range_mm)},
+            {"red_at_mm", number_or_null(c.requested_stock_mm + c.map_half_range_mm)}}}};
+}
+
 json parameters_json(const Variant& v) {
   json sections = json::array();
   for (const auto& s : v.sections) {
@@ -220,6 +252,12 @@ json variant_json(const VariantResult& r) {
         {"porosity", m.porosity},
         {"min_stock_mm", optional_json(m.min_stock_mm)},
         {"undercut_fraction", optional_json(m.undercut_fraction)},
+        {"max_stock_mm", optional_json(m.get("max_stock_mm"))},
+        {"mean_stock_mm", optional_json(m.get("mean_stock_mm"))},
+        {"below_requested_stock_fraction", optional_json(m.get("below_requested_stock_fraction"))},
+        {"deviation_rms_mm", optional_json(m.get("deviation_rms_mm"))},
+        {"machining_waste_fraction", optional_json(m.get("machining_waste_fraction"))},
+        {"cad", cad_json(m)},
         {"interfaces",
          {{"count", m.interfaces},
           {"too_hot_fraction", m.too_hot_fraction},
@@ -407,6 +445,50 @@ std::string substrate_plot(const VariantResult& r) {
   return svg;
 }
 
+// The part against its CAD: the deviation map with its scale, and the numbers.
+std::string cad_html(const VariantResult& v) {
+  const Metrics& m = v.metrics;
+  if (!m.cad) return {};
+  const CadMetrics& c = *m.cad;
+  std::string h = "<h3>The part against its CAD</h3>";
+  h += fmt::format(
+      "<p class=legend>Stock the printed skin leaves over the CAD: <span style=\"background:{}\"></span>"
+      "{:.2f} mm or less (short of the request) <span style=\"background:{}\"></span>{:.2f} mm (requested) "
+      "<span style=\"background:{}\"></span>{:.2f} mm or more</p>",
+      hex(deviation_colour(-1.0, 0.0, 1.0)), c.requested_stock_mm - c.map_half_range_mm,
+      hex(deviation_colour(0.0, 0.0, 1.0)), c.requested_stock_mm, hex(deviation_colour(1.0, 0.0, 1.0)),
+      c.requested_stock_mm + c.map_half_range_mm);
+  for (const auto& img : v.images)
+    if (img.ends_with("deviation.png"))
+      h += fmt::format("<p><img src=\"{}\" alt=\"{} deviation from the CAD\"></p>", esc(img), esc(v.name));
+  h += "<table>";
+  const auto row = [&h](std::string_view k, const std::string& val) {
+    h += fmt::format("<tr><td class=l>{}</td><td>{}</td></tr>", k, val);
+  };
+  const auto beyond = [](bool clamped, const char* word) {
+    return clamped ? fmt::format(" ({}: beyond the band)", word) : std::string();
+  };
+  row("stock min / mean / max",
+      fmt::format("{:.2f}{} / {:.2f} / {:.2f}{} mm", *m.min_stock_mm, beyond(c.min_stock_at_least, "or less"),
+                  c.mean_stock_mm, c.max_stock_mm, beyond(c.max_stock_at_least, "or more")));
+  row("stock 5 % / 50 % / 95 % of the surface",
+      fmt::format("{:.2f} / {:.2f} / {:.2f} mm", c.p05_stock_mm, c.median_stock_mm, c.p95_stock_mm));
+  row("undercut (stock &lt; 0)",
+      fmt::format("{:.1f} % of {:.0f} cm²", 100 * *m.undercut_fraction, c.cad_area_mm2 / 100));
+  row(fmt::format("below the requested {:.2f} mm", c.requested_stock_mm),
+      fmt::format("{:.1f} %", 100 * c.below_requested_stock_fraction));
+  row("left out: on the build plate", fmt::format("{:.0f} cm²", c.plate_area_mm2 / 100));
+  row("skin deviation mean / rms / min / max",
+      fmt::format("{:.2f} / {:.2f} / {:.2f}{} / {:.2f}{} mm", c.deviation_mean_mm, c.deviation_rms_mm,
+                  c.deviation_min_mm, beyond(c.deviation_min_at_least, "or less"), c.deviation_max_mm,
+                  beyond(c.deviation_max_at_least, "or more")));
+  row("material outside the CAD (machined off)",
+      fmt::format("{:.0f} cm³, {:.1f} % of the deposit", c.outside_volume_mm3 / 1000,
+                  100 * c.machining_waste_fraction));
+  h += "</table>";
+  return h;
+}
+
 }  // namespace
 
 std::string report_json(const RunResult& result) {
@@ -474,7 +556,7 @@ details{margin:1em 0} .muted{color:#777}
         hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
         hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kNoInterface)));
     for (const auto& img : v.images) {
-      if (img.ends_with("sections.png")) continue;
+      if (img.ends_with("sections.png") || img.ends_with("deviation.png")) continue;
       h += fmt::format("<p><img src=\"{}\" alt=\"{} {}\"></p>", esc(img), esc(v.name), esc(img));
     }
     if (v.variant) {
@@ -490,6 +572,7 @@ details{margin:1em 0} .muted{color:#777}
         if (img.ends_with("sections.png"))
           h += fmt::format("<p><img src=\"{}\" alt=\"{} sections\"></p>", esc(img), esc(v.name));
     }
+    h += cad_html(v);
     h += "<h3>Substrate temperature when each layer lands</h3>" + substrate_plot(v);
     const Metrics& m = v.metrics;
     h += "<h3>Metrics</h3><table>";
@@ -517,7 +600,10 @@ details{margin:1em 0} .muted{color:#777}
     if (m.min_layer_fill)
       row("layer fill (material / outline × height)",
           fmt::format("{:.3f} .. {:.3f}", *m.min_layer_fill, m.max_layer_fill.value_or(0)));
-    row("min stock", fmt_opt(m.min_stock_mm));
+    row("min stock", m.cad && m.cad->min_stock_at_least ? "at most " + fmt_opt(m.min_stock_mm, "{:.2f} mm")
+                                                        : fmt_opt(m.min_stock_mm, "{:.2f} mm"));
+    row("undercut (share of the CAD surface the print falls short of)",
+        m.undercut_fraction ? fmt::format("{:.1f} %", 100 * *m.undercut_fraction) : fmt_opt(std::nullopt));
     row("voxels", fmt::format("{} at {:.2f} mm", m.voxels, m.voxel_size_mm));
     row("thermal energy balance error", fmt::format("{:.1e}", m.thermal_energy_error));
     h += "</table>";

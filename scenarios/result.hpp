@@ -17,13 +17,36 @@ struct Stats3 {
   double min = 0, mean = 0, max = 0;
 };
 
+// The printed part against its CAD (sim/cad_compare.hpp, docs/physics.md), beyond the two headline numbers.
+struct CadMetrics {
+  double max_stock_mm = 0, mean_stock_mm = 0;                      // over the CAD surface, area-weighted
+  double p05_stock_mm = 0, median_stock_mm = 0, p95_stock_mm = 0;  // area percentiles
+  bool min_stock_at_least = false, max_stock_at_least = false;     // beyond the band: at least this far
+  double requested_stock_mm = 0;                // the least outer stock the sections ask for
+  double below_requested_stock_fraction = 0;    // share of the CAD surface with less stock than that
+  double cad_area_mm2 = 0, plate_area_mm2 = 0;  // measured; left out as formed by the build plate
+  // The printed skin's distance from the CAD (positive outside), area-weighted over the printed surface.
+  double deviation_mean_mm = 0, deviation_rms_mm = 0, deviation_min_mm = 0, deviation_max_mm = 0;
+  bool deviation_min_at_least = false, deviation_max_at_least = false;  // beyond the band
+  double outside_volume_mm3 = 0;        // material outside the CAD: what machining removes
+  double machining_waste_fraction = 0;  // ... as a share of the deposited volume
+  double band_mm = 0;                   // distances are measured up to this far from each surface
+  // The deviation map (deviation.png): white at requested_stock_mm, blue at requested − half range and
+  // below, red at requested + half range and above.
+  double map_half_range_mm = 0;
+};
+
 struct Metrics {
   int layers = 0;
   double print_time_s = 0, print_length_mm = 0, travel_length_mm = 0;
   double commanded_volume_mm3 = 0, deposited_volume_mm3 = 0, mass_kg = 0, material_cost = 0;
   double porosity = 0;
-  std::optional<double> min_stock_mm;       // needs the part-versus-CAD comparison (not measured yet)
-  std::optional<double> undercut_fraction;  // likewise
+  // The part against its CAD: unset without a CAD to compare with (a program read as written, AM Outline
+  // sections).
+  std::optional<double> min_stock_mm;       // least stock left for machining over the CAD surface, mm;
+                                            // negative: the print falls short of the CAD (undercut)
+  std::optional<double> undercut_fraction;  // share of the CAD surface area with stock < 0
+  std::optional<CadMetrics> cad;
   int interfaces = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
   Stats3 layer_time_s;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -12,6 +13,7 @@
 #include "render/render.hpp"
 #include "scenarios/colours.hpp"
 #include "scenarios/report.hpp"
+#include "sim/cad_compare.hpp"
 #include "sim/deposit.hpp"
 #include "sim/deposit_files.hpp"
 #include "sim/skin.hpp"
@@ -88,6 +90,66 @@ ThermalStack thermal_stack(const Toolpath& tp) {
     stack.of_layer.push_back(stack.layers.size() - 1);
   }
   return stack;
+}
+
+// The part against its CAD: what the comparison needs of the sections, and what it found.
+struct CadCheck {
+  sim::CadComparison comparison;
+  double requested_stock_mm = 0.0;
+  double map_half_range_mm = 0.0;
+};
+
+// Compares the deposit with the CAD the sections print; nullopt when there is none (a program, AM Outline
+// sections). The band reaches the requested stock and a bead width beyond it (stocks beyond that are
+// reported as "at least"), within 4..32 voxels; the colour map's half range is a layer height (a bead's
+// scallop spans half of it).
+std::optional<CadCheck> check_against_cad(const Variant& v, const sim::Deposit& deposit) {
+  if (v.program || !v.part.loaded) return std::nullopt;
+  const std::optional<slicer::TriangleMesh> cad = slicer::printed_cad(*v.part.loaded, v.sections);
+  if (!cad) return std::nullopt;
+  CadCheck check;
+  check.requested_stock_mm = std::numeric_limits<double>::infinity();
+  double widest = 0.0;
+  for (const slicer::SectionParams& s : v.sections) {
+    if (!s.outline_path.empty()) continue;
+    check.requested_stock_mm = std::min(check.requested_stock_mm, s.outer_stock_mm);
+    widest = std::max(widest, s.bead_width_mm);
+    check.map_half_range_mm = std::max(check.map_half_range_mm, s.layer_height_mm);
+  }
+  sim::CadCompareOptions o;
+  o.requested_stock_mm = check.requested_stock_mm;
+  o.band_mm = std::clamp(std::abs(check.requested_stock_mm) + widest, 4.0 * deposit.voxel_size_mm,
+                         32.0 * deposit.voxel_size_mm);
+  check.comparison = sim::compare_with_cad(deposit, {cad->vertices, cad->triangles}, o);
+  return check;
+}
+
+void put_cad_metrics(const CadCheck& check, Metrics& m) {
+  const sim::CadComparison& c = check.comparison;
+  m.min_stock_mm = c.min_stock_mm;
+  m.undercut_fraction = c.undercut_fraction;
+  CadMetrics& d = m.cad.emplace();
+  d.max_stock_mm = c.max_stock_mm;
+  d.mean_stock_mm = c.mean_stock_mm;
+  d.p05_stock_mm = c.p05_stock_mm;
+  d.median_stock_mm = c.median_stock_mm;
+  d.p95_stock_mm = c.p95_stock_mm;
+  d.min_stock_at_least = c.min_stock_clamped;
+  d.max_stock_at_least = c.max_stock_clamped;
+  d.requested_stock_mm = check.requested_stock_mm;
+  d.below_requested_stock_fraction = c.below_requested_stock_fraction;
+  d.cad_area_mm2 = c.cad_area_mm2;
+  d.plate_area_mm2 = c.plate_area_mm2;
+  d.deviation_mean_mm = c.deviation_mean_mm;
+  d.deviation_rms_mm = c.deviation_rms_mm;
+  d.deviation_min_mm = c.deviation_min_mm;
+  d.deviation_max_mm = c.deviation_max_mm;
+  d.deviation_min_at_least = c.deviation_min_clamped;
+  d.deviation_max_at_least = c.deviation_max_clamped;
+  d.outside_volume_mm3 = c.outside_volume_mm3;
+  d.machining_waste_fraction = c.machining_waste_fraction;
+  d.band_mm = c.band_mm;
+  d.map_half_range_mm = check.map_half_range_mm;
 }
 
 Stats3 stats_of(const std::vector<double>& values) {
@@ -264,6 +326,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
       throw InputError(v.output.voxel_size_at, "output.voxel_size", e.message());
     }
   });
+  const std::optional<CadCheck> cad = stages.run("compare", [&] { return check_against_cad(v, deposit); });
   const ThermalStack stack = thermal_stack(tp);
   const thermal::ThermalResult th = stages.run("thermal", [&] {
     thermal::Options o;
@@ -297,6 +360,15 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     o.view = render::View::kIsometric;
     render::write_png(render::render_deposit(deposit, by_section, o), dir / "sections.png");
     res.images.push_back((std::filesystem::path(v.name) / "sections.png").string());
+    if (cad) {
+      // The stock the skin leaves at each point, against what was asked for: blue short, red over.
+      const auto by_stock = [&](const Eigen::Vector3d& point_mm, int) {
+        return deviation_colour(sim::cad_distance_at(*cad->comparison.cad_distance, point_mm),
+                                cad->requested_stock_mm, cad->map_half_range_mm);
+      };
+      render::write_png(render::render_deposit(deposit, by_stock, o), dir / "deviation.png");
+      res.images.push_back((std::filesystem::path(v.name) / "deviation.png").string());
+    }
   });
   stages.run("vdb", [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
@@ -305,6 +377,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     stages.run("skin", [&] { write_skin(v, tp, deposit, dir, res.exported); });
   if (v.output.write_fields) stages.run("fields", [&] { write_fields(v, deposit, dir, res.exported); });
   res.metrics = measure(v, tp, deposit, th);
+  if (cad) put_cad_metrics(*cad, res.metrics);
   res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;
   res.metrics.planned_voids = plan_stats.voids_found;
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;

@@ -403,7 +403,57 @@ void validate(const std::vector<SectionParams>& sections) {
   }
 }
 
+// The order sections are planned in: by height; at one height a section that shares another's wall comes
+// after it (it lays against it).
+std::vector<std::size_t> plan_order(const std::vector<SectionParams>& sections) {
+  std::vector<std::size_t> order(sections.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    if (sections[a].z_min_mm != sections[b].z_min_mm) return sections[a].z_min_mm < sections[b].z_min_mm;
+    return sections[a].shares_wall_with.empty() && !sections[b].shares_wall_with.empty();
+  });
+  return order;
+}
+
+// Rafts under the lowest section lift the whole part.
+double raft_lift_mm(const std::vector<SectionParams>& sections, const std::vector<std::size_t>& order) {
+  if (order.empty()) return 0.0;
+  const SectionParams& lowest = sections[order.front()];
+  return lowest.rafts * lowest.layer_height_mm;
+}
+
 }  // namespace
+
+std::optional<TriangleMesh> printed_cad(const TriangleMesh& mesh,
+                                        const std::vector<SectionParams>& sections) {
+  TriangleMesh cad;
+  std::vector<std::string> bodies_taken;
+  bool any = false;
+  const auto append = [&](const TriangleMesh& part) {
+    const int base = static_cast<int>(cad.vertices.size());
+    cad.vertices.insert(cad.vertices.end(), part.vertices.begin(), part.vertices.end());
+    for (const auto& t : part.triangles) cad.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  };
+  const auto whole = std::find_if(sections.begin(), sections.end(), [](const SectionParams& s) {
+    return s.outline_path.empty() && s.body.empty();
+  });
+  if (whole != sections.end()) {
+    append(section_mesh(mesh, *whole));
+    any = true;
+  } else {
+    for (const SectionParams& s : sections) {
+      if (!s.outline_path.empty()) continue;
+      any = true;
+      if (std::find(bodies_taken.begin(), bodies_taken.end(), s.body) != bodies_taken.end()) continue;
+      bodies_taken.push_back(s.body);
+      append(section_mesh(mesh, s));
+    }
+  }
+  if (!any || cad.triangles.empty()) return std::nullopt;
+  const double lift = raft_lift_mm(sections, plan_order(sections));
+  for (Eigen::Vector3d& v : cad.vertices) v.z() += lift;
+  return cad;
+}
 
 std::string shared_wall_problem(const std::vector<SectionParams>& sections, const SectionParams& s,
                                 std::size_t* provider) {
@@ -445,13 +495,7 @@ std::string_view to_string(FillStyleKind style) {
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
                        const MotionLimits& motion, PlanStats* stats, const Extruder* extruder) {
   validate(sections);
-  std::vector<std::size_t> order(sections.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  // By height; at one height a section that shares another's wall comes after it (it lays against it).
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    if (sections[a].z_min_mm != sections[b].z_min_mm) return sections[a].z_min_mm < sections[b].z_min_mm;
-    return sections[a].shares_wall_with.empty() && !sections[b].shares_wall_with.empty();
-  });
+  const std::vector<std::size_t> order = plan_order(sections);
   if (sections.empty()) throw InputError({}, "sections", "there is no section to plan");
   for (std::size_t i = 1; i < order.size(); ++i)
     if (sections[order[i]].rafts > 0)
@@ -463,9 +507,7 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   Eigen::Vector2d head = mesh.vertices.empty()
                              ? Eigen::Vector2d::Zero()
                              : Eigen::Vector2d(mesh.min_corner().x(), mesh.min_corner().y());
-  // Rafts under the lowest section lift the whole part.
-  const SectionParams& lowest = sections[order.front()];
-  const double z_shift = lowest.rafts * lowest.layer_height_mm;
+  const double z_shift = raft_lift_mm(sections, order);
   std::vector<Sliced> sliced(sections.size());
   for (std::size_t i = 0; i < sections.size(); ++i) {
     sliced[i].params = &sections[i];

@@ -5,6 +5,7 @@
 // into one Toolpath.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -209,5 +210,17 @@ std::string shared_wall_problem(const std::vector<SectionParams>& sections, cons
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
                        const MotionLimits& motion, PlanStats* stats = nullptr,
                        const Extruder* extruder = nullptr);
+
+// The part's CAD as `sections` print it, in the machine frame (mm): what the printed part is measured
+// against. A section that slices the whole part contributes the part laid down on its slice plane; one that
+// names a body, that body laid down on its own (as the planner slices it). The whole part is taken once, on
+// the slice plane of the first section that slices it whole — when sections disagree on the plane, the
+// first wins — and then holds every body; otherwise each named body is taken once, from the first section
+// naming it. Rafts under the lowest section lift the CAD with the print (the part stands on them); contact
+// offsets and in-plane shifts move only the toolpath, so they show as stock or undercut. The whole part is
+// taken even where no section's Z range or containment boundary reaches it: what is not printed is undercut.
+// AM Outline sections (outline_path set) print their own path, not the part: they add nothing, and when every
+// section is one there is no CAD (nullopt). Throws InputError for a body name the part lacks.
+std::optional<TriangleMesh> printed_cad(const TriangleMesh& mesh, const std::vector<SectionParams>& sections);
 
 }  // namespace beadtwin::slicer

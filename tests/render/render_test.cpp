@@ -256,6 +256,45 @@ TEST(RenderDeposit, SameImageForAnyNumberOfThreads) {
   EXPECT_EQ(differing, 0u);
 }
 
+// Coloured point by point: red above the box's mid-height, blue below. The top view sees only the tops of
+// the walls (red); the isometric view sees the sides' lower halves too (blue), and the same picture for
+// any number of threads, although the colour function runs on the rendering's worker threads.
+TEST(RenderDeposit, ColoursBySurfacePoint) {
+  const BoxPart part;
+  const auto by_height = [&](const Eigen::Vector3d& p, int) {
+    return p.z() > 0.5 * part.height_mm ? kRed : kBlue;
+  };
+  const auto count_hues = [](const Image& image) {
+    std::map<std::string, int> hues;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const Rgb c = image.at(x, y);
+        if (difference(c, kMagenta) < 0.3f) continue;
+        const double h = hue_deg(c);
+        if (h >= 0 && hue_distance(h, hue_deg(kRed)) < 20) ++hues["red"];
+        if (h >= 0 && hue_distance(h, hue_deg(kBlue)) < 20) ++hues["blue"];
+      }
+    return hues;
+  };
+  auto top = count_hues(render_deposit(box(), by_height, small_options(View::kTop)));
+  EXPECT_GT(top["red"], 1000);
+  EXPECT_EQ(top["blue"], 0);
+  Image one, two;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = render_deposit(box(), by_height, small_options());
+  }
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = render_deposit(box(), by_height, small_options());
+  }
+  auto iso = count_hues(one);
+  EXPECT_GT(iso["red"], 1000);
+  EXPECT_GT(iso["blue"], 1000);
+  ASSERT_EQ(one.pixels.size(), two.pixels.size());
+  EXPECT_TRUE(one.pixels == two.pixels);
+}
+
 TEST(RenderDeposit, WritesAPngThatReadsBack) {
   const Image image = render_deposit(
       box(), [](int) { return kGreen; }, small_options());

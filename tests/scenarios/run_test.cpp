@@ -1,6 +1,7 @@
 // The whole pipeline on a small scenario: every stage runs for real and the reports hold the documented keys.
 #include "scenarios/run.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -73,7 +74,8 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_EQ(v["layers"][0]["section"], "floor");
     EXPECT_EQ(v["layers"][5]["section"], "walls");
     EXPECT_EQ(v["gates"].size(), 2u);
-    ASSERT_EQ(v["images"].size(), 3u);  // isometric and top views by fusion verdict, isometric by section
+    // Isometric and top views by fusion verdict, isometric by section, isometric by stock against the CAD.
+    ASSERT_EQ(v["images"].size(), 4u);
     for (const auto& img : v["images"])
       EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
     EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
@@ -127,6 +129,24 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_TRUE(skin_stage) << v.name;
   }
 
+  // The part against its CAD: measured (a sliced part has one). The open box's walls are two passes of
+  // 20 mm beads laid with their outer edges on the 40 mm wall's faces and no stock: at every layer's top and
+  // bottom the bead's round side (radius h/2 = 2.5 mm) leaves a groove whose floor is h/2 inside the face,
+  // so the sides are short of the CAD between the beads' widest points (undercut), by up to
+  // (sqrt(2) - 1) h/2 = 1.04 mm straight out from a groove.
+  for (const auto& v : j["variants"]) {
+    const auto& m = v["metrics"];
+    ASSERT_TRUE(m["min_stock_mm"].is_number()) << m.dump();
+    ASSERT_TRUE(m["undercut_fraction"].is_number());
+    EXPECT_LT(m["min_stock_mm"].get<double>(), 0.0);
+    EXPECT_GT(m["undercut_fraction"].get<double>(), 0.0);
+    EXPECT_LT(m["undercut_fraction"].get<double>(), 1.0);
+    for (const char* key : {"max_stock_mm", "mean_stock_mm", "below_requested_stock_fraction",
+                            "deviation_rms_mm", "machining_waste_fraction"})
+      EXPECT_TRUE(m[key].is_number()) << key;
+    EXPECT_TRUE(m["cad"]["deviation_map"]["white_at_mm"].is_number());
+  }
+  EXPECT_NE(read(out / "report.html").find("<img src=\"fast/deviation.png\""), std::string::npos);
   // The slow variant prints the same part with longer layer times, so its substrate is colder.
   const auto& fast = j["variants"][0];
   const auto& slow = j["variants"][1];
@@ -144,6 +164,62 @@ TEST(Run, SmallScenarioEndToEnd) {
   // Nothing half-written is left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << e.path();
+}
+
+// The built-in scenario, as `beadtwin run` runs it (smaller pictures): its open box is measured against its
+// CAD. It asks for no stock: every boundary pass lays its bead's edge on the CAD's faces, so the sides are
+// short of the CAD except at each bead's widest. At its voxels (s = h/2 = 2.54 mm) the grid sees each layer
+// through two rows of voxel centres, both h/4 from the layer's mid-height, where the bead reaches
+// (w − h)/2 + sqrt((h/2)² − (h/4)²) = w/2 − 0.34 mm: the sides come out evenly 0.34 mm short (the scallops
+// themselves, up to (√2 − 1) h/2 = 1.05 mm deep, are finer than the voxels). The sides are most of the
+// surface measured; the bottom stands on the table and is left out.
+TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
+  Scenario sc = load_default_scenario();
+  for (Variant& v : sc.variants) {
+    v.output.image_width = 160;
+    v.output.image_height = 100;
+  }
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_default";
+  std::filesystem::remove_all(o.out_dir);
+  (void)run_scenario(sc, o);
+  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  ASSERT_EQ(j["variants"].size(), 1u);
+  const auto& m = j["variants"][0]["metrics"];
+  ASSERT_TRUE(m["min_stock_mm"].is_number()) << m.dump();
+  ASSERT_TRUE(m["undercut_fraction"].is_number());
+  // Least stock at the box's four outer vertical edges: sharp in the CAD, while a bead turns round its pass's
+  // corner (w/2 in from each face) on a circle of radius w/2, so the corner falls short by √2 w/2 − w/2 =
+  // 4.37 mm at a bead's widest and by hypot(√2 w/2 − (w − h)/2, h/2) − h/2 = 4.81 mm level with a groove.
+  const double w = 0.83 * 25.4, lh = 0.2 * 25.4;
+  const double widest = (std::sqrt(2.0) - 1) * w / 2;
+  const double groove = std::hypot(std::sqrt(2.0) * w / 2 - (w - lh) / 2, lh / 2) - lh / 2;
+  // A little more where the corner beads, following the substrate, run into the gaps the passes leave on
+  // the corner diagonals below them and come out narrower.
+  EXPECT_GE(m["min_stock_mm"].get<double>(), -groove - 0.3);
+  EXPECT_LE(m["min_stock_mm"].get<double>(), -widest + 0.1);
+  // The open box: 24 x 18 x 10 in outside, walls 4.7725 in, floor 2 in.
+  constexpr double kIn = 25.4;
+  const double lx = 24 * kIn, ly = 18 * kIn, h = 10 * kIn, wall = 4.7725 * kIn, floor = 2 * kIn;
+  const double sides = 2 * (lx + ly) * h + 2 * (lx + ly - 4 * wall) * (h - floor);
+  const double tops = lx * ly;  // wall tops and the floor's top, seen from above
+  EXPECT_NEAR(m["cad"]["cad_area_mm2"].get<double>(), sides + tops, 1e-6 * (sides + tops));
+  EXPECT_GT(m["undercut_fraction"].get<double>(), 0.9 * sides / (sides + tops));
+  // Most of the surface is sides, so the median stock is theirs.
+  const double side_short =
+      (w - lh) / 2 + std::sqrt(std::pow(lh / 2, 2) - std::pow(lh / 4, 2)) - w / 2;  // -0.34
+  EXPECT_NEAR(m["cad"]["stock_percentiles_mm"]["p50"].get<double>(), side_short, 0.1);
+  EXPECT_LT(m["undercut_fraction"].get<double>(), 1.0);
+  EXPECT_EQ(m["cad"]["requested_stock_mm"].get<double>(), 0.0);
+  EXPECT_EQ(m["cad"]["deviation_map"]["white_at_mm"].get<double>(), 0.0);
+  EXPECT_NEAR(m["cad"]["deviation_map"]["red_at_mm"].get<double>(), 0.2 * kIn, 1e-9);  // a layer height
+  const auto& images = j["variants"][0]["images"];
+  ASSERT_EQ(images.size(), 4u);
+  EXPECT_EQ(images[3], "baseline/deviation.png");
+  EXPECT_GT(std::filesystem::file_size(o.out_dir / images[3].get<std::string>()), 1000u);
+  const std::string html = read(o.out_dir / "report.html");
+  EXPECT_NE(html.find("The part against its CAD"), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"baseline/deviation.png\""), std::string::npos);
 }
 
 TEST(Run, UnknownVariantIsAnInputError) {
@@ -181,6 +257,11 @@ gates:
       << r.variants[0].gates[0].message;
   const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
   EXPECT_TRUE(j["variants"][0]["metrics"]["interfaces"]["min_healing"].is_null());
+  // An AM Outline prints a path, not a part: there is no CAD to measure against, and no deviation map.
+  EXPECT_TRUE(j["variants"][0]["metrics"]["min_stock_mm"].is_null());
+  EXPECT_TRUE(j["variants"][0]["metrics"]["undercut_fraction"].is_null());
+  EXPECT_TRUE(j["variants"][0]["metrics"]["cad"].is_null());
+  EXPECT_EQ(j["variants"][0]["images"].size(), 3u);
   EXPECT_NE(read(o.out_dir / "summary.md").find("| —"), std::string::npos);
 }
 

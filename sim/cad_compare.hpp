@@ -1,0 +1,108 @@
+// The printed part against its CAD (docs/physics.md, the part against its CAD): how much stock the print
+// leaves for machining, where it falls short of the CAD (undercut), how far its skin strays from the CAD
+// and how much material machining takes off.
+//
+// Both shapes become narrow-band signed distance grids on the deposit's voxels (OpenVDB; negative inside,
+// mm): the CAD's from its triangles, the print's from the deposit's fill-fraction isosurface at 0.5 (the
+// part as printed, the surface the renderer draws), after filling the voids the print closes in (porosity,
+// which the deposit reports; their walls are no surface to machine or to measure). Voids that open to the
+// outside, such as a channel left between passes that reaches the top, stay surface. Then:
+//  - stock at a point of the CAD surface is the print's signed distance there, negated: the radius of the
+//    ball of material around the point (positive: material to machine off in every direction) or, negative,
+//    how far the point lies outside the print (undercut: the print falls short of the CAD there). It is the
+//    nearest-distance allowance a machinist means: at a convex corner it is the distance to the print's
+//    nearest surface, not along any one normal. The CAD surface is sampled deterministically, each triangle
+//    cut into n² equal triangles (n from its longest edge and the sample spacing) and sampled at their
+//    centroids, each sample weighted by its area.
+//  - deviation of the printed skin is the CAD's signed distance at points of the print's surface (positive:
+//    the skin lies outside the CAD, negative: inside it), sampled where the surface crosses the edges between
+//    voxel centres, each point weighted by the surface area it stands for.
+//  - material outside the CAD is what machining removes: each voxel's material times the share of the voxel
+//    outside the CAD.
+// The build plate: the table, not the print, forms the faces that stand on it (a box's bottom). Such CAD
+// faces are left out — a face is on the plate where it faces down (its outward normal within about 25° of
+// straight down) and lies within one voxel above the bottom of the lowest printed voxel — and the print's
+// bottom is no surface to measure from: the table stands in for material below it, so the stock of a side
+// face does not fall to nothing at its foot. Top faces count: stock on top is a real machining allowance.
+//
+// Distances are exact only within the narrow band (CadCompareOptions::band_mm) of each surface; beyond it
+// the grids hold the band's width, so a stock or deviation of the band's size or more is reported as the
+// band ("at least"), with a flag.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include <openvdb/openvdb.h>
+#include <Eigen/Core>
+
+#include "sim/deposit.hpp"
+
+namespace beadtwin::sim {
+
+// The part's CAD in the machine frame, mm: a closed triangle mesh (its winding does not matter; inside and
+// outside come from the surface itself). Plain vertices and triangles, so the simulation needs nothing of
+// the slicer.
+struct CadSurface {
+  std::span<const Eigen::Vector3d> vertices;
+  std::span<const std::array<int, 3>> triangles;  // indices into vertices
+};
+
+struct CadCompareOptions {
+  // Half-width of the narrow bands, mm (> 0): stocks and deviations are measured up to this far on either
+  // side of a surface. A few bead widths; at most 256 voxels.
+  double band_mm = 0.0;
+  // The stock the process asks for, mm (the sections' outer stock): the colour map's white point and the
+  // reference for below_requested_stock_fraction.
+  double requested_stock_mm = 0.0;
+  // Distance between samples on the CAD surface, mm; 0: the voxel size.
+  double sample_spacing_mm = 0.0;
+  // Leave out the CAD faces on the build plate and let the table stand in for material below the print
+  // (see above); false measures the part as if it floated, bottom faces and all.
+  bool exclude_plate = true;
+};
+
+struct CadComparison {
+  // Stock over the CAD surface (excluding the plate), area-weighted, mm.
+  double min_stock_mm = 0.0, max_stock_mm = 0.0, mean_stock_mm = 0.0;
+  double p05_stock_mm = 0.0, median_stock_mm = 0.0, p95_stock_mm = 0.0;  // area percentiles
+  // The extreme is at the edge of the band: the true value is at least that far out (min: that short).
+  bool min_stock_clamped = false, max_stock_clamped = false;
+  double undercut_fraction = 0.0;  // share of the CAD surface area with stock < 0 (print short of the CAD)
+  // Share of the CAD surface area with less stock than requested_stock_mm (what the process asked for).
+  double below_requested_stock_fraction = 0.0;
+  double cad_area_mm2 = 0.0;    // CAD surface measured
+  double plate_area_mm2 = 0.0;  // CAD surface left out as on the plate
+  std::size_t cad_samples = 0;
+  double plate_z_mm = 0.0;  // bottom of the lowest printed voxel (fill >= 0.5)
+
+  // Deviation of the printed skin from the CAD (plate left out), area-weighted, mm: positive outside the
+  // CAD (material to machine off), negative inside it (undercut).
+  double deviation_mean_mm = 0.0, deviation_rms_mm = 0.0;
+  double deviation_min_mm = 0.0, deviation_max_mm = 0.0;
+  bool deviation_min_clamped = false, deviation_max_clamped = false;  // at the band's edge, as for stock
+  double skin_area_mm2 = 0.0;                                         // printed surface measured
+  std::size_t skin_samples = 0;
+
+  // Material outside the CAD: what machining removes. Fraction of the deposited volume.
+  double outside_volume_mm3 = 0.0;
+  double machining_waste_fraction = 0.0;
+
+  double band_mm = 0.0;  // as used
+  // Signed distance to the CAD surface, mm, negative inside, on the deposit's transform; values beyond the
+  // band read ±band. For the deviation colour map (read-only sharing across threads is safe).
+  openvdb::FloatGrid::ConstPtr cad_distance;
+};
+
+// Compares `deposit` (the printed part: fill >= 0.5) with `cad`. Throws InputError, listing every problem,
+// for a deposit without printed voxels, a CAD without triangles, a vertex that is not finite, a triangle
+// index out of range, options out of range, or a CAD so large for the voxels that its bands would not fit
+// in memory. Deterministic: the numbers do not depend on the number of threads.
+CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
+                               const CadCompareOptions& options);
+
+// The CAD's signed distance (mm, negative inside; ±band beyond the band) at `point_mm`, trilinear between
+// voxel centres. Safe to call from several threads at once on the same grid.
+double cad_distance_at(const openvdb::FloatGrid& cad_distance, const Eigen::Vector3d& point_mm);
+
+}  // namespace beadtwin::sim

@@ -1,0 +1,290 @@
+// The printed part against its CAD: a bar sliced with outer stock, deposited, and measured against a box
+// cut from its middle.
+//
+// The geometry every expectation below comes from. The outline grown by the outer stock S is the stock
+// envelope; the first boundary pass runs w/2 inside it, so its bead's outer edge lies on the envelope. The
+// bead's section is a stadium (core/bead.hpp), so its edge reaches S beyond the CAD face only at the layer's
+// mid-height, and S − h/2 at the layer's top and bottom, where its round side (radius h/2) meets the next
+// layer's: between two layers the print's surface has a groove. Stock is the distance from a point of the
+// CAD surface to the print's surface:
+//  - with S >= h/2, a point level with a groove has the groove's floor straight out. The voxels cannot hold
+//    the groove's sharp floor: the surface is where the fill fraction, averaged over each voxel and
+//    interpolated between voxel centres, is 1/2, and the nearest voxel centres lie s/2 above and below the
+//    floor, where the bead reaches (w − h)/2 + sqrt((h/2)² − (h/2 − s/2)²) = S − h/2 + sqrt(s (2h − s))/2
+//    out (for w = 2S). That is the least stock on the sides.
+//  - with S < h/2, a point level with a groove lies outside the print, nearest to the round sides (centre
+//    h/2 − S in and h/2 up or down, radius h/2): stock h/2 − hypot(h/2 − S, h/2), which the voxels do not
+//    blur (the round sides are smooth).
+// The part printed is a bar, 40 mm longer than the box at each end: a pass's corners are where the deposit
+// spreads a turning bead's material (each move keeps its own volume), and these tests are about the sides.
+// The box's end faces lie inside the bar. The layers hold boundary passes only, two along each side of an
+// envelope 74 mm wide (w + 3 · 0.9 w: passes 10 % overlapped meet in the middle), so no fill leaves a gap.
+#include "sim/cad_compare.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <tbb/global_control.h>
+
+#include "core/error.hpp"
+#include "sim/deposit.hpp"
+#include "slicer/mesh.hpp"
+#include "slicer/plan.hpp"
+
+namespace beadtwin::sim {
+namespace {
+
+constexpr double kLength = 120.0, kHeight = 20.0;      // the box, mm
+constexpr double kBarEnd = 40.0;                       // the bar runs this much further at each end
+constexpr double kLayer = 5.0, kBead = 20.0;           // h and w, mm
+constexpr double kVoxel = 1.0;                         // fine enough to see the grooves
+constexpr double kEnvelope = kBead + 3 * 0.9 * kBead;  // two passes a side, 74 mm
+constexpr double kBand = 20.0;                         // past every stock but the box's ends inside the bar
+
+slicer::SectionParams bar_section(double outer_stock_mm, int stock_on_top) {
+  slicer::SectionParams s;
+  s.name = "bar";
+  s.z_min_mm = 0;
+  s.z_max_mm = kHeight;
+  s.layer_height_mm = kLayer;
+  s.bead_width_mm = kBead;
+  s.print_speed_mm_s = 50;
+  s.travel_speed_mm_s = 200;
+  s.boundary.passes = 2;
+  s.outer_stock_mm = outer_stock_mm;
+  s.stock_on_top = stock_on_top;
+  return s;
+}
+
+struct Printed {
+  slicer::TriangleMesh cad;
+  Deposit deposit;
+};
+
+// The box of `width` and the bar around it, printed with stock S: the envelope is width + 2 S.
+Printed print_bar(double outer_stock_mm, int stock_on_top) {
+  const double width = kEnvelope - 2 * outer_stock_mm;
+  const slicer::TriangleMesh bar =
+      slicer::make_box({kLength + 2 * kBarEnd, width, kHeight}, {-kBarEnd, 0, 0});
+  const std::vector<slicer::SectionParams> sections = {bar_section(outer_stock_mm, stock_on_top)};
+  Printed p;
+  p.cad = slicer::make_box({kLength, width, kHeight});
+  DepositOptions o;
+  o.voxel_size_mm = kVoxel;
+  p.deposit = deposit(slicer::plan_toolpath(bar, sections, MotionLimits{}), o);
+  return p;
+}
+
+CadCompareOptions options(double requested_stock_mm) {
+  CadCompareOptions o;
+  o.band_mm = kBand;
+  o.requested_stock_mm = requested_stock_mm;
+  return o;
+}
+
+CadComparison compare(const Printed& p, const CadCompareOptions& o) {
+  return compare_with_cad(p.deposit, {p.cad.vertices, p.cad.triangles}, o);
+}
+
+// The bar printed with S = w/2 (the first pass on the box's outline) and three layers of stock on top;
+// printed once, and compared once with the stock it was asked for.
+constexpr double kStock = 0.5 * kBead;
+constexpr int kTopLayers = 3;
+const Printed& stocked() {
+  static const Printed p = print_bar(kStock, kTopLayers);
+  return p;
+}
+const CadComparison& stocked_comparison() {
+  static const CadComparison c = compare(stocked(), options(kStock));
+  return c;
+}
+
+TEST(CadCompare, PrintWithStockLeavesTheGrooveDepthLessThanTheStock) {
+  const CadComparison& c = stocked_comparison();
+  const double r = 0.5 * kLayer;
+  // The groove between two stacked beads' round sides: its floor lies h/2 inside the beads' widest, which
+  // lie S out from the box. The deposit keeps the groove (the next bead does not sink into the notch
+  // outside a wall's flank, docs/physics.md), so the least stock is S − h/2, to a voxel's rounding.
+  const double expected_min = kStock - r;  // 7.5 mm
+  EXPECT_NEAR(c.min_stock_mm, expected_min, 0.5 * kVoxel);
+  EXPECT_EQ(c.undercut_fraction, 0.0);
+  EXPECT_FALSE(c.min_stock_clamped);
+  // The box's ends lie deep inside the bar: more stock than the band measures, reported as at least that.
+  EXPECT_TRUE(c.max_stock_clamped);
+  EXPECT_GE(c.max_stock_mm, kBand - kVoxel);
+  EXPECT_LE(c.min_stock_mm, c.p05_stock_mm);
+  EXPECT_LE(c.p05_stock_mm, c.median_stock_mm);
+  EXPECT_LE(c.median_stock_mm, c.p95_stock_mm);
+  EXPECT_LE(c.p95_stock_mm, c.max_stock_mm);
+  // The box's sides, ends and top; its bottom stands on the plate and is left out.
+  const double width = kEnvelope - 2 * kStock, bottom = kLength * width;
+  EXPECT_NEAR(c.cad_area_mm2, 2 * (kLength + width) * kHeight + bottom, 1e-6 * bottom);
+  EXPECT_NEAR(c.plate_area_mm2, bottom, 1e-6 * bottom);
+  EXPECT_EQ(c.plate_z_mm, 0.0);
+  // The skin: no nearer the box than a groove's floor, and as far as the band at the bar's ends.
+  // The skin is sampled where it crosses voxel edges: the nearest crossing to a groove's floor lies on the
+  // row of voxel centres a voxel from the layer boundary, where the beads' round sides have come out by
+  // ½√(s(2h − s)) from the floor (9.0 mm).
+  const double nearest_sample = expected_min + 0.5 * std::sqrt(kVoxel * (2 * kLayer - kVoxel));
+  EXPECT_NEAR(c.deviation_min_mm, nearest_sample, 0.25 * kVoxel);
+  EXPECT_GE(c.deviation_max_mm, kBand - kVoxel);
+  EXPECT_GT(c.deviation_mean_mm, expected_min);
+  EXPECT_GE(c.deviation_rms_mm, c.deviation_mean_mm);
+  EXPECT_GT(c.skin_area_mm2, c.cad_area_mm2);  // it wraps the box, and more
+  // Machining takes off everything but what lies inside the box, which is at most the box's volume.
+  const double deposited = stocked().deposit.deposited_volume_mm3;
+  EXPECT_GE(c.outside_volume_mm3, deposited - kLength * width * kHeight);
+  EXPECT_LT(c.outside_volume_mm3, deposited);
+  EXPECT_NEAR(c.machining_waste_fraction, c.outside_volume_mm3 / deposited, 1e-3);
+  ASSERT_TRUE(c.cad_distance);
+  // The CAD's distance: the stock's distance out from a face, negative inside.
+  EXPECT_NEAR(cad_distance_at(*c.cad_distance, {0.5 * kLength, -kStock, 0.5 * kHeight}), kStock, 0.05);
+  EXPECT_NEAR(cad_distance_at(*c.cad_distance, {0.5 * kLength, 0.5 * width, kHeight - 2.0}), -2.0, 0.05);
+}
+
+TEST(CadCompare, RequestedStockIsMetOnlyMidLayer) {
+  // Asked for S, the sides get it only at the beads' widest: below S everywhere else on the sides.
+  const CadComparison& c = stocked_comparison();
+  const double width = kEnvelope - 2 * kStock;
+  const double sides = 2 * kLength * kHeight / c.cad_area_mm2;
+  EXPECT_GT(c.below_requested_stock_fraction, 0.8 * sides);
+  EXPECT_LT(c.below_requested_stock_fraction, (2 * (kLength + width) * kHeight) / c.cad_area_mm2);
+  const CadComparison lenient = compare(stocked(), options(c.min_stock_mm - 0.01));
+  EXPECT_EQ(lenient.below_requested_stock_fraction, 0.0);
+}
+
+TEST(CadCompare, TooLittleOuterStockIsUndercut) {
+  // The outline shrunk by 5 mm instead of grown: every point of the sides lies outside the print.
+  constexpr double kShort = -5.0;
+  const Printed p = print_bar(kShort, 1);
+  const CadComparison c = compare(p, options(0.0));
+  const double r = 0.5 * kLayer;
+  const double expected_min = r - std::hypot(r - kShort, r);  // -5.41 mm, level with a groove
+  EXPECT_NEAR(c.min_stock_mm, expected_min, 0.25 * kVoxel);
+  EXPECT_FALSE(c.min_stock_clamped);
+  // Short of the print: the sides (2 L H) all over; the top (under its layer of stock) and the ends' side
+  // edges at least |S| in from the edges (less a voxel's rounding), where even the beads' widest falls
+  // short, and at most as far as a groove's reach, h/2 − S, and a voxel.
+  const double width = kEnvelope - 2 * kShort;
+  const double sides = 2 * kLength * kHeight;
+  const double strips = 2 * kLength + 4 * kHeight;  // the top's two long edges, the ends' four side edges
+  EXPECT_GE(c.undercut_fraction, (sides + strips * (-kShort - kVoxel)) / c.cad_area_mm2);
+  EXPECT_LE(c.undercut_fraction, (sides + strips * (r - kShort + kVoxel)) / c.cad_area_mm2);
+  EXPECT_NEAR(c.cad_area_mm2, 2 * (kLength + width) * kHeight + kLength * width, 1e-3);
+  EXPECT_EQ(c.below_requested_stock_fraction, c.undercut_fraction);  // requested 0: the same question
+  EXPECT_LT(c.deviation_min_mm, 0.0);
+}
+
+TEST(CadCompare, BottomOnThePlateDoesNotCount) {
+  // The box's bottom is flush with the print's (both on the table): counted, it brings the least stock down
+  // to nothing (and the sides' too, at their foot, with the print's bottom no longer the table's).
+  const CadComparison& excluded = stocked_comparison();
+  CadCompareOptions o = options(kStock);
+  o.exclude_plate = false;
+  const CadComparison counted = compare(stocked(), o);
+  EXPECT_GT(excluded.min_stock_mm, kStock - 0.5 * kLayer);
+  EXPECT_NEAR(counted.min_stock_mm, 0.0, 0.5 * kVoxel);
+  EXPECT_EQ(counted.plate_area_mm2, 0.0);
+  EXPECT_NEAR(counted.cad_area_mm2, excluded.cad_area_mm2 + excluded.plate_area_mm2,
+              1e-6 * counted.cad_area_mm2);
+}
+
+TEST(CadCompare, SameNumbersForAnyNumberOfThreads) {
+  const Printed& p = stocked();
+  CadComparison one, two;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = compare(p, options(kStock));
+  }
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = compare(p, options(kStock));
+  }
+  EXPECT_EQ(one.min_stock_mm, two.min_stock_mm);
+  EXPECT_EQ(one.max_stock_mm, two.max_stock_mm);
+  EXPECT_EQ(one.mean_stock_mm, two.mean_stock_mm);
+  EXPECT_EQ(one.median_stock_mm, two.median_stock_mm);
+  EXPECT_EQ(one.undercut_fraction, two.undercut_fraction);
+  EXPECT_EQ(one.below_requested_stock_fraction, two.below_requested_stock_fraction);
+  EXPECT_EQ(one.cad_samples, two.cad_samples);
+  EXPECT_EQ(one.deviation_mean_mm, two.deviation_mean_mm);
+  EXPECT_EQ(one.deviation_rms_mm, two.deviation_rms_mm);
+  EXPECT_EQ(one.deviation_min_mm, two.deviation_min_mm);
+  EXPECT_EQ(one.deviation_max_mm, two.deviation_max_mm);
+  EXPECT_EQ(one.skin_samples, two.skin_samples);
+  EXPECT_EQ(one.skin_area_mm2, two.skin_area_mm2);
+  EXPECT_EQ(one.outside_volume_mm3, two.outside_volume_mm3);
+}
+
+TEST(CadCompare, BadInputIsAnInputError) {
+  const Printed& p = stocked();
+  const CadSurface cad{p.cad.vertices, p.cad.triangles};
+  const auto message = [](const auto& call) {
+    try {
+      call();
+    } catch (const InputError& e) {
+      return e.message();
+    }
+    return std::string("no InputError");
+  };
+  // No deposit, or nothing in it.
+  EXPECT_NE(
+      message([&] { (void)compare_with_cad(Deposit{}, cad, options(0)); }).find("nothing was deposited"),
+      std::string::npos);
+  Deposit empty = p.deposit;
+  empty.fill = openvdb::FloatGrid::create(0.0f);
+  empty.fill->setTransform(deposit_transform(kVoxel));
+  EXPECT_NE(message([&] { (void)compare_with_cad(empty, cad, options(0)); }).find("nothing was deposited"),
+            std::string::npos);
+  Deposit faint = p.deposit;
+  faint.fill = openvdb::FloatGrid::create(0.0f);
+  faint.fill->setTransform(deposit_transform(kVoxel));
+  faint.fill->tree().setValue(openvdb::Coord(0, 0, 0), 0.25f);
+  EXPECT_NE(message([&] { (void)compare_with_cad(faint, cad, options(0)); }).find("at least 0.5 full"),
+            std::string::npos);
+  // No triangles.
+  EXPECT_NE(
+      message([&] { (void)compare_with_cad(p.deposit, CadSurface{}, options(0)); }).find("no triangles"),
+      std::string::npos);
+  // A vertex that is not finite, and a triangle naming a vertex that is not there: both reported at once.
+  std::vector<Eigen::Vector3d> vertices = p.cad.vertices;
+  vertices[3].x() = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::array<int, 3>> triangles = p.cad.triangles;
+  triangles[5][1] = 99;
+  const std::string both = message([&] {
+    (void)compare_with_cad(p.deposit, {vertices, triangles}, options(0));
+  });
+  EXPECT_NE(both.find("not finite (the first is vertex 3)"), std::string::npos) << both;
+  EXPECT_NE(both.find("triangle 5 names vertex"), std::string::npos) << both;
+  // Triangles that enclose nothing.
+  const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  const std::vector<std::array<int, 3>> flat = {{0, 1, 2}};
+  EXPECT_NE(message([&] {
+              (void)compare_with_cad(p.deposit, {line, flat}, options(0));
+            }).find("no area"),
+            std::string::npos);
+  // Options out of range.
+  CadCompareOptions o = options(0);
+  o.band_mm = 0;
+  EXPECT_NE(message([&] { (void)compare_with_cad(p.deposit, cad, o); }).find("band_mm"), std::string::npos);
+  o = options(std::numeric_limits<double>::infinity());
+  EXPECT_NE(message([&] { (void)compare_with_cad(p.deposit, cad, o); }).find("requested_stock_mm"),
+            std::string::npos);
+  o = options(0);
+  o.sample_spacing_mm = -1;
+  EXPECT_NE(message([&] { (void)compare_with_cad(p.deposit, cad, o); }).find("sample_spacing_mm"),
+            std::string::npos);
+  // A CAD a thousand times too large (metres read as millimetres): refused before any grid is built.
+  std::vector<Eigen::Vector3d> huge = p.cad.vertices;
+  for (auto& v : huge) v *= 1000.0;
+  EXPECT_NE(message([&] {
+              (void)compare_with_cad(p.deposit, {huge, p.cad.triangles}, options(0));
+            }).find("too large"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace beadtwin::sim

@@ -607,8 +607,7 @@ details{margin:1em 0} .muted{color:#777}
     row("voxels", fmt::format("{} at {:.2f} mm", m.voxels, m.voxel_size_mm));
     row("thermal energy balance error", fmt::format("{:.1e}", m.thermal_energy_error));
     h += "</table>";
-    h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a> · deposit: <a href=\"{1}\">{1}</a></p>",
-                     esc(v.program), esc(v.deposit_file));
+    h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a></p>", esc(v.program));
     h += files_html(v);
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
          "class=l>section</th><th>start s</th>"

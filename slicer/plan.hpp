@@ -196,17 +196,17 @@ struct PlanStats {
   int void_beads = 0;  // beads laid in them (void fill)
 };
 
-// Plans every section and merges their layers by height into one Toolpath (times from `motion`). Sections
-// may overlap in Z only when they slice different bodies (checked by the scenario loader). Throws InputError
-// on parameters the planner cannot use.
 // What is wrong with section `s` sharing the wall of the section it names (patent (17)), or empty when
 // nothing is: that must be another sliced section laying its layers at the same heights. Sets `provider`
 // to its index when given.
 std::string shared_wall_problem(const std::vector<SectionParams>& sections, const SectionParams& s,
                                 std::size_t* provider = nullptr);
 
-// With an `extruder`, each section's melt on / melt off settings become prime, coast and reverse events
-// (slicer/melt_events.hpp); without one, sections must not ask for them.
+// Plans every section and merges their layers by height into one Toolpath (times from `motion`). Sections
+// may overlap in Z only when they slice different bodies (checked by the scenario loader). Throws InputError
+// on parameters the planner cannot use. With an `extruder`, each section's melt on / melt off settings
+// become prime, coast and reverse events (slicer/melt_events.hpp); without one, sections must not ask for
+// them.
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,
                        const MotionLimits& motion, PlanStats* stats = nullptr,
                        const Extruder* extruder = nullptr);

@@ -328,6 +328,10 @@ constexpr ParamSpec kMachine[] = {
      "estimate per machine"},
     {"extruder.filament_diameter", T::kQuantity, D::kLength, "0", 0, 100, false,
      "filament diameter d_f of a filament extruder (E words)", "seed 002 eq. 1"},
+    {"extruder.ooze_time", T::kQuantity, D::kTime, "0", 0, 1000, false,
+     "time constant of the nozzle's pressure after a melt off: without a coast or a reverse the melt oozes "
+     "on, its flow falling as exp(-t/τ), onto the dwells and travels that follow (0: no ooze)",
+     "estimate per machine and material"},
     {"extruder.max_rpm", T::kQuantity, D::kRotationalSpeed, "0", 0, kInf, false,
      "highest pump or screw speed; a program that needs more is reported (0: no limit)", "machine data"},
     {"environment.ambient", T::kQuantity, D::kTemperature, "18 C", -50, 100, false, "ambient air temperature",

@@ -317,6 +317,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     o.roller_width_mm = v.machine.roller_width_mm;
     o.roller_diameter_mm = v.machine.roller_diameter_mm;
     o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
+    o.ooze_time_s = v.machine.ooze_time_s;
     o.memory_budget_bytes = v.output.memory_budget_gb * 1e9;
     try {
       return sim::deposit(tp, o);

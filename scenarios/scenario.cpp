@@ -161,6 +161,7 @@ Machine read_machine(BlockReader& r) {
   m.extruder.displacement_mm3_per_rev = r.quantity(spec(t, "extruder.displacement"));
   m.extruder.filament_diameter_mm = r.quantity(spec(t, "extruder.filament_diameter"));
   m.extruder.max_rpm = r.quantity(spec(t, "extruder.max_rpm"));
+  m.ooze_time_s = r.quantity(spec(t, "extruder.ooze_time"));
   if (m.extruder.kind == ExtruderKind::kFilament && !(m.extruder.filament_diameter_mm > 0))
     r.fail(r.take("extruder.filament_diameter"), "extruder.filament_diameter",
            "a filament extruder needs its filament diameter");

@@ -27,6 +27,7 @@ struct Machine {
   double roller_width_mm = 0.0;     // 0: unknown
   double roller_diameter_mm = 0.0;  // 0: unknown
   double nozzle_diameter_mm = 0.0;  // 0: unknown
+  double ooze_time_s = 0.0;         // 0: no ooze after melt off
   double extruder_output_kg_s = 0.0;
   double extruder_max_output_kg_s = 0.0;
   Extruder extruder;  // its max flow is set from max_output once the material's density is known

@@ -77,6 +77,9 @@ void validate(const Toolpath& toolpath, const DepositOptions& options) {
     problems.push_back(option_problem(
         "voxel_size",
         fmt::format("voxel size must be positive (or 0: automatic), got {} mm", options.voxel_size_mm)));
+  if (!std::isfinite(options.ooze_time_s) || options.ooze_time_s < 0.0)
+    problems.push_back(option_problem(
+        "ooze_time", fmt::format("ooze time must be finite and >= 0, got {} s", options.ooze_time_s)));
   if (options.supersample < 1 || options.supersample > kMaxSupersample)
     problems.push_back(option_problem("supersample", fmt::format("supersample must be 1..{}, got {}",
                                                                  kMaxSupersample, options.supersample)));
@@ -653,7 +656,10 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   plan.round_free_ends = options.round_free_ends;
   if (options.follow_substrate)
     plan.max_piece_mm = std::max(vs, options.piece_bead_widths * widest_nominal_bead(toolpath));
+  plan.ooze_time_s = options.ooze_time_s;
   std::vector<PlannedSweep> sweeps = plan_sweeps(toolpath, plan);
+  for (const PlannedSweep& p : sweeps)
+    if (p.ooze) out.ooze_volume_mm3 += p.volume_mm3;
   check_budget(sweeps, vs);
 
   Grids grids = make_grids(vs);

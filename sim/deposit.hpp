@@ -67,6 +67,8 @@ struct DepositOptions {
   double roller_width_mm = 0.0;     // 0: unknown (no corner check); the roller's width across the bead
   double roller_diameter_mm = 0.0;  // 0: unknown; the roller meets material up to its radius above a bead
   double nozzle_diameter_mm = 0.0;  // 0: unknown; the nozzle's tip, for collisions on travel moves
+  // Ooze: the time constant of the nozzle's pressure decay after a melt off, s (sim/sweep_plan.hpp); 0: none.
+  double ooze_time_s = 0.0;
   // The build table's height, mm; NaN: the lowest nominal bead bottom of the toolpath.
   double table_z_mm = std::numeric_limits<double>::quiet_NaN();
   // Memory the deposit may use, bytes; 0: three quarters of the machine's physical memory. An estimate
@@ -130,6 +132,7 @@ struct Deposit {
   std::vector<LayerDeposit> layers;  // parallel to Toolpath::layers
   double plough_volume_mm3 = 0.0;
   double unsupported_length_mm = 0.0;
+  double ooze_volume_mm3 = 0.0;  // laid after melt offs (on dwells and travels), part of the commanded volume
   double memory_estimate_bytes = 0.0;
   std::vector<std::string> notes;  // what the deposit chose for the user (a coarser voxel, ...)
   std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)  //

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include "core/error.hpp"
 #include "core/units.hpp"
@@ -52,6 +53,71 @@ std::optional<Eigen::Vector2d> joint(const BeadSweep& first, const BeadSweep& se
 void join(BeadSweep& first, BeadSweep& second, const Eigen::Vector2d& bisector) {
   first.end_cut = bisector;
   second.start_cut = bisector;
+}
+
+// How far after the melt off ooze is followed: beyond five time constants less than 1 % is left.
+constexpr double kOozeTimeConstants = 5.0;
+
+// The ooze pieces after the melt off at `off`. `bead` is the bead's pieces (since its melt on, or the
+// previous melt off): they give the material up in proportion to their own, at most half of it.
+std::vector<PlannedSweep> ooze_after(const Toolpath& tp, std::size_t off, std::span<PlannedSweep> bead,
+                                     double tau) {
+  std::vector<PlannedSweep> out;
+  const Move& last = tp.moves[bead.back().move];
+  if (!(last.duration_s > 0.0)) return out;
+  const double q0 = last.volume_mm3 / last.duration_s;
+  const double t_off = tp.moves[off].start_s + tp.moves[off].duration_s;
+  double total = 0.0;
+  for (std::size_t j = off + 1; j < tp.moves.size(); ++j) {
+    const Move& m = tp.moves[j];
+    if (m.deposits() || m.event == ExtruderEvent::kMeltOn || m.event == ExtruderEvent::kReverse ||
+        m.event == ExtruderEvent::kPrime)
+      break;
+    const double t0 = std::max(0.0, m.start_s - t_off), t1 = t0 + m.duration_s;
+    if (t0 > kOozeTimeConstants * tau) break;
+    if (!(m.duration_s > 0.0)) continue;
+    const double v = q0 * tau * (std::exp(-t0 / tau) - std::exp(-t1 / tau));
+    Move shaped = m;
+    shaped.volume_mm3 = v;
+    shaped.layer_height_mm = last.layer_height_mm;
+    out.push_back({j, sweep_of(shaped, false), 0.0, 1.0, v, 0.5 * (m.start.z() + m.end.z()),
+                   last.layer_height_mm, true});
+    total += v;
+  }
+  double available = 0.0;
+  for (const PlannedSweep& p : bead) available += p.volume_mm3;
+  const double scale = total > 0.5 * available ? 0.5 * available / total : 1.0;
+  for (PlannedSweep& p : out) {
+    p.volume_mm3 *= scale;
+    if (p.sweep.is_puddle()) {
+      p.sweep.profile = puddle_profile(p.volume_mm3, p.nominal_height_mm);
+    } else {
+      p.sweep.profile = moving_bead_profile(p.volume_mm3 / tp.moves[p.move].length_mm(), p.nominal_height_mm);
+    }
+  }
+  const double keep = available > 0.0 ? 1.0 - scale * total / available : 1.0;
+  for (PlannedSweep& p : bead) p.volume_mm3 *= keep;
+  return out;
+}
+
+void add_ooze(const Toolpath& tp, std::vector<PlannedSweep>& sweeps, double tau) {
+  std::vector<PlannedSweep> out;
+  out.reserve(sweeps.size());
+  std::size_t next = 0;        // next sweep to copy
+  std::size_t bead_first = 0;  // index into `out` of the current bead's first piece
+  for (std::size_t i = 0; i < tp.moves.size(); ++i) {
+    const ExtruderEvent e = tp.moves[i].event;
+    if (e != ExtruderEvent::kMeltOff && e != ExtruderEvent::kMeltOn) continue;
+    while (next < sweeps.size() && sweeps[next].move < i) out.push_back(sweeps[next++]);
+    if (e == ExtruderEvent::kMeltOff && out.size() > bead_first && !out.back().ooze) {
+      std::vector<PlannedSweep> ooze =
+          ooze_after(tp, i, std::span<PlannedSweep>(out).subspan(bead_first), tau);
+      out.insert(out.end(), ooze.begin(), ooze.end());
+    }
+    bead_first = out.size();
+  }
+  while (next < sweeps.size()) out.push_back(sweeps[next++]);
+  sweeps = std::move(out);
 }
 
 }  // namespace
@@ -106,6 +172,7 @@ std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, const SweepPlanO
     moved_dry = false;
   }
   close_chain();
+  if (options.ooze_time_s > 0.0) add_ooze(toolpath, out, options.ooze_time_s);
   return out;
 }
 

@@ -33,6 +33,7 @@ struct PlannedSweep {
   // height), at the piece's middle.
   double nominal_top_mm = 0.0;
   double nominal_height_mm = 0.0;
+  bool ooze = false;  // material oozing from the nozzle after a melt off (see plan_sweeps)
 };
 
 struct SweepPlanOptions {
@@ -40,8 +41,18 @@ struct SweepPlanOptions {
   // Longest piece, mm (> 0): moves are cut into equal pieces no longer than this. Infinity keeps every move
   // whole.
   double max_piece_mm = std::numeric_limits<double>::infinity();
+  // Ooze (DepositOptions::ooze_time_s): the time constant of the nozzle's pressure after a melt off, s; 0
+  // for none.
+  double ooze_time_s = 0.0;
 };
 
+// Ooze: after a melt off that neither a coast nor a reverse follows, the melt still under pressure in the
+// nozzle flows on, its flow falling from the bead's Q0 as Q0·exp(−t/τ). Over the dwells and travels that
+// follow (until material is laid or the melt turns on, reverses or primes again) each gets
+// Q0·τ·(exp(−t0/τ) − exp(−t1/τ)): a puddle on a dwell, a thin string along a travel. The pump delivered
+// that material with the bead, so it is taken from the bead's last piece (at most half of it), and the
+// total stays the commanded volume. Such pieces have PlannedSweep::ooze set.
+//
 // Precondition: the toolpath's depositing moves have finite coordinates and positive layer heights.
 std::vector<PlannedSweep> plan_sweeps(const Toolpath& toolpath, const SweepPlanOptions& options);
 

@@ -295,6 +295,63 @@ TEST(Deposit, MemoryBudgetStopsWithAVoxelSizeThatFits) {
   EXPECT_LE(d.memory_estimate_bytes, 1e6);
 }
 
+// Ooze (issue 6, item 3): after a melt off with no coast or reverse, the melt under pressure flows on as
+// Q0·exp(−t/τ). A 2 s dwell right after gets Q0·τ·(1 − e^(−2/τ)) as a puddle; the travel after it the
+// next share, as a string; the bead gives that material up, so the total stays the commanded volume. A
+// reverse after the melt off stops it.
+TEST(Deposit, OozeAfterMeltOffFollowsThePressureDecay) {
+  const auto program = [](bool reverse) {
+    std::vector<Move> moves = {bead({0, 0, kH}, {200, 0, kH}, 0)};
+    Move off;
+    off.kind = MoveKind::kDwell;
+    off.event = ExtruderEvent::kMeltOff;
+    off.start = off.end = moves[0].end;
+    off.layer = 0;
+    moves.push_back(off);
+    if (reverse) {
+      Move r = off;
+      r.event = ExtruderEvent::kReverse;
+      r.duration_s = 0.5;
+      moves.push_back(r);
+    }
+    Move dwell = off;
+    dwell.event = ExtruderEvent::kNone;
+    dwell.duration_s = 2.0;
+    moves.push_back(dwell);
+    moves.push_back(travel(moves[0].end, {200, 100, kH}, 0));
+    return timed(moves);
+  };
+  const double tau = 0.5;  // s: the 2.1 s bead can give up what oozes (at most half of it)
+  sim::DepositOptions o;
+  o.ooze_time_s = tau;
+  const Toolpath tp = program(false);
+  const sim::Deposit d = sim::deposit(tp, o);
+  const double q0 = tp.moves[0].volume_mm3 / tp.moves[0].duration_s;
+  const double dwell_share = q0 * tau * (1.0 - std::exp(-2.0 / tau));
+  EXPECT_GT(d.ooze_volume_mm3, dwell_share);          // the travel gets some too
+  EXPECT_LT(d.ooze_volume_mm3, q0 * tau * 1.000001);  // never more than the whole decay
+  EXPECT_LT(std::abs(d.deposited_volume_mm3 / tp.commanded_volume_mm3() - 1.0), 1e-6);
+  // The puddle at the bead's end: material above the bead's top there, which the bead alone leaves empty.
+  const auto above_end = [&](const sim::Deposit& x) {
+    double sum = 0.0;
+    for (auto it = x.fill->cbeginValueOn(); it; ++it) {
+      const Eigen::Vector3d c = sim::voxel_center_mm(it.getCoord(), x.voxel_size_mm);
+      if (c.x() > 200.0 + 0.5 * kW && c.y() < 0.5 * kW) sum += *it;
+    }
+    return sum * std::pow(x.voxel_size_mm, 3);
+  };
+  EXPECT_GT(above_end(d), 0.1 * dwell_share);
+  // A string along the travel, beyond the bead's reach.
+  int along_travel = 0;
+  for (auto it = d.fill->cbeginValueOn(); it; ++it)
+    along_travel += sim::voxel_center_mm(it.getCoord(), d.voxel_size_mm).y() > 40.0;
+  EXPECT_GT(along_travel, 0);
+  // With a reverse after the melt off, no ooze.
+  EXPECT_EQ(sim::deposit(program(true), o).ooze_volume_mm3, 0.0);
+  // Without an ooze time, none either.
+  EXPECT_EQ(sim::deposit(tp).ooze_volume_mm3, 0.0);
+}
+
 // Without a voxel size asked for, one that would not fit the budget is made coarser, and the deposit says so.
 TEST(Deposit, AutomaticVoxelSizeFitsTheMemoryBudget) {
   sim::DepositOptions o;

@@ -20,10 +20,10 @@
 
 #include "core/error.hpp"
 #include "core/units.hpp"
+#include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 #include "sim/bead_section.hpp"
 #include "sim/deposit.hpp"
-#include "slicer/plan.hpp"
 
 using namespace beadtwin;
 
@@ -77,17 +77,11 @@ int main(int argc, char** argv) {
     openvdb::initialize();
     const scenarios::Scenario sc = scenarios::load_scenario(argv[1]);
     const scenarios::Variant& v = sc.variants.front();
-    const Toolpath tp =
-        slicer::plan_toolpath(*v.part.loaded, v.sections, v.machine.motion, nullptr, &v.machine.extruder);
+    const Toolpath tp = scenarios::variant_toolpath(v);
     const double length_m = tp.print_length_mm() / 1000.0;
     const auto t0 = std::chrono::steady_clock::now();
     if (std::string(argv[2]) == "deposit") {
-      sim::DepositOptions o;
-      o.voxel_size_mm = v.output.voxel_size_mm;
-      o.flattening = sim::Flattening::kRoller;
-      o.roller_width_mm = v.machine.roller_width_mm;
-      o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
-      const sim::Deposit d = sim::deposit(tp, o);
+      const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
       std::printf("deposit %.3f s, %.1f m of bead, %zu voxels, porosity %.4f, %zu defects\n",
                   seconds_since(t0), length_m, d.active_voxels, d.porosity, d.defects.size());
     } else {

@@ -309,18 +309,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   });
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
   const sim::Deposit deposit = stages.run("deposit", [&] {
-    sim::DepositOptions o;
-    o.voxel_size_mm = v.output.voxel_size_mm;
-    o.flattening = v.machine.kind == "roller-gantry"   ? sim::Flattening::kRoller
-                   : v.machine.kind == "tamper-gantry" ? sim::Flattening::kTamper
-                                                       : sim::Flattening::kNozzle;
-    o.roller_width_mm = v.machine.roller_width_mm;
-    o.roller_diameter_mm = v.machine.roller_diameter_mm;
-    o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
-    o.ooze_time_s = v.machine.ooze_time_s;
-    o.memory_budget_bytes = v.output.memory_budget_gb * 1e9;
     try {
-      return sim::deposit(tp, o);
+      return sim::deposit(tp, deposit_options(v));
     } catch (const InputError& e) {
       // The deposit knows the option, not where it was written: name the scenario's key.
       if (e.key() != "voxel_size") throw;
@@ -394,6 +384,24 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
 }
 
 }  // namespace
+
+sim::DepositOptions deposit_options(const Variant& v) {
+  sim::DepositOptions o;
+  o.voxel_size_mm = v.output.voxel_size_mm;
+  o.flattening = v.machine.kind == "roller-gantry"   ? sim::Flattening::kRoller
+                 : v.machine.kind == "tamper-gantry" ? sim::Flattening::kTamper
+                                                     : sim::Flattening::kNozzle;
+  o.roller_width_mm = v.machine.roller_width_mm;
+  o.roller_diameter_mm = v.machine.roller_diameter_mm;
+  o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
+  o.ooze_time_s = v.machine.ooze_time_s;
+  o.memory_budget_bytes = v.output.memory_budget_gb * 1e9;
+  return o;
+}
+
+Toolpath variant_toolpath(const Variant& v) {
+  return slice_variant(v);
+}
 
 std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics) {
   std::vector<GateResult> out;

@@ -25,6 +25,13 @@ RunResult run_scenario(const Scenario& scenario, const RunOptions& options);
 std::string slice_program(const Scenario& scenario, const std::string& variant_name);
 
 // Evaluates gates against metrics.
+// The toolpath a variant prints: its program as written (timed with its machine), or its part sliced.
+Toolpath variant_toolpath(const Variant& variant);
+
+// How the variant's machine and output settings deposit it: voxel size, what flattens the beads (the
+// machine's kind), roller and nozzle, ooze, memory budget.
+sim::DepositOptions deposit_options(const Variant& variant);
+
 std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics);
 
 }  // namespace beadtwin::scenarios

@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "core/geometry.hpp"
 #include "core/units.hpp"
 #include "sim/bead_sweep.hpp"
 #include "sim/fill_writer.hpp"
@@ -561,7 +562,7 @@ void roller_corners(const Toolpath& toolpath, double roller_width_mm, DefectLog&
       const Move& p = toolpath.moves[previous];
       const Eigen::Vector2d u = (p.end - p.start).head<2>().normalized(), v = d.normalized();
       if ((p.end - m.start).norm() <= 1e-3) {
-        chain.push_back({s, std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v)), i});
+        chain.push_back({s, turn_rad(u, v), i});
       } else {
         flush();
         s = 0.0;

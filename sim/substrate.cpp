@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/geometry.hpp"
 
 namespace beadtwin::sim {
 
@@ -13,14 +14,6 @@ namespace {
 constexpr double kFullEnough = 1e-3;
 // A voxel this full seals the gaps under it from the bead above.
 constexpr double kSealed = 0.95;
-
-// Horizontal distance from `p` to the segment a-b.
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
 
 }  // namespace
 

@@ -84,9 +84,9 @@ struct ReaderOptions {
   // The roller is engaged from the start (until a roller-up code): a roller machine whose programs carry no
   // roller codes rolls every bead.
   bool roller_down_at_start = false;
-  std::vector<std::string> prime;               // a prime starts (its time: the G4 after it)
-  std::vector<std::string> reverse_on;          // the pump turns backwards (its S is the reverse speed)
-  std::vector<std::string> reverse_off;         // it stops turning backwards
+  std::vector<std::string> prime;        // a prime starts (its time: the G4 after it)
+  std::vector<std::string> reverse_on;   // the pump turns backwards (its S is the reverse speed)
+  std::vector<std::string> reverse_off;  // it stops turning backwards
   std::vector<std::string> ignored = default_ignored_codes();
 
   bool inches = false;                 // units before any G20/G21

@@ -28,6 +28,7 @@
 #include <boost/polygon/voronoi.hpp>
 
 #include "core/error.hpp"
+#include "core/geometry.hpp"
 
 namespace beadtwin::slicer {
 namespace {
@@ -62,13 +63,6 @@ constexpr double kMinFacingAngleRad = 110.0 * std::numbers::pi / 180.0;
 
 double cross(const Vec& a, const Vec& b) {
   return a.x() * b.y() - a.y() * b.x();
-}
-
-double distance_to_segment(const Vec& p, const Vec& a, const Vec& b) {
-  const Vec d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
 }
 
 // Units = (mm - origin) · scale.

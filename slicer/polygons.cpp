@@ -105,13 +105,6 @@ Polygons union_nonzero(const Polygons& loops) {
 
 namespace {
 
-double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
 // Marks the points of poly[first..last] to keep, Ramer-Douglas-Peucker.
 void rdp(const Polygon& poly, std::size_t first, std::size_t last, double tol, std::vector<bool>& keep) {
   double worst = -1.0;

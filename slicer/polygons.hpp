@@ -7,17 +7,13 @@
 
 #include <Eigen/Core>
 
+#include "core/geometry.hpp"
+
 namespace beadtwin::slicer {
 
 using Polygon = std::vector<Eigen::Vector2d>;  // closed: the last point connects to the first
 using Polygons = std::vector<Polygon>;
 using Polyline = std::vector<Eigen::Vector2d>;  // open
-
-// The angle (radians) the direction turns by from `u` to `v`: positive to the left (counter-clockwise),
-// negative to the right, in (−π, π].
-inline double turn_rad(const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-  return std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
-}
 
 // Signed area sum (holes count negative), mm².
 double area_mm2(const Polygons& polygons);

@@ -23,31 +23,10 @@
 namespace beadtwin::sim {
 namespace {
 
-const Deposit& ring() {
-  static const Deposit d = testing::ring_deposit();
-  return d;
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("beadtwin_deposit_files_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-template <class T>
-T get(const std::string& bytes, std::size_t at) {
-  T v;
-  std::memcpy(&v, bytes.data() + at, sizeof v);
-  return v;
-}
+using testing::fresh_dir;
+using testing::get;
+using testing::read_all;
+using testing::ring;
 
 // A .vtu as a reader sees it: the counts from the XML, and each appended array's bytes.
 struct Vtu {
@@ -92,7 +71,7 @@ Vtu parse_vtu(const std::string& file) {
 
 TEST(DepositVtu, ParsesBackWithTheDepositsVoxelsAndValues) {
   const Deposit& d = ring();
-  const auto path = fresh_dir("vtu") / "fields.vtu";
+  const auto path = fresh_dir("files_vtu") / "fields.vtu";
   const VtuCounts counts = write_deposit_vtu(d, path);
   const Vtu v = parse_vtu(read_all(path));
   EXPECT_NE(v.xml.find(R"(<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" )"
@@ -177,7 +156,7 @@ std::string python_with_vtk() {
 TEST(DepositVtu, VtkReadsIt) {
   const std::string python = python_with_vtk();
   if (python.empty()) GTEST_SKIP() << "no VTK for Python here (Debian: python3-vtk9)";
-  const auto dir = fresh_dir("vtk");
+  const auto dir = fresh_dir("files_vtk");
   write_deposit_vtu(ring(), dir / "fields.vtu");
   const std::string script =
       "import vtk; r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName('" + (dir / "fields.vtu").string() +
@@ -205,7 +184,7 @@ TEST(DepositVtu, VtkReadsIt) {
 
 TEST(DepositVdb, ReadsBackWithNamesClassesAndUnits) {
   const Deposit& d = ring();
-  const auto dir = fresh_dir("vdb");
+  const auto dir = fresh_dir("files_vdb");
   write_deposit_vdb(d, dir / "deposit.vdb");
   openvdb::io::File file((dir / "deposit.vdb").string());
   file.open();
@@ -243,7 +222,7 @@ TEST(DepositVdb, ReadsBackWithNamesClassesAndUnits) {
 
 TEST(DepositVdb, DensityIsAnInstanceNotASecondCopy) {
   const Deposit& d = ring();
-  const auto dir = fresh_dir("vdb_size");
+  const auto dir = fresh_dir("files_vdb_size");
   write_deposit_vdb(d, dir / "deposit.vdb");
   // The same grids without the density alias.
   openvdb::FloatGrid::Ptr fill = d.fill->copy(), time = d.time->copy();
@@ -257,7 +236,7 @@ TEST(DepositVdb, DensityIsAnInstanceNotASecondCopy) {
 
 TEST(DepositFiles, EmptyDepositIsAnErrorAndWritesNothing) {
   const Deposit empty = testing::empty_deposit();
-  const auto dir = fresh_dir("empty");
+  const auto dir = fresh_dir("files_empty");
   for (const char* name : {"fields.vtu", "deposit.vdb"}) {
     const auto path = dir / name;
     try {
@@ -275,7 +254,7 @@ TEST(DepositFiles, EmptyDepositIsAnErrorAndWritesNothing) {
 }
 
 TEST(DepositFiles, UnwritablePlaceIsAnErrorNamingThePathAndLeavesNothing) {
-  const auto dir = fresh_dir("unwritable");
+  const auto dir = fresh_dir("files_unwritable");
   std::ofstream(dir / "a-file") << "x";
   for (const auto& path : {dir / "no-such-folder" / "fields.vtu", dir / "a-file" / "fields.vtu",
                            dir / "no-such-folder" / "deposit.vdb"}) {

@@ -14,54 +14,21 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "sim/bead_section.hpp"
+#include "tests/sim/lsam_beads.hpp"
 
 namespace beadtwin {
 namespace {
 
-// The LSAM bead of the patent: 0.83 in wide, 0.20 in tall after the roller.
-constexpr double kBeadWidth = 0.83 * kMmPerInch;
-constexpr double kBeadHeight = 0.20 * kMmPerInch;
-
-Move bead(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer = 0, double width = kBeadWidth,
-          double height = kBeadHeight) {
-  Move m;
-  m.start = from;
-  m.end = to;
-  m.kind = MoveKind::kPrint;
-  m.feature = Feature::kFill;
-  m.roller_down = true;
-  m.feed_mm_s = 100.0;
-  m.bead_width_mm = width;
-  m.layer_height_mm = height;
-  m.layer = layer;
-  m.volume_mm3 = bead_area_mm2(width, height) * m.length_mm();
-  return m;
-}
-
-Move travel(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  Move m;
-  m.start = from;
-  m.end = to;
-  m.kind = MoveKind::kTravel;
-  m.feature = Feature::kTravel;
-  m.feed_mm_s = 400.0;
-  return m;
-}
+using testing::bead;
+using testing::kBeadHeight;
+using testing::kBeadWidth;
+using testing::timed;
+using testing::travel;
 
 // Moves as given, without timing (start_s = duration_s = 0).
 Toolpath untimed(std::vector<Move> moves) {
   Toolpath toolpath;
   toolpath.moves = std::move(moves);
-  return toolpath;
-}
-
-Toolpath timed(std::vector<Move> moves) {
-  Toolpath toolpath;
-  toolpath.moves = std::move(moves);
-  int layers = 0;
-  for (const Move& m : toolpath.moves) layers = std::max(layers, m.layer + 1);
-  toolpath.layers.resize(static_cast<std::size_t>(layers));
-  time_toolpath(toolpath, MotionLimits{});
   return toolpath;
 }
 

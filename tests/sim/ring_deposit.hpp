@@ -1,7 +1,13 @@
 // A deposited box for the tests of the deposit's files: a square ring of beads laid layer on layer by
-// sim::deposit from a hand-made toolpath, as a thin-walled open box prints.
+// sim::deposit from a hand-made toolpath, as a thin-walled open box prints; and what those tests share for
+// reading the files back.
 #pragma once
 
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/bead.hpp"
@@ -58,6 +64,36 @@ inline Deposit empty_deposit(double voxel_mm = 2.5) {
   DepositOptions o;
   o.voxel_size_mm = voxel_mm;
   return deposit(Toolpath{}, o);
+}
+
+// The ring deposit, made once for every test that only reads it.
+inline const Deposit& ring() {
+  static const Deposit d = ring_deposit();
+  return d;
+}
+
+// An empty folder under the system's temporary one, named for the test (names must differ between tests,
+// which may run at the same time).
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("beadtwin_sim_test_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline std::string read_all(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// A value of type T read from `bytes` at offset `at`, as the file stores it (little-endian).
+template <class T>
+T get(const std::string& bytes, std::size_t at) {
+  T v;
+  std::memcpy(&v, bytes.data() + at, sizeof v);
+  return v;
 }
 
 }  // namespace beadtwin::sim::testing

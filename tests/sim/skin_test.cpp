@@ -19,31 +19,10 @@
 namespace beadtwin::sim {
 namespace {
 
-const Deposit& ring() {
-  static const Deposit d = testing::ring_deposit();
-  return d;
-}
-
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("beadtwin_skin_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-template <class T>
-T get(const std::string& bytes, std::size_t at) {
-  T v;
-  std::memcpy(&v, bytes.data() + at, sizeof v);
-  return v;
-}
+using testing::fresh_dir;
+using testing::get;
+using testing::read_all;
+using testing::ring;
 
 // Every directed edge of a closed, consistently oriented mesh appears once, and so does its reverse.
 // Returns the number of edges that break this.
@@ -144,7 +123,7 @@ SkinMesh read_ply(const std::string& bytes) {
 
 TEST(Skin, PlyReadsBackAsWritten) {
   const SkinMesh mesh = extract_skin(ring(), 0.2);
-  const auto path = fresh_dir("ply") / "skin.ply";
+  const auto path = fresh_dir("skin_ply") / "skin.ply";
   write_mesh(mesh, path, MeshFormat::kPly);
   const SkinMesh back = read_ply(read_all(path));
   ASSERT_EQ(back.points_mm.size(), mesh.points_mm.size());
@@ -156,7 +135,7 @@ TEST(Skin, PlyReadsBackAsWritten) {
 
 TEST(Skin, StlReadsBackWithOutwardNormals) {
   const SkinMesh mesh = extract_skin(ring(), 0.2);
-  const auto path = fresh_dir("stl") / "skin.stl";
+  const auto path = fresh_dir("skin_stl") / "skin.stl";
   write_mesh(mesh, path, MeshFormat::kStl);
   const std::string bytes = read_all(path);
   ASSERT_GE(bytes.size(), 84u);
@@ -187,7 +166,7 @@ TEST(Skin, StlReadsBackWithOutwardNormals) {
 TEST(Skin, EmptyDepositHasNoSkinAndWritesNoFile) {
   const SkinMesh mesh = extract_skin(testing::empty_deposit(), 0.2);
   EXPECT_TRUE(mesh.triangles.empty());
-  const auto path = fresh_dir("empty") / "skin.ply";
+  const auto path = fresh_dir("skin_empty") / "skin.ply";
   try {
     write_mesh(mesh, path, MeshFormat::kPly);
     FAIL() << "an empty skin was written";
@@ -200,7 +179,7 @@ TEST(Skin, EmptyDepositHasNoSkinAndWritesNoFile) {
 
 TEST(Skin, UnwritablePlaceIsAnErrorNamingThePathAndLeavesNothing) {
   const SkinMesh mesh = extract_skin(ring(), 0.5);
-  const auto dir = fresh_dir("unwritable");
+  const auto dir = fresh_dir("skin_unwritable");
   const auto missing = dir / "no-such-folder" / "skin.stl";
   std::ofstream(dir / "a-file") << "x";
   const auto under_a_file = dir / "a-file" / "skin.ply";

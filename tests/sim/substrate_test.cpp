@@ -12,53 +12,22 @@
 #include "core/toolpath.hpp"
 #include "core/units.hpp"
 #include "sim/deposit.hpp"
+#include "tests/sim/lsam_beads.hpp"
 
 namespace beadtwin {
 namespace {
 
-// The LSAM bead of the patent: 0.83 in wide, 0.20 in tall after the roller.
-constexpr double kW = 0.83 * kMmPerInch;
-constexpr double kH = 0.20 * kMmPerInch;
+using testing::timed;
+using testing::travel;
+constexpr double kW = testing::kBeadWidth;
+constexpr double kH = testing::kBeadHeight;
 
+// The LSAM bead with `flow_scale` of its material, from program line 100 + its layer.
 Move bead(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer, double flow_scale = 1.0) {
-  Move m;
-  m.start = from;
-  m.end = to;
-  m.kind = MoveKind::kPrint;
-  m.feature = Feature::kFill;
-  m.roller_down = true;
-  m.feed_mm_s = 100.0;
-  m.bead_width_mm = kW;
-  m.layer_height_mm = kH;
-  m.layer = layer;
-  m.volume_mm3 = flow_scale * bead_area_mm2(kW, kH) * m.length_mm();
-  m.source_line = 100 + static_cast<int>(layer);
+  Move m = testing::bead(from, to, layer);
+  m.volume_mm3 *= flow_scale;
+  m.source_line = 100 + layer;
   return m;
-}
-
-Move travel(const Eigen::Vector3d& from, const Eigen::Vector3d& to, int layer) {
-  Move m;
-  m.start = from;
-  m.end = to;
-  m.kind = MoveKind::kTravel;
-  m.feature = Feature::kTravel;
-  m.feed_mm_s = 400.0;
-  m.layer = layer;
-  return m;
-}
-
-Toolpath timed(std::vector<Move> moves) {
-  Toolpath toolpath;
-  toolpath.moves = std::move(moves);
-  int layers = 0;
-  for (const Move& m : toolpath.moves) layers = std::max(layers, m.layer + 1);
-  toolpath.layers.resize(static_cast<std::size_t>(layers));
-  for (int l = 0; l < layers; ++l) {
-    toolpath.layers[static_cast<std::size_t>(l)].z_mm = (l + 1) * kH;
-    toolpath.layers[static_cast<std::size_t>(l)].height_mm = kH;
-  }
-  time_toolpath(toolpath, MotionLimits{});
-  return toolpath;
 }
 
 // The ideal pitch for flattened beads side by side: the section's area over its height (docs/physics.md).

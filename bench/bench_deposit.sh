@@ -34,3 +34,5 @@ printf 'beadtwin deposit  (median of %s): %.1f s, peak %.0f MB, %.0f m of bead p
 printf 'mesh-to-volume    (median of %s): %.1f s, peak %.0f MB\n' "$runs" "$mesh_s" "$mesh_mb"
 printf 'ratio deposit / mesh-to-volume: time %.2f, memory %.2f\n' "$(echo "$dep_s / $mesh_s" | bc -l)" \
   "$(echo "$dep_mb / $mesh_mb" | bc -l)"
+echo "file sizes (bead-by-bead model against the as-printed skin at simplification tolerances 0 to 1 mm):"
+"$build/bench/deposit_bench" "$work/hull-mould.yaml" skin "$work"

@@ -7,14 +7,22 @@
 //   deposit_bench SCENARIO mesh      what a user would do instead: every bead as a closed tube of its
 //                                    stadium section (12 sides) in one surface mesh, voxelised with
 //                                    OpenVDB's mesh-to-volume at the same voxel size
+//   deposit_bench SCENARIO skin DIR  file sizes: the bead-by-bead model above written as binary STL, against
+//                                    the deposit's as-printed skin (sim::extract_skin, the scenario's
+//                                    adaptivity) written as STL and PLY at several simplification tolerances;
+//                                    the files are written into DIR
 //
-// Prints one line: route, seconds, bead length (m), active voxels, triangles (mesh route).
+// Prints one line (deposit, mesh: route, seconds, bead length (m), active voxels, triangles) or one line per
+// file (skin: what, triangles, bytes).
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
 
@@ -24,6 +32,7 @@
 #include "scenarios/scenario.hpp"
 #include "sim/bead_section.hpp"
 #include "sim/deposit.hpp"
+#include "sim/skin.hpp"
 
 using namespace beadtwin;
 
@@ -66,11 +75,21 @@ void append_tube(const Move& m, std::vector<openvdb::Vec3s>& points, std::vector
   }
 }
 
+// Writes `mesh` into `dir` as `name` and prints its size.
+void write_and_measure(const sim::SkinMesh& mesh, const std::filesystem::path& dir, const std::string& name,
+                       sim::MeshFormat format) {
+  const std::filesystem::path path = dir / (name + "." + std::string(sim::to_string(format)));
+  sim::write_mesh(mesh, path, format);
+  std::printf("%s %zu triangles, %ju bytes\n", path.filename().c_str(), mesh.triangles.size(),
+              static_cast<std::uintmax_t>(std::filesystem::file_size(path)));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3 || (std::string(argv[2]) != "deposit" && std::string(argv[2]) != "mesh")) {
-    std::fprintf(stderr, "usage: deposit_bench SCENARIO deposit|mesh\n");
+  const std::string route = argc >= 3 ? argv[2] : "";
+  if (!(argc == 3 && (route == "deposit" || route == "mesh")) && !(argc == 4 && route == "skin")) {
+    std::fprintf(stderr, "usage: deposit_bench SCENARIO deposit|mesh|skin DIR\n");
     return 2;
   }
   try {
@@ -80,7 +99,20 @@ int main(int argc, char** argv) {
     const Toolpath tp = scenarios::variant_toolpath(v);
     const double length_m = tp.print_length_mm() / 1000.0;
     const auto t0 = std::chrono::steady_clock::now();
-    if (std::string(argv[2]) == "deposit") {
+    if (route == "skin") {
+      const std::filesystem::path dir = argv[3];
+      sim::SkinMesh beads;
+      for (const Move& m : tp.moves)
+        if (m.kind == MoveKind::kPrint && m.deposits()) append_tube(m, beads.points_mm, beads.triangles);
+      write_and_measure(beads, dir, "bead-by-bead", sim::MeshFormat::kStl);
+      beads = {};
+      const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
+      for (const double tolerance_mm : {0.0, 0.3, 0.5, 1.0}) {
+        const sim::SkinMesh skin = sim::extract_skin(d, v.output.skin_adaptivity, true, tolerance_mm);
+        const std::string name = fmt::format("skin-{}mm", tolerance_mm);
+        for (const sim::MeshFormat f : sim::kMeshFormats) write_and_measure(skin, dir, name, f);
+      }
+    } else if (route == "deposit") {
       const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
       std::printf("deposit %.3f s, %.1f m of bead, %zu voxels, porosity %.4f, %zu defects\n",
                   seconds_since(t0), length_m, d.active_voxels, d.porosity, d.defects.size());

@@ -186,10 +186,11 @@ json files_json(const VariantResult& r) {
     skin = {{"path", f.skin},
             {"bytes", f.skin_bytes},
             {"triangles", f.skin_triangles},
-            {"bead_by_bead_stl_bytes", f.bead_stl_bytes},
-            {"bead_by_bead_stl_over_skin", f.skin_bytes > 0 ? json(static_cast<double>(f.bead_stl_bytes) /
-                                                                   static_cast<double>(f.skin_bytes))
-                                                            : json(nullptr)}};
+            {"bead_by_bead_stl", {{"triangles", f.bead_stl_triangles}, {"bytes", f.bead_stl_bytes}}},
+            {"bead_by_bead_triangles_over_skin",
+             f.skin_triangles > 0
+                 ? json(static_cast<double>(f.bead_stl_triangles) / static_cast<double>(f.skin_triangles))
+                 : json(nullptr)}};
   if (!f.fields.empty()) fields = {{"path", f.fields}, {"bytes", f.fields_bytes}, {"cells", f.fields_cells}};
   return {{"deposit", {{"path", r.deposit_file}, {"bytes", f.deposit_bytes}}},
           {"skin", skin},
@@ -353,10 +354,11 @@ std::string byte_size(std::uintmax_t bytes) {
   return fmt::format("{} bytes", bytes);
 }
 
-// How many times the skin's file a bead-by-bead STL would be.
+// How many times the skin's triangles a bead-by-bead STL would hold (triangles, not bytes: a PLY stores a
+// triangle in about half the bytes of an STL).
 std::string ratio_text(const ExportedFiles& f) {
-  const double ratio =
-      static_cast<double>(f.bead_stl_bytes) / static_cast<double>(std::max<std::uintmax_t>(f.skin_bytes, 1));
+  const double ratio = static_cast<double>(f.bead_stl_triangles) /
+                       static_cast<double>(std::max<std::size_t>(f.skin_triangles, 1));
   return ratio >= 10 ? fmt::format("{:.0f}", ratio) : fmt::format("{:.2g}", ratio);
 }
 
@@ -372,8 +374,9 @@ std::string files_html(const VariantResult& r) {
   if (!f.skin.empty())
     h += fmt::format(
         "<tr><td class=l>{}</td><td>{}</td><td class=l>as-printed skin, {} triangles, mm; a bead-by-bead STL "
-        "(16 facets around each bead) would be about {}, {} times this file</td></tr>",
-        link(f.skin), byte_size(f.skin_bytes), f.skin_triangles, byte_size(f.bead_stl_bytes), ratio_text(f));
+        "(16 facets around each bead) would hold {} triangles ({}), {} times the skin's</td></tr>",
+        link(f.skin), byte_size(f.skin_bytes), f.skin_triangles, f.bead_stl_triangles,
+        byte_size(f.bead_stl_bytes), ratio_text(f));
   if (!f.fields.empty())
     h += fmt::format(
         "<tr><td class=l>{}</td><td>{}</td><td class=l>voxel fields for ParaView, {} cells "

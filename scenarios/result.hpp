@@ -108,8 +108,10 @@ struct ExportedFiles {
   std::string skin;                  // as-printed skin mesh, .ply or .stl
   std::uintmax_t skin_bytes = 0;
   std::size_t skin_triangles = 0;
-  std::uintmax_t bead_stl_bytes = 0;  // estimated size of a bead-by-bead STL of the same print
-  std::string fields;                 // voxel fields for ParaView, .vtu
+  // A bead-by-bead STL of the same print (sim::bead_by_bead_stl): its triangles and its size.
+  std::size_t bead_stl_triangles = 0;
+  std::uintmax_t bead_stl_bytes = 0;
+  std::string fields;  // voxel fields for ParaView, .vtu
   std::uintmax_t fields_bytes = 0;
   std::size_t fields_cells = 0;
 };

@@ -278,7 +278,9 @@ void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposi
   files.skin = (std::filesystem::path(v.name) / name).string();
   files.skin_bytes = std::filesystem::file_size(dir / name);
   files.skin_triangles = skin.triangles.size();
-  files.bead_stl_bytes = sim::bead_by_bead_stl(tp).bytes;
+  const sim::BeadStlEstimate beads = sim::bead_by_bead_stl(tp);
+  files.bead_stl_triangles = beads.triangles;
+  files.bead_stl_bytes = beads.bytes;
 }
 
 // The voxel fields for ParaView.

@@ -103,11 +103,10 @@ TEST(Run, SmallScenarioEndToEnd) {
   EXPECT_EQ(fast_files["skin"]["bytes"].get<std::uintmax_t>(),
             std::filesystem::file_size(out / "fast/skin.ply"));
   EXPECT_GT(fast_files["skin"]["triangles"].get<std::size_t>(), 1000u);
-  EXPECT_GT(fast_files["skin"]["bead_by_bead_stl_bytes"].get<std::uintmax_t>(), 84u);
-  EXPECT_NEAR(
-      fast_files["skin"]["bead_by_bead_stl_over_skin"].get<double>(),
-      fast_files["skin"]["bead_by_bead_stl_bytes"].get<double>() / fast_files["skin"]["bytes"].get<double>(),
-      1e-9);
+  const nlohmann::json& beads = fast_files["skin"]["bead_by_bead_stl"];
+  EXPECT_EQ(beads["bytes"].get<std::uintmax_t>(), 84u + 50u * beads["triangles"].get<std::uintmax_t>());
+  EXPECT_NEAR(fast_files["skin"]["bead_by_bead_triangles_over_skin"].get<double>(),
+              beads["triangles"].get<double>() / fast_files["skin"]["triangles"].get<double>(), 1e-9);
   EXPECT_EQ(fast_files["fields"]["path"], "fast/fields.vtu");
   EXPECT_EQ(fast_files["fields"]["bytes"].get<std::uintmax_t>(),
             std::filesystem::file_size(out / "fast/fields.vtu"));
@@ -122,7 +121,7 @@ TEST(Run, SmallScenarioEndToEnd) {
   const std::string html = read(out / "report.html");
   EXPECT_NE(html.find("<a href=\"fast/skin.ply\">fast/skin.ply</a>"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"fast/fields.vtu\">fast/fields.vtu</a>"), std::string::npos);
-  EXPECT_NE(html.find("times this file"), std::string::npos);
+  EXPECT_NE(html.find("times the skin's"), std::string::npos);
   for (const auto& v : r.variants) {
     bool skin_stage = false;
     for (const auto& t : v.stage_times) skin_stage = skin_stage || t.name == "skin";

@@ -679,8 +679,9 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   std::stable_sort(out.defects.begin(), out.defects.end(),
                    [](const Defect& a, const Defect& b) { return a.move < b.move; });
 
-  openvdb::MaskGrid gaps;
-  const Porosity porosity = measure_porosity(*grids.fill, widest_bead_voxels(sweeps, vs), &gaps);
+  out.gaps = openvdb::MaskGrid::create();
+  out.gaps->setTransform(deposit_transform(vs));
+  const Porosity porosity = measure_porosity(*grids.fill, widest_bead_voxels(sweeps, vs), out.gaps.get());
   out.swept_volume_mm3 = totals.swept_voxels * voxel_volume;
   out.redistributed_volume_mm3 = writer.redistributed_voxels() * voxel_volume;
   out.deposited_volume_mm3 = porosity.material_voxels * voxel_volume;
@@ -689,7 +690,7 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.active_voxels = static_cast<std::size_t>(grids.fill->activeVoxelCount());
   BT_CHECK_OP(out.active_voxels, ==, static_cast<std::size_t>(grids.layer->activeVoxelCount()));
   summarise_layers(toolpath, sweeps, out);
-  VoidsFound voids = locate_voids(gaps, out, toolpath, voxel_volume, kMaxListedVoids);
+  VoidsFound voids = locate_voids(*out.gaps, out, toolpath, voxel_volume, kMaxListedVoids);
   out.void_count = voids.count;
   for (std::size_t i = 0; i < out.layers.size(); ++i)
     out.layers[i].void_volume_mm3 = voids.layer_volume_mm3[i];

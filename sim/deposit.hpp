@@ -119,6 +119,9 @@ struct Deposit {
   openvdb::Int32Grid::Ptr layer;
   // Index into Toolpath::moves of the move that last put material in the voxel (-1 background).
   openvdb::Int32Grid::Ptr move;
+  // The enclosed gaps between beads (sim/porosity.hpp): empty voxels inside the part, whose walls do not
+  // see the outside air.
+  openvdb::MaskGrid::Ptr gaps;
 
   double commanded_volume_mm3 = 0.0;      // sum of the toolpath's move volumes
   double deposited_volume_mm3 = 0.0;      // sum of fill fractions times the voxel volume
@@ -133,10 +136,9 @@ struct Deposit {
   double plough_volume_mm3 = 0.0;
   double unsupported_length_mm = 0.0;
   double ooze_volume_mm3 = 0.0;  // laid after melt offs (on dwells and travels), part of the commanded volume
-  double memory_estimate_bytes = 0.0;
-  std::vector<std::string> notes;  // what the deposit chose for the user (a coarser voxel, ...)
-  std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)  //
-                               // what the deposit was estimated to need before it started
+  double memory_estimate_bytes = 0.0;  // what the deposit was estimated to need before it started
+  std::vector<std::string> notes;      // what the deposit chose for the user (a coarser voxel, ...)
+  std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)
 };
 
 // Deposits every print move of `toolpath`. Throws InputError for a toolpath that cannot be deposited

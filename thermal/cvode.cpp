@@ -8,6 +8,7 @@
 #include <cvode/cvode_ls.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_band.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_band.h>
 
 #include "core/error.hpp"
@@ -30,6 +31,16 @@ std::string flag_name(int flag) {
 
 }  // namespace
 
+void OdeSystem::jacobian(double, std::span<const double>, BandJacobian&) {
+  throw InternalError("this ODE system has no banded Jacobian: solve it with GMRES");
+}
+void OdeSystem::jacobian_times(double, std::span<const double>, std::span<const double>, std::span<double>) {
+  throw InternalError("this ODE system has no Jacobian-vector product: solve it with the banded solver");
+}
+void OdeSystem::jacobian_diagonal(double, std::span<const double>, std::span<double>) {
+  throw InternalError("this ODE system has no Jacobian diagonal: solve it with the banded solver");
+}
+
 BandJacobian::BandJacobian(SUNMatrix matrix, std::size_t upper_bandwidth, std::size_t lower_bandwidth)
     : matrix_(matrix), upper_(upper_bandwidth), lower_(lower_bandwidth) {}
 
@@ -49,7 +60,11 @@ void Cvode::free_cvode(void* mem) noexcept {
 }
 
 Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const CvodeOptions& options)
-    : system_(system), size_(y0.size()), upper_(options.upper_bandwidth), lower_(options.lower_bandwidth) {
+    : system_(system),
+      size_(y0.size()),
+      upper_(options.upper_bandwidth),
+      lower_(options.lower_bandwidth),
+      kind_(options.solver) {
   BT_CHECK_OP(size_, >, 0u);
   SUNContext ctx = nullptr;
   // SUNDIALS 6 without MPI: the communicator argument is a null pointer.
@@ -61,11 +76,18 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
   scratch_ = make_vector(y0);
 
   const auto n = static_cast<sunindextype>(size_);
-  matrix_.reset(
-      SUNBandMatrix(n, static_cast<sunindextype>(upper_), static_cast<sunindextype>(lower_), context_.get()));
-  if (!matrix_) throw InternalError("SUNDIALS: SUNBandMatrix failed");
-  solver_.reset(SUNLinSol_Band(y_.get(), matrix_.get(), context_.get()));
-  if (!solver_) throw InternalError("SUNDIALS: SUNLinSol_Band failed");
+  if (kind_ == LinearSolver::kBand) {
+    matrix_.reset(SUNBandMatrix(n, static_cast<sunindextype>(upper_), static_cast<sunindextype>(lower_),
+                                context_.get()));
+    if (!matrix_) throw InternalError("SUNDIALS: SUNBandMatrix failed");
+    solver_.reset(SUNLinSol_Band(y_.get(), matrix_.get(), context_.get()));
+    if (!solver_) throw InternalError("SUNDIALS: SUNLinSol_Band failed");
+  } else {
+    BT_CHECK_OP(options.krylov_dimension, >, 0);
+    preconditioner_.assign(size_, 1.0);
+    solver_.reset(SUNLinSol_SPGMR(y_.get(), SUN_PREC_LEFT, options.krylov_dimension, context_.get()));
+    if (!solver_) throw InternalError("SUNDIALS: SUNLinSol_SPGMR failed");
+  }
 
   mem_.reset(CVodeCreate(CV_BDF, context_.get()));
   if (!mem_) throw InternalError("SUNDIALS: CVodeCreate failed");
@@ -74,7 +96,14 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
   check(CVodeSetUserData(mem_.get(), this), "CVodeSetUserData");
   check(CVodeWFtolerances(mem_.get(), &Cvode::weights_trampoline), "CVodeWFtolerances");
   check(CVodeSetLinearSolver(mem_.get(), solver_.get(), matrix_.get()), "CVodeSetLinearSolver");
-  check(CVodeSetJacFn(mem_.get(), &Cvode::jacobian_trampoline), "CVodeSetJacFn");
+  if (kind_ == LinearSolver::kBand) {
+    check(CVodeSetJacFn(mem_.get(), &Cvode::jacobian_trampoline), "CVodeSetJacFn");
+  } else {
+    check(CVodeSetJacTimes(mem_.get(), nullptr, &Cvode::jtimes_trampoline), "CVodeSetJacTimes");
+    check(CVodeSetPreconditioner(mem_.get(), &Cvode::psetup_trampoline, &Cvode::psolve_trampoline),
+          "CVodeSetPreconditioner");
+  }
+  if (options.max_step_s > 0.0) check(CVodeSetMaxStep(mem_.get(), options.max_step_s), "CVodeSetMaxStep");
 }
 
 Cvode::~Cvode() = default;
@@ -98,11 +127,16 @@ void Cvode::check(int flag, const char* call) {
   throw InternalError(message);
 }
 
-void Cvode::reinit(double t0, std::span<const double> y0) {
+void Cvode::reinit(double t0, std::span<const double> y0, double first_step_s) {
   BT_CHECK_OP(y0.size(), ==, size_);
-  long steps_now = 0;
+  long steps_now = 0, rhs_now = 0, linear_now = 0;
   check(CVodeGetNumSteps(mem_.get(), &steps_now), "CVodeGetNumSteps");
+  check(CVodeGetNumRhsEvals(mem_.get(), &rhs_now), "CVodeGetNumRhsEvals");
+  check(CVodeGetNumLinIters(mem_.get(), &linear_now), "CVodeGetNumLinIters");
   steps_before_reinit_ += steps_now;
+  rhs_before_reinit_ += rhs_now;
+  linear_before_reinit_ += linear_now;
+  check(CVodeSetInitStep(mem_.get(), std::max(first_step_s, 0.0)), "CVodeSetInitStep");
   std::span<double> y = values(y_.get());
   std::copy(y0.begin(), y0.end(), y.begin());
   last_message_.clear();
@@ -132,6 +166,64 @@ long Cvode::steps() const {
   long steps_now = 0;
   if (CVodeGetNumSteps(mem_.get(), &steps_now) < 0) throw InternalError("CVODE: CVodeGetNumSteps failed");
   return steps_before_reinit_ + steps_now;
+}
+
+double Cvode::last_step() const {
+  double h = 0.0;
+  if (CVodeGetLastStep(mem_.get(), &h) < 0) throw InternalError("CVODE: CVodeGetLastStep failed");
+  return h;
+}
+
+long Cvode::rhs_evaluations() const {
+  long n = 0;
+  if (CVodeGetNumRhsEvals(mem_.get(), &n) < 0) throw InternalError("CVODE: CVodeGetNumRhsEvals failed");
+  return rhs_before_reinit_ + n;
+}
+
+long Cvode::linear_iterations() const {
+  long n = 0;
+  if (CVodeGetNumLinIters(mem_.get(), &n) < 0) throw InternalError("CVODE: CVodeGetNumLinIters failed");
+  return linear_before_reinit_ + n;
+}
+
+int Cvode::jtimes_trampoline(N_Vector v, N_Vector jv, double t, N_Vector y, N_Vector /*fy*/, void* user_data,
+                             N_Vector /*tmp*/) {
+  auto* self = static_cast<Cvode*>(user_data);
+  try {
+    self->system_.jacobian_times(t, values(y), values(v), values(jv));
+    return 0;
+  } catch (...) {
+    self->callback_error_ = std::current_exception();
+    return -1;
+  }
+}
+
+// The preconditioner P = diag(I − γJ): the Jacobian's diagonal is taken when CVODE asks (it is cheap, so
+// always afresh), γ is the one of each solve.
+int Cvode::psetup_trampoline(double t, N_Vector y, N_Vector /*fy*/, int /*jok*/, int* jcur, double /*gamma*/,
+                             void* user_data) {
+  auto* self = static_cast<Cvode*>(user_data);
+  try {
+    self->system_.jacobian_diagonal(t, values(y), self->preconditioner_);
+    *jcur = 1;
+    return 0;
+  } catch (...) {
+    self->callback_error_ = std::current_exception();
+    return -1;
+  }
+}
+
+int Cvode::psolve_trampoline(double /*t*/, N_Vector /*y*/, N_Vector /*fy*/, N_Vector r, N_Vector z,
+                             double gamma, double /*delta*/, int /*lr*/, void* user_data) {
+  auto* self = static_cast<Cvode*>(user_data);
+  const std::span<const double> in = values(r);
+  const std::span<double> out = values(z);
+  const std::vector<double>& jd = self->preconditioner_;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double m = 1.0 - gamma * jd[i];
+    out[i] = m != 0.0 ? in[i] / m : in[i];
+  }
+  return 0;
 }
 
 int Cvode::rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user_data) {

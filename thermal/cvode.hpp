@@ -1,8 +1,8 @@
-// A small RAII wrapper around SUNDIALS 6 CVODE (BDF with a banded direct linear solver), internal to the
-// thermal library. It is the one place where SUNDIALS is called and where its return codes become
-// exceptions (STYLE.md rule 9): every handle (context, vectors, matrix, linear solver, integrator memory) is
-// owned here, CVODE's error handler is installed at creation, and an exception thrown by a callback is
-// carried across the C boundary and rethrown to the caller.
+// A small RAII wrapper around SUNDIALS 6 CVODE (BDF, with a banded direct linear solver or preconditioned
+// GMRES), internal to the thermal library. It is the one place where SUNDIALS is called and where its return
+// codes become exceptions (STYLE.md rule 9): every handle (context, vectors, matrix, linear solver,
+// integrator memory) is owned here, CVODE's error handler is installed at creation, and an exception thrown
+// by a callback is carried across the C boundary and rethrown to the caller.
 #pragma once
 
 #include <cstddef>
@@ -34,21 +34,32 @@ class BandJacobian {
 };
 
 // The ODE system dy/dt = f(t, y) CVODE integrates. Callbacks may throw; the exception reaches the caller
-// of Cvode::step.
+// of Cvode::step. A system solved with the banded solver provides jacobian(); one solved with GMRES provides
+// jacobian_times() and jacobian_diagonal() (the preconditioner is the diagonal of I − γJ).
 class OdeSystem {
  public:
   virtual ~OdeSystem() = default;
   virtual void rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
   // Fills the nonzero entries of ∂f/∂y at (t, y); entries not set are zero.
-  virtual void jacobian(double t, std::span<const double> y, BandJacobian& jacobian) = 0;
+  virtual void jacobian(double t, std::span<const double> y, BandJacobian& jacobian);
+  // Jv = (∂f/∂y at (t, y)) · v.
+  virtual void jacobian_times(double t, std::span<const double> y, std::span<const double> v,
+                              std::span<double> jv);
+  // The diagonal of ∂f/∂y at (t, y).
+  virtual void jacobian_diagonal(double t, std::span<const double> y, std::span<double> diagonal);
   // Error weights of the local error test: CVODE accepts a step when the weighted RMS norm of its local
   // error estimate is below 1, so weight_i = 1 / (the error allowed on y_i). All weights must be > 0.
   virtual void error_weights(std::span<const double> y, std::span<double> weights) = 0;
 };
 
+enum class LinearSolver { kBand, kGmres };
+
 struct CvodeOptions {
-  std::size_t upper_bandwidth = 0;
-  std::size_t lower_bandwidth = 0;
+  LinearSolver solver = LinearSolver::kBand;
+  std::size_t upper_bandwidth = 0;  // kBand
+  std::size_t lower_bandwidth = 0;  // kBand
+  int krylov_dimension = 10;        // kGmres: the largest Krylov subspace
+  double max_step_s = 0.0;          // > 0: the longest step CVODE may take
 };
 
 class Cvode {
@@ -59,8 +70,9 @@ class Cvode {
   Cvode(const Cvode&) = delete;
   Cvode& operator=(const Cvode&) = delete;
 
-  // Restarts the integration at (t0, y0) after a discontinuity (element birth); keeps the step count.
-  void reinit(double t0, std::span<const double> y0);
+  // Restarts the integration at (t0, y0) after a discontinuity (element birth); keeps the step count. With
+  // first_step_s > 0 the first step tries that size instead of CVODE's own estimate.
+  void reinit(double t0, std::span<const double> y0, double first_step_s = 0.0);
   // The integrator never steps past t_stop, and returns exactly at it. Must lie ahead of the current time.
   void set_stop_time(double t_stop);
   // Takes one internal step towards t_out and returns the time reached; the state is state().
@@ -71,6 +83,11 @@ class Cvode {
   std::span<const double> interpolate(double t);
   // Internal steps taken since construction, over all restarts.
   long steps() const;
+  // The size of the last step taken, s (0 before the first).
+  double last_step() const;
+  // Right-hand side evaluations, GMRES iterations (0 with the banded solver), over all restarts.
+  long rhs_evaluations() const;
+  long linear_iterations() const;
 
  private:
   template <class T, void (*Free)(T)>
@@ -95,6 +112,12 @@ class Cvode {
   static int jacobian_trampoline(double t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
                                  N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
   static int weights_trampoline(N_Vector y, N_Vector weights, void* user_data);
+  static int jtimes_trampoline(N_Vector v, N_Vector jv, double t, N_Vector y, N_Vector fy, void* user_data,
+                               N_Vector tmp);
+  static int psetup_trampoline(double t, N_Vector y, N_Vector fy, int jok, int* jcur, double gamma,
+                               void* user_data);
+  static int psolve_trampoline(double t, N_Vector y, N_Vector fy, N_Vector r, N_Vector z, double gamma,
+                               double delta, int lr, void* user_data);
   static void error_handler(int error_code, const char* module, const char* function, char* message,
                             void* user_data);
   // Throws (the callback's exception if one is pending, else InternalError naming `call`) when flag < 0.
@@ -106,6 +129,10 @@ class Cvode {
   std::size_t upper_;
   std::size_t lower_;
   long steps_before_reinit_ = 0;
+  long rhs_before_reinit_ = 0;
+  long linear_before_reinit_ = 0;
+  LinearSolver kind_;
+  std::vector<double> preconditioner_;  // kGmres: the Jacobian's diagonal J_ii
   std::string last_message_;
   std::exception_ptr callback_error_;
   // Declaration order is destruction order reversed: CVODE memory goes first, the context last.

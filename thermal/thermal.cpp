@@ -214,31 +214,10 @@ class Recorder {
 // layer and the roller. The reheating by the new layer afterwards is what fuses them, not a defect (and its
 // peak depends on the node spacing, since the whole layer is born at once).
 Verdict judge(const LayerResult& r, const Material& material) {
-  if (r.substrate_at_start_c > material.support_limit_c) return Verdict::kTooHot;
-  if (r.healing < material.required_healing) return Verdict::kTooCold;
-  return Verdict::kOk;
+  return judge_interface(r.substrate_at_start_c, true, r.healing, material);
 }
 
 }  // namespace
-
-std::string_view to_string(Verdict verdict) {
-  switch (verdict) {
-    case Verdict::kOk:
-      return "ok";
-    case Verdict::kTooHot:
-      return "too_hot";
-    case Verdict::kTooCold:
-      return "too_cold";
-    case Verdict::kNoInterface:
-      return "no_interface";
-  }
-  return "unknown";
-}
-
-double reptation_time_s(const Material& material, double temp_c) {
-  const double rate = Reptation(material).rate_per_s(temp_c);
-  return rate > 0.0 ? 1.0 / rate : std::numeric_limits<double>::infinity();
-}
 
 namespace {
 

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "core/material.hpp"
+#include "thermal/fusion.hpp"
 
 namespace beadtwin::thermal {
 
@@ -37,9 +38,6 @@ struct Options {
   double cooldown_s = 600;       // simulated time after the last layer (healing goes on), >= 0
   double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
 };
-
-enum class Verdict { kOk, kTooHot, kTooCold, kNoInterface };
-std::string_view to_string(Verdict verdict);
 
 struct LayerResult {
   // Temperature of the layer below (its top node) while this layer is laid, over [start_s, end_s]: minimum,
@@ -69,10 +67,6 @@ struct ThermalResult {
   long steps = 0;         // CVODE steps taken
   double end_time_s = 0;  // end of the simulation: last layer's end + cooldown
 };
-
-// Reptation (welding) time t_w(T) = reptation_time_ref_s · exp(E_a/R (1/T − 1/T_ref)) with T in K, s;
-// +infinity below material.healing_min_temp_c (no healing in the glassy state).
-double reptation_time_s(const Material& material, double temp_c);
 
 // Solves the thermal history of the layer stack. `layers` in deposition order (layer 0 on the table).
 // Throws InputError naming the layer index or the field when an input cannot be used (all problems found

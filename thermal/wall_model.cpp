@@ -10,8 +10,6 @@ namespace beadtwin::thermal {
 
 namespace {
 
-constexpr double kGasConstant_J_molK = 8.314462618;
-constexpr double kStefanBoltzmann_W_m2K4 = 5.670374419e-8;
 constexpr double kM2PerMm2 = 1e-6;
 constexpr double kMPerMm = 1e-3;
 
@@ -20,22 +18,6 @@ double kelvin(double temp_c) {
 }
 
 }  // namespace
-
-Reptation::Reptation(const Material& material)
-    : min_temp_c_(material.healing_min_temp_c),
-      ref_time_s_(material.reptation_time_ref_s),
-      activation_temp_k_(material.healing_activation_J_mol / kGasConstant_J_molK),
-      inv_ref_temp_k_(1.0 / kelvin(material.healing_ref_temp_c)) {}
-
-double Reptation::rate_per_s(double temp_c) const {
-  if (!(temp_c >= min_temp_c_)) return 0.0;
-  return std::exp(-activation_temp_k_ * (1.0 / kelvin(temp_c) - inv_ref_temp_k_)) / ref_time_s_;
-}
-
-double Reptation::rate_derivative(double temp_c) const {
-  const double t_k = kelvin(temp_c);
-  return rate_per_s(temp_c) * activation_temp_k_ / (t_k * t_k);
-}
 
 WallModel::WallModel(std::span<const LayerInput> layers, const Material& material, const Environment& env,
                      int nodes_per_layer)

@@ -9,25 +9,10 @@
 
 #include "core/material.hpp"
 #include "thermal/cvode.hpp"
+#include "thermal/fusion.hpp"
 #include "thermal/thermal.hpp"
 
 namespace beadtwin::thermal {
-
-// Non-isothermal reptation (Yang & Pitchumani 2002): rate 1/t_w(T) of the healing integral
-// ∫ dt / t_w(T(t)), with t_w(T) = t_ref · exp(E_a/R (1/T − 1/T_ref)); zero below the healing threshold.
-class Reptation {
- public:
-  explicit Reptation(const Material& material);
-  double rate_per_s(double temp_c) const;
-  // d(rate)/dT, 1/(s·K); zero below the threshold (the step at the threshold has no derivative).
-  double rate_derivative(double temp_c) const;
-
- private:
-  double min_temp_c_;
-  double ref_time_s_;
-  double activation_temp_k_;  // E_a / R
-  double inv_ref_temp_k_;     // 1 / T_ref
-};
 
 // State layout: one block of (n + 2) entries per layer i, so that every coupling stays within a narrow
 // band (upper bandwidth 3, lower max(3, n)):

@@ -1,0 +1,75 @@
+// The thermal benchmark (issue 7): a scenario's first variant sliced and deposited as a run does, then its
+// thermal mesh built and the heat transfer solved, each timed inside the process. Prints the mesh, the
+// integrator's work, the energy balance, the verdicts and the real-time factor (simulated print time over
+// the solve's wall time). bench/bench_thermal.sh runs it with /usr/bin/time for the peak memory.
+//
+//   thermal_bench SCENARIO [BIRTH_INTERVAL_S]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include <openvdb/openvdb.h>
+
+#include "scenarios/run.hpp"
+#include "scenarios/scenario.hpp"
+#include "sim/deposit.hpp"
+#include "thermal/heat.hpp"
+#include "thermal/mesh.hpp"
+
+using namespace beadtwin;
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || argc > 3) {
+    std::fprintf(stderr, "usage: thermal_bench SCENARIO [BIRTH_INTERVAL_S]\n");
+    return 2;
+  }
+  try {
+    openvdb::initialize();
+    const scenarios::Scenario sc = scenarios::load_scenario(argv[1]);
+    const scenarios::Variant& v = sc.variants.front();
+    const Toolpath tp = scenarios::variant_toolpath(v);
+    auto t0 = std::chrono::steady_clock::now();
+    const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
+    std::printf("deposit %.2f s, %zu voxels\n", seconds_since(t0), d.active_voxels);
+    t0 = std::chrono::steady_clock::now();
+    const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, d);
+    std::size_t interfaces = 0;
+    for (const thermal::ThermalLink& l : mesh.links) interfaces += l.interface;
+    std::printf("mesh %.2f s, %zu chains, %zu cells, %zu links, %zu interfaces\n", seconds_since(t0),
+                mesh.chains, mesh.cells.size(), mesh.links.size(), interfaces);
+    thermal::HeatOptions o;
+    if (argc == 3) o.birth_interval_s = std::atof(argv[2]);
+    t0 = std::chrono::steady_clock::now();
+    const thermal::HeatResult h =
+        thermal::solve_heat(mesh, tp.layers.size(), tp.total_time_s(), v.material, v.machine.environment, o);
+    const double solve_s = seconds_since(t0);
+    std::size_t hot = 0, cold = 0;
+    double min_healing = 1.0;
+    for (const thermal::InterfaceResult& r : h.interfaces) {
+      hot += r.verdict == thermal::Verdict::kTooHot;
+      cold += r.verdict == thermal::Verdict::kTooCold;
+      min_healing = std::min(min_healing, r.healing);
+    }
+    const double simulated = h.end_time_s - h.start_time_s;
+    std::printf(
+        "heat %.2f s: birth interval %.3f s, %zu events, %ld steps, %ld rhs, %ld gmres iterations; energy "
+        "in %.4g J lost %.4g J stored %.4g J, balance error %.2e\n",
+        solve_s, h.birth_interval_s, h.birth_events, h.steps, h.rhs_evaluations, h.linear_iterations,
+        h.energy_in_J, h.energy_lost_J, h.energy_stored_J, h.energy_balance_rel_error);
+    std::printf("interfaces %zu: too hot %zu, too cold %zu, min healing %.3f\n", h.interfaces.size(), hot,
+                cold, min_healing);
+    std::printf("simulated %.0f s (print %.0f s) in %.2f s: real-time factor %.0f (print only %.0f)\n",
+                simulated, tp.total_time_s(), solve_s, simulated / solve_s, tp.total_time_s() / solve_s);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,459 @@
+#include "thermal/heat.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <span>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "core/error.hpp"
+#include "core/units.hpp"
+#include "thermal/cvode.hpp"
+
+namespace beadtwin::thermal {
+namespace {
+
+constexpr double kM2PerMm2 = 1e-6;
+constexpr double kMPerMm = 1e-3;
+constexpr double kM3PerMm3 = 1e-9;
+
+// One neighbour of a cell: who, the conductance to it and the contact area that is open surface while the
+// neighbour is not yet born.
+struct Neighbour {
+  std::uint32_t cell = 0;
+  double conductance_W_K = 0.0;
+  double area_m2 = 0.0;
+};
+
+// The conductivity tensor of a cell whose bead runs along `along` (a unit vector in plan).
+Eigen::Matrix3d conductivity(const Eigen::Vector2d& along, const Material& m) {
+  const Eigen::Vector3d t(along.x(), along.y(), 0.0);
+  const Eigen::Vector3d s(-along.y(), along.x(), 0.0);
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  return m.conductivity_along_W_mK * t * t.transpose() + m.conductivity_across_W_mK * s * s.transpose() +
+         m.conductivity_through_W_mK * z * z.transpose();
+}
+
+// The part as an ODE system: y = [T_0 .. T_{n-1} (°C) | Q (J lost through the boundary)]. Cells are in
+// birth order, so the born ones are the first born_.
+class PartModel final : public OdeSystem {
+ public:
+  PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env)
+      : n_(mesh.cells.size()),
+        deposition_c_(material.deposition_temp_c),
+        ambient_c_(env.ambient_c),
+        ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
+        bed_c_(env.bed_temp_c),
+        h_(env.convection_W_m2K),
+        eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
+    const double rho_c = material.density_kg_m3 * material.specific_heat_J_kgK;
+    capacity_.resize(n_);
+    open_m2_.resize(n_);
+    table_W_K_.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const ThermalCell& c = mesh.cells[i];
+      capacity_[i] = rho_c * c.volume_mm3 * kM3PerMm3;
+      open_m2_[i] = c.open_area_mm2 * kM2PerMm2;
+      table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
+    }
+    std::vector<std::size_t> count(n_ + 1, 0);
+    for (const ThermalLink& l : mesh.links) {
+      ++count[l.a + 1];
+      ++count[l.b + 1];
+    }
+    for (std::size_t i = 0; i < n_; ++i) count[i + 1] += count[i];
+    first_ = count;
+    neighbours_.resize(count[n_]);
+    std::vector<std::size_t> next(count.begin(), count.end() - 1);
+    const double half_voxel = 0.5 * mesh.voxel_size_mm;
+    for (const ThermalLink& l : mesh.links) {
+      const ThermalCell& a = mesh.cells[l.a];
+      const ThermalCell& b = mesh.cells[l.b];
+      const double area = l.area_mm2();
+      const double vector_length = l.area_vector_mm2.norm();
+      const Eigen::Vector3d normal =
+          vector_length > 0.0 ? Eigen::Vector3d(l.area_vector_mm2 / vector_length) : Eigen::Vector3d::UnitZ();
+      const Eigen::Matrix3d k = 0.5 * (conductivity(a.along, material) + conductivity(b.along, material));
+      const double k_n = normal.dot(k * normal);
+      const double distance = std::max(std::abs((b.centroid_mm - a.centroid_mm).dot(normal)), half_voxel);
+      const double g = k_n * area * kM2PerMm2 / (distance * kMPerMm);
+      neighbours_[next[l.a]++] = {l.b, g, area * kM2PerMm2};
+      neighbours_[next[l.b]++] = {l.a, g, area * kM2PerMm2};
+    }
+    // Sorted by neighbour, so the born ones come first.
+    for (std::size_t i = 0; i < n_; ++i)
+      std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i]),
+                neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]),
+                [](const Neighbour& x, const Neighbour& y) { return x.cell < y.cell; });
+    exposed_m2_ = open_m2_;
+    for (std::size_t i = 0; i < n_; ++i)
+      for (const Neighbour& nb : neighbours(i)) exposed_m2_[i] += nb.area_m2;
+    loss_.assign(n_, 0.0);
+  }
+
+  // The integrator's state: the first `capacity` cells (the born ones and room for the next) and the energy
+  // lost, at index capacity. Every vector operation of a step runs over it, so it grows with the print.
+  void set_capacity(std::size_t capacity) {
+    BT_CHECK(capacity >= born_ && capacity <= n_);
+    cap_ = capacity;
+  }
+  std::size_t capacity() const { return cap_; }
+  std::size_t size() const { return cap_ + 1; }
+  std::size_t born() const { return born_; }
+  double capacity(std::size_t i) const { return capacity_[i]; }
+  std::span<const Neighbour> neighbours(std::size_t i) const {
+    return {neighbours_.data() + first_[i], first_[i + 1] - first_[i]};
+  }
+  // C / ΣG of cell i over all its contacts, s.
+  double time_constant_s(std::size_t i) const {
+    double g = table_W_K_[i];
+    for (const Neighbour& nb : neighbours(i)) g += nb.conductance_W_K;
+    return g > 0.0 ? capacity_[i] / g : std::numeric_limits<double>::infinity();
+  }
+
+  // Cells [born_, end) are born: at the deposition temperature in y, their faces towards born cells closed.
+  void birth(std::size_t end, std::span<double> y) {
+    for (std::size_t i = born_; i < end; ++i) {
+      y[i] = deposition_c_;
+      for (const Neighbour& nb : neighbours(i))
+        if (nb.cell < end) exposed_m2_[i] -= nb.area_m2;
+      for (const Neighbour& nb : neighbours(i))
+        if (nb.cell < born_) exposed_m2_[nb.cell] -= nb.area_m2;
+      energy_in_J_ += capacity_[i] * (deposition_c_ - ambient_c_);
+    }
+    born_ = end;
+  }
+
+  double energy_in_J() const { return energy_in_J_; }
+  double energy_stored_J(std::span<const double> y) const {
+    double e = 0.0;
+    for (std::size_t i = 0; i < born_; ++i) e += capacity_[i] * (y[i] - ambient_c_);
+    return e;
+  }
+
+  void set_tolerances(double rel_tol, double abs_tol_k) {
+    rel_tol_ = rel_tol;
+    abs_tol_k_ = abs_tol_k;
+    double total = 0.0;
+    for (double c : capacity_) total += c;
+    abs_tol_J_ = std::max(total * abs_tol_k, 1e-12);
+  }
+
+  void rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) override {
+    const std::size_t born = born_;
+    for_cells(born, [&](std::size_t i) {
+      const double t = y[i];
+      double flux = 0.0;
+      for (const Neighbour& nb : neighbours(i)) {
+        if (nb.cell >= born) break;
+        flux += nb.conductance_W_K * (y[nb.cell] - t);
+      }
+      const double tk = t + kKelvinOffset;
+      const double loss =
+          exposed_m2_[i] * (h_ * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
+          table_W_K_[i] * (t - bed_c_);
+      loss_[i] = loss;
+      ydot[i] = (flux - loss) / capacity_[i];
+    });
+    double q = 0.0;
+    for (std::size_t i = 0; i < born; ++i) q += loss_[i];
+    for (std::size_t i = born; i < cap_; ++i) ydot[i] = 0.0;
+    ydot[cap_] = q;
+  }
+
+  void jacobian_times(double /*t*/, std::span<const double> y, std::span<const double> v,
+                      std::span<double> jv) override {
+    const std::size_t born = born_;
+    for_cells(born, [&](std::size_t i) {
+      double sum = 0.0;
+      for (const Neighbour& nb : neighbours(i)) {
+        if (nb.cell >= born) break;
+        sum += nb.conductance_W_K * (v[nb.cell] - v[i]);
+      }
+      const double d_loss = loss_derivative(i, y[i]) * v[i];
+      loss_[i] = d_loss;
+      jv[i] = (sum - d_loss) / capacity_[i];
+    });
+    double q = 0.0;
+    for (std::size_t i = 0; i < born; ++i) q += loss_[i];
+    for (std::size_t i = born; i < cap_; ++i) jv[i] = 0.0;
+    jv[cap_] = q;
+  }
+
+  void jacobian_diagonal(double /*t*/, std::span<const double> y, std::span<double> diagonal) override {
+    const std::size_t born = born_;
+    for_cells(born, [&](std::size_t i) {
+      double g = 0.0;
+      for (const Neighbour& nb : neighbours(i)) {
+        if (nb.cell >= born) break;
+        g += nb.conductance_W_K;
+      }
+      diagonal[i] = -(g + loss_derivative(i, y[i])) / capacity_[i];
+    });
+    for (std::size_t i = born; i < cap_; ++i) diagonal[i] = 0.0;
+    diagonal[cap_] = 0.0;
+  }
+
+  void error_weights(std::span<const double> y, std::span<double> weights) override {
+    for (std::size_t i = 0; i < cap_; ++i) weights[i] = 1.0 / (rel_tol_ * std::abs(y[i]) + abs_tol_k_);
+    weights[cap_] = 1.0 / (rel_tol_ * std::abs(y[cap_]) + abs_tol_J_);
+  }
+
+ private:
+  // d(loss)/dT of cell i at temperature t, W/K.
+  double loss_derivative(std::size_t i, double t) const {
+    const double tk = t + kKelvinOffset;
+    return exposed_m2_[i] * (h_ + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
+  }
+
+  template <class F>
+  void for_cells(std::size_t end, const F& f) const {
+    constexpr std::size_t kGrain = 4096;
+    if (end < 2 * kGrain) {
+      for (std::size_t i = 0; i < end; ++i) f(i);
+      return;
+    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, end, kGrain),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                      });
+  }
+
+  std::size_t n_;
+  std::vector<double> capacity_;    // J/K
+  std::vector<double> open_m2_;     // open for good
+  std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
+  std::vector<double> table_W_K_;   // bed contact conductance
+  std::vector<std::size_t> first_;
+  std::vector<Neighbour> neighbours_;
+  mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
+  std::size_t born_ = 0;
+  std::size_t cap_ = 0;
+  double deposition_c_, ambient_c_, ambient_k4_, bed_c_, h_, eps_sigma_;
+  double energy_in_J_ = 0.0;
+  double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
+};
+
+void check_options(const HeatOptions& o) {
+  const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+  if (!positive(o.rel_tol))
+    throw InputError({}, "thermal.rel_tol", fmt::format("must be > 0, got {}", o.rel_tol));
+  if (!positive(o.abs_tol_k))
+    throw InputError({}, "thermal.abs_tol", fmt::format("must be > 0, got {}", o.abs_tol_k));
+  if (!(o.birth_interval_s >= 0.0) || !std::isfinite(o.birth_interval_s))
+    throw InputError({}, "thermal.birth_interval",
+                     fmt::format("must be 0 or more, got {}", o.birth_interval_s));
+  if (!(o.cooldown_s >= 0.0) || !std::isfinite(o.cooldown_s))
+    throw InputError({}, "thermal.cooldown", fmt::format("must be 0 or more, got {}", o.cooldown_s));
+  if (!positive(o.sample_interval_s))
+    throw InputError({}, "thermal.sample_interval", fmt::format("must be > 0, got {}", o.sample_interval_s));
+  if (o.krylov_dimension < 1 || o.krylov_dimension > 200)
+    throw InputError({}, "thermal.krylov_dimension",
+                     fmt::format("must be 1..200, got {}", o.krylov_dimension));
+}
+
+}  // namespace
+
+HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double end_s,
+                      const Material& material, const Environment& env, const HeatOptions& options) {
+  check_options(options);
+  HeatResult result;
+  const std::size_t n = mesh.cells.size();
+  if (n == 0) return result;
+  PartModel model(mesh, material, env);
+  model.set_tolerances(options.rel_tol, options.abs_tol_k);
+
+  // The birth interval and the groups of cells born together.
+  double interval = options.birth_interval_s;
+  if (interval <= 0.0) {
+    std::vector<double> tau;
+    tau.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) tau.push_back(model.time_constant_s(i));
+    std::nth_element(tau.begin(), tau.begin() + static_cast<std::ptrdiff_t>(n / 2), tau.end());
+    interval = std::isfinite(tau[n / 2]) ? 0.1 * tau[n / 2] : 1.0;
+  }
+  result.birth_interval_s = interval;
+  struct Group {
+    std::size_t end = 0;  // cells [previous end, end)
+    double time_s = 0.0;
+  };
+  std::vector<Group> groups;
+  for (std::size_t i = 0; i < n;) {
+    const double first = mesh.cells[i].birth_s;
+    std::size_t j = i;
+    while (j < n && mesh.cells[j].birth_s <= first + interval) ++j;
+    groups.push_back({j, 0.5 * (first + mesh.cells[j - 1].birth_s)});
+    i = j;
+  }
+  result.birth_events = groups.size();
+
+  // Interfaces, by the younger cell (each group opens its own) and by both cells (the healing integral is
+  // advanced only where a cell is warm enough to heal).
+  std::vector<std::vector<std::size_t>> by_younger(n);
+  std::vector<std::vector<std::uint32_t>> by_cell(n);
+  for (std::size_t l = 0; l < mesh.links.size(); ++l) {
+    const ThermalLink& link = mesh.links[l];
+    if (!link.interface) continue;
+    InterfaceResult r;
+    r.older = link.a;
+    r.younger = link.b;
+    r.area_mm2 = link.area_mm2();
+    const double length = link.area_vector_mm2.norm();
+    r.on_top = length > 0.0 && std::abs(link.area_vector_mm2.z()) >= 0.5 * length;
+    by_younger[link.b].push_back(result.interfaces.size());
+    by_cell[link.a].push_back(static_cast<std::uint32_t>(result.interfaces.size()));
+    by_cell[link.b].push_back(static_cast<std::uint32_t>(result.interfaces.size()));
+    result.interfaces.push_back(r);
+  }
+  std::vector<double> integral(result.interfaces.size(), 0.0);  // ∫ dt / t_w so far
+  const Reptation reptation(material);
+  // A cell is warm when it may be above the healing threshold during a step: at either end (with a margin
+  // for what the interpolant does between them). An interface heals only while one of its cells is warm.
+  const double warm_c = reptation.min_temp_c() - 1.0;
+  std::vector<char> warm(n, 0);
+  std::vector<std::uint32_t> healing_now;
+
+  // History samples.
+  const double t0 = groups.front().time_s;
+  const double t_end = std::max(groups.back().time_s, end_s) + options.cooldown_s;
+  result.start_time_s = t0;
+  result.end_time_s = t_end;
+  result.layer_temp_c.assign(layer_count, {});
+  std::vector<double> layer_volume(layer_count, 0.0);
+  double next_sample = t0;
+  const auto sample = [&](double t, std::span<const double> y) {
+    std::vector<double> sum(layer_count, 0.0), volume(layer_count, 0.0);
+    for (std::size_t i = 0; i < model.born(); ++i) {
+      const int layer = mesh.cells[i].layer;
+      if (layer < 0 || static_cast<std::size_t>(layer) >= layer_count) continue;
+      sum[static_cast<std::size_t>(layer)] += mesh.cells[i].volume_mm3 * y[i];
+      volume[static_cast<std::size_t>(layer)] += mesh.cells[i].volume_mm3;
+    }
+    result.sample_times_s.push_back(t);
+    for (std::size_t k = 0; k < layer_count; ++k)
+      result.layer_temp_c[k].push_back(volume[k] > 0.0 ? static_cast<float>(sum[k] / volume[k])
+                                                       : std::numeric_limits<float>::quiet_NaN());
+  };
+
+  // The integrator's state (PartModel::set_capacity) at the end of the last step; and every cell's
+  // temperature for the cells beyond it (unborn: they wait at the deposition temperature).
+  std::vector<double> temps(n, material.deposition_temp_c);
+  std::size_t cap = std::min(n, std::max<std::size_t>(groups.front().end, 1024));
+  model.set_capacity(cap);
+  std::vector<double> before(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(cap));
+  before.push_back(0.0);  // energy lost
+  const auto born_group = [&](const Group& g, std::span<double> state) {
+    const std::size_t begin = model.born();
+    for (std::size_t i = begin; i < g.end; ++i)
+      for (const std::size_t k : by_younger[i]) {
+        InterfaceResult& r = result.interfaces[k];
+        r.substrate_c = r.older < begin ? state[r.older] : material.deposition_temp_c;
+      }
+    model.birth(g.end, state);
+  };
+  born_group(groups.front(), before);
+
+  CvodeOptions co;
+  co.solver = LinearSolver::kGmres;
+  co.krylov_dimension = options.krylov_dimension;
+  auto cvode = std::make_unique<Cvode>(model, t0, before, co);
+  long steps = 0, rhs = 0, linear = 0;  // of the integrators replaced
+  double t = t0;
+  const auto healing_rate = [&](std::span<const double> state, std::uint32_t k) {
+    const InterfaceResult& r = result.interfaces[k];
+    return reptation.rate_per_s(0.5 * (state[r.older] + state[r.younger]));
+  };
+  // The interfaces that heal over the step now ending: born (both cells), not yet fully healed, and with a
+  // warm cell; each once.
+  const auto find_healing = [&](std::span<const double> start, std::span<const double> end) {
+    const std::size_t born = model.born();
+    for (std::size_t i = 0; i < born; ++i) warm[i] = std::max(start[i], end[i]) >= warm_c;
+    healing_now.clear();
+    for (std::size_t i = 0; i < born; ++i) {
+      if (!warm[i]) continue;
+      for (const std::uint32_t k : by_cell[i]) {
+        const InterfaceResult& r = result.interfaces[k];
+        const std::uint32_t other = r.older == i ? r.younger : r.older;
+        if (r.younger >= born || integral[k] >= 1.0) continue;
+        if (other < i && warm[other]) continue;  // counted from the other cell
+        healing_now.push_back(k);
+      }
+    }
+  };
+  // Integrates to `target`: the healing over each step, and the samples in it.
+  const auto advance = [&](double target) {
+    if (target <= t) return;
+    cvode->set_stop_time(target);
+    while (t < target) {
+      const double t_prev = t;
+      t = cvode->step(target);
+      const double half = 0.5 * (t - t_prev);
+      const double mid = t_prev + half;
+      const double offset = half / std::sqrt(3.0);
+      find_healing(before, cvode->state());
+      if (!healing_now.empty()) {
+        // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
+        const std::span<const double> lo = cvode->interpolate(mid - offset);
+        for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(lo, k);
+        const std::span<const double> hi = cvode->interpolate(mid + offset);
+        for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(hi, k);
+      }
+      const std::span<const double> now = cvode->state();
+      std::copy(now.begin(), now.end(), before.begin());
+      while (next_sample <= t) {
+        sample(next_sample, next_sample == t ? cvode->state() : cvode->interpolate(next_sample));
+        next_sample += options.sample_interval_s;
+      }
+    }
+  };
+  for (std::size_t g = 1; g < groups.size(); ++g) {
+    advance(groups[g].time_s);
+    const bool grow = groups[g].end > cap;
+    if (grow) {  // by half at least, so the integrator is rebuilt a few dozen times in all
+      const double lost = before[cap];
+      std::copy(before.begin(), before.end() - 1, temps.begin());
+      cap = std::min(n, std::max(groups[g].end, cap + cap / 2));
+      before.assign(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(cap));
+      before.push_back(lost);
+    }
+    born_group(groups[g], before);
+    if (grow) {
+      steps += cvode->steps();
+      rhs += cvode->rhs_evaluations();
+      linear += cvode->linear_iterations();
+      cvode.reset();
+      model.set_capacity(cap);
+      cvode = std::make_unique<Cvode>(model, t, before, co);
+    }
+    // The first step tries to reach the next group at once: the temperatures move slowly against the birth
+    // interval (it is a tenth of a cell's time constant), so CVODE usually takes it.
+    const double gap = g + 1 < groups.size() ? groups[g + 1].time_s - t : interval;
+    cvode->reinit(t, before, std::max(gap, 1e-3 * interval));
+  }
+  advance(t_end);
+  for (std::size_t k = 0; k < integral.size(); ++k)
+    result.interfaces[k].healing = std::min(1.0, std::pow(integral[k], 0.25));
+  for (InterfaceResult& r : result.interfaces)
+    r.verdict = judge_interface(r.substrate_c, r.on_top, r.healing, material);
+
+  std::copy(before.begin(), before.end() - 1, temps.begin());
+  result.final_temp_c.assign(temps.begin(), temps.end());
+  result.energy_in_J = model.energy_in_J();
+  result.energy_lost_J = before[cap];
+  result.energy_stored_J = model.energy_stored_J(temps);
+  const double scale = std::max(std::abs(result.energy_in_J),
+                                std::abs(result.energy_lost_J) + std::abs(result.energy_stored_J));
+  result.energy_balance_rel_error =
+      scale > 0.0 ? std::abs(result.energy_in_J - result.energy_lost_J - result.energy_stored_J) / scale
+                  : 0.0;
+  result.steps = steps + cvode->steps();
+  result.rhs_evaluations = rhs + cvode->rhs_evaluations();
+  result.linear_iterations = linear + cvode->linear_iterations();
+  return result;
+}
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,77 @@
+// Transient heat transfer in the printed part, cell by cell on the thermal mesh (docs/physics.md, heat
+// transfer in the part), and the fusion window of every interface.
+//
+// Each cell is a control volume of capacity ρ c_p V at one temperature. Cells exchange heat with the cells
+// they touch through G = k_n A / d: A the contact's area, d the distance of the two centroids along its
+// normal n, and k_n = nᵀ K n with K the orthotropic conductivity (along the bead, across it in plan,
+// through the layer) averaged over the two cells' bead directions. Open surface loses heat by convection
+// and radiation, h (T − T∞) + ε σ (T⁴ − T∞⁴); the surface on the table exchanges with it through the bed
+// contact conductance (nothing on an insulated table). A cell is born at the deposition temperature when
+// its material lands; until then it does not exist for its neighbours, whose faces towards it are open
+// surface.
+//
+// Births come in groups: the cells laid within one birth interval are born together, at the middle of the
+// group's birth times. The integration (SUNDIALS CVODE, BDF, GMRES preconditioned by the diagonal of the
+// Newton matrix, the Jacobian applied exactly) restarts at every group. Energy lost through the boundary is
+// integrated as one more state, so the balance in − lost − stored checks the bookkeeping.
+//
+// Every link marked as an interface is judged (thermal/fusion.hpp): the substrate temperature is the older
+// cell's as the younger is born; the healing integral runs over the interface temperature (the mean of the
+// two cells') from then to the end of the cooldown, by two-point Gauss quadrature over each CVODE step on
+// CVODE's own interpolant.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/material.hpp"
+#include "thermal/fusion.hpp"
+#include "thermal/mesh.hpp"
+
+namespace beadtwin::thermal {
+
+struct HeatOptions {
+  double rel_tol = 1e-3;    // CVODE relative tolerance
+  double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
+  // Cells laid within this time are born together, s; 0: a tenth of the cells' median conduction time
+  // constant (C / ΣG), which keeps the births' grouping well inside how fast a cell's temperature can move.
+  double birth_interval_s = 0.0;
+  double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0
+  double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
+  int krylov_dimension = 10;
+};
+
+struct InterfaceResult {
+  std::uint32_t older = 0, younger = 0;  // cells
+  double area_mm2 = 0.0;
+  bool on_top = false;       // the younger lands on the older (contact within 60° of horizontal)
+  double substrate_c = 0.0;  // the older cell's temperature as the younger was born
+  double healing = 0.0;      // min(1, D_h) at the end
+  Verdict verdict = Verdict::kOk;
+};
+
+struct HeatResult {
+  std::vector<InterfaceResult> interfaces;  // one per interface link, in link order
+  double birth_interval_s = 0.0;            // the one used
+  std::size_t birth_events = 0;
+  std::vector<double> sample_times_s;  // from the first birth to the end, every sample interval
+  // [toolpath layer][sample]: volume-weighted mean temperature of the layer's born cells, °C; NaN before any.
+  std::vector<std::vector<float>> layer_temp_c;
+  std::vector<float> final_temp_c;  // per cell, at the end
+  // Energy relative to ambient, J: brought in by births, lost through the boundary (negative when the bed
+  // heats the part), stored at the end; energy_balance_rel_error = |in − lost − stored| / max(|in|, |lost| +
+  // |stored|).
+  double energy_in_J = 0.0, energy_lost_J = 0.0, energy_stored_J = 0.0, energy_balance_rel_error = 0.0;
+  long steps = 0, rhs_evaluations = 0, linear_iterations = 0;
+  double start_time_s = 0.0, end_time_s = 0.0;
+};
+
+// Solves the heat transfer on `mesh` from the first birth to the last birth + cooldown (at least to
+// `end_s`, the end of the print, + cooldown). `layer_count`: how many toolpath layers there are (the cells'
+// layer indices are below it). Throws InputError for options out of range, InternalError when the
+// integrator fails. An empty mesh gives an empty result.
+HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double end_s,
+                      const Material& material, const Environment& env, const HeatOptions& options = {});
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,294 @@
+#include "thermal/mesh.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace beadtwin::thermal {
+namespace {
+
+constexpr double kJoinMm = 1e-3;  // a move continues a chain when it starts this close to the last end
+
+// Which chain (continuous bead) each depositing move belongs to and where along it the move starts.
+struct Chains {
+  std::vector<std::uint32_t> of_move;  // chain index per move (unused for moves that do not deposit)
+  std::vector<double> offset_mm;       // plan length of the chain before the move
+  std::vector<double> piece_mm;        // per chain: the length of one piece
+  std::vector<std::uint32_t> pieces;   // per chain: how many pieces
+};
+
+double plan_length(const Move& m) {
+  return (m.end - m.start).head<2>().norm();
+}
+
+Chains find_chains(const Toolpath& tp, double cell_length_mm) {
+  Chains c;
+  c.of_move.assign(tp.moves.size(), 0);
+  c.offset_mm.assign(tp.moves.size(), 0.0);
+  std::vector<double> length, widest;
+  bool open = false;  // a chain is open and the next depositing move may continue it
+  Eigen::Vector3d last_end = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < tp.moves.size(); ++i) {
+    const Move& m = tp.moves[i];
+    if (!m.deposits()) {
+      if (plan_length(m) > 0.0 || std::abs(m.end.z() - m.start.z()) > 0.0) open = false;  // a travel
+      continue;
+    }
+    if (!open || (m.start - last_end).norm() > kJoinMm) {
+      length.push_back(0.0);
+      widest.push_back(0.0);
+    }
+    const std::size_t chain = length.size() - 1;
+    c.of_move[i] = static_cast<std::uint32_t>(chain);
+    c.offset_mm[i] = length[chain];
+    length[chain] += plan_length(m);
+    widest[chain] =
+        std::max(widest[chain], m.bead_width_mm > 0.0 ? m.bead_width_mm : 2.0 * m.layer_height_mm);
+    last_end = m.end;
+    open = true;
+  }
+  for (std::size_t k = 0; k < length.size(); ++k) {
+    const double target = cell_length_mm > 0.0 ? cell_length_mm : 2.0 * widest[k];
+    const auto n = static_cast<std::uint32_t>(std::max(1.0, std::round(length[k] / target)));
+    c.pieces.push_back(n);
+    c.piece_mm.push_back(length[k] > 0.0 ? length[k] / n : 1.0);
+  }
+  return c;
+}
+
+// A cell's name before it has an index: chain, piece, strip, slice.
+using CellKey = std::uint64_t;
+CellKey make_key(std::uint32_t chain, std::uint32_t piece, int across, int through) {
+  return (static_cast<std::uint64_t>(chain) << 32) | (static_cast<std::uint64_t>(piece & 0xFFFFFFu) << 8) |
+         (static_cast<std::uint64_t>(across) << 4) | static_cast<std::uint64_t>(through);
+}
+std::uint32_t key_chain(CellKey k) {
+  return static_cast<std::uint32_t>(k >> 32);
+}
+std::uint32_t key_piece(CellKey k) {
+  return static_cast<std::uint32_t>((k >> 8) & 0xFFFFFFu);
+}
+
+struct Placement {
+  CellKey key = 0;
+  double cos2 = 1.0, sin2 = 0.0;  // the move's direction as a doubled angle (an axis)
+};
+
+// The cell of the material at `p` (a voxel centre) laid by move `m`.
+Placement place(const Toolpath& tp, const Chains& chains, const MeshOptions& o, std::size_t m,
+                const Eigen::Vector3d& p) {
+  const Move& mv = tp.moves[m];
+  const Eigen::Vector2d d = (mv.end - mv.start).head<2>();
+  const double len = d.norm();
+  double along = 0.0, lateral = 0.0, z_top = mv.end.z();
+  Placement out;
+  if (len > 1e-9) {
+    const Eigen::Vector2d u = d / len;
+    const Eigen::Vector2d r = p.head<2>() - mv.start.head<2>();
+    along = std::clamp(r.dot(u), 0.0, len);
+    lateral = r.dot(Eigen::Vector2d(-u.y(), u.x()));
+    z_top = mv.start.z() + (mv.end.z() - mv.start.z()) * (along / len);
+    out.cos2 = u.x() * u.x() - u.y() * u.y();
+    out.sin2 = 2.0 * u.x() * u.y();
+  }
+  const std::uint32_t chain = chains.of_move[m];
+  const double s = chains.offset_mm[m] + along;
+  const auto piece = std::min(chains.pieces[chain] - 1,
+                              static_cast<std::uint32_t>(std::max(0.0, s / chains.piece_mm[chain])));
+  const double h = mv.layer_height_mm;
+  const double w = mv.bead_width_mm > 0.0 ? mv.bead_width_mm : 2.0 * h;
+  int across = o.cells_across / 2;
+  if (len > 1e-9)
+    across =
+        std::clamp(static_cast<int>(std::floor((lateral / w + 0.5) * o.cells_across)), 0, o.cells_across - 1);
+  const int through =
+      std::clamp(static_cast<int>(std::floor((z_top - p.z()) / h * o.cells_through)), 0, o.cells_through - 1);
+  out.key = make_key(chain, piece, across, through);
+  return out;
+}
+
+struct CellSums {
+  double fill = 0.0;  // voxel volumes
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+  double time = 0.0;
+  double cos2 = 0.0, sin2 = 0.0;
+  std::size_t move = 0;
+  bool any = false;
+};
+
+void check_options(const MeshOptions& o) {
+  if (o.cells_across < 1 || o.cells_across > 15 || o.cells_across % 2 == 0)
+    throw InputError({}, "thermal.cells_across",
+                     fmt::format("must be an odd whole number from 1 to 15, got {}", o.cells_across));
+  if (o.cells_through < 1 || o.cells_through > 15)
+    throw InputError({}, "thermal.cells_through",
+                     fmt::format("must be a whole number from 1 to 15, got {}", o.cells_through));
+  if (!(o.cell_length_mm >= 0.0) || !std::isfinite(o.cell_length_mm))
+    throw InputError({}, "thermal.cell_length", fmt::format("must be 0 or more, got {}", o.cell_length_mm));
+}
+
+const std::array<openvdb::Coord, 6> kFaces = {openvdb::Coord(1, 0, 0), openvdb::Coord(-1, 0, 0),
+                                              openvdb::Coord(0, 1, 0), openvdb::Coord(0, -1, 0),
+                                              openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)};
+
+}  // namespace
+
+double ThermalLink::area_mm2() const {
+  return std::max(area_vector_mm2.norm(), faces_mm2 / std::sqrt(3.0));
+}
+
+ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& deposit,
+                               const MeshOptions& options) {
+  check_options(options);
+  ThermalMesh mesh;
+  const double vs = deposit.voxel_size_mm;
+  mesh.voxel_size_mm = vs;
+  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return mesh;
+  BT_CHECK(deposit.move && deposit.time);
+  const Chains chains = find_chains(toolpath, options.cell_length_mm);
+  mesh.chains = chains.pieces.size();
+  const openvdb::FloatTree& fill = deposit.fill->tree();
+  const openvdb::Int32Tree& moves = deposit.move->tree();
+  const openvdb::FloatTree& times = deposit.time->tree();
+  const double voxel_volume = vs * vs * vs;
+  const double face_area = vs * vs;
+
+  // 1. Which cells there are, and their volume, centroid, birth and direction.
+  std::unordered_map<CellKey, CellSums> sums;
+  const auto placement_of = [&](const openvdb::Coord& ijk, int move) {
+    return place(toolpath, chains, options, static_cast<std::size_t>(move), sim::voxel_center_mm(ijk, vs));
+  };
+  {
+    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
+    openvdb::tree::ValueAccessor<const openvdb::FloatTree> time_at(times);
+    for (auto it = fill.cbeginValueOn(); it; ++it) {
+      const openvdb::Coord ijk = it.getCoord();
+      const int move = move_at.getValue(ijk);
+      BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
+      const Placement pl = placement_of(ijk, move);
+      CellSums& c = sums[pl.key];
+      const double f = *it;
+      c.fill += f;
+      c.moment += f * sim::voxel_center_mm(ijk, vs);
+      c.time += f * time_at.getValue(ijk);
+      c.cos2 += f * pl.cos2;
+      c.sin2 += f * pl.sin2;
+      if (!c.any || static_cast<std::size_t>(move) < c.move) c.move = static_cast<std::size_t>(move);
+      c.any = true;
+    }
+  }
+  std::vector<std::pair<CellKey, ThermalCell>> cells;
+  cells.reserve(sums.size());
+  for (const auto& [key, c] : sums) {
+    ThermalCell cell;
+    cell.volume_mm3 = c.fill * voxel_volume;
+    cell.centroid_mm = c.fill > 0.0 ? Eigen::Vector3d(c.moment / c.fill) : Eigen::Vector3d::Zero();
+    cell.birth_s = c.fill > 0.0 ? c.time / c.fill : 0.0;
+    const double angle = 0.5 * std::atan2(c.sin2, c.cos2);
+    cell.along = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    cell.move = c.move;
+    cell.layer = toolpath.moves[c.move].layer;
+    cells.emplace_back(key, cell);
+  }
+  sums.clear();
+  std::sort(cells.begin(), cells.end(), [](const auto& x, const auto& y) {
+    return x.second.birth_s != y.second.birth_s ? x.second.birth_s < y.second.birth_s : x.first < y.first;
+  });
+  std::unordered_map<CellKey, std::int32_t> index;
+  index.reserve(cells.size());
+  std::vector<CellKey> keys;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    index.emplace(cells[i].first, static_cast<std::int32_t>(i));
+    keys.push_back(cells[i].first);
+    mesh.cells.push_back(cells[i].second);
+  }
+  cells.clear();
+
+  // 2. The cell of every material voxel.
+  mesh.cell_grid =
+      openvdb::Int32Grid::create(std::make_shared<openvdb::Int32Tree>(fill, -1, openvdb::TopologyCopy()));
+  mesh.cell_grid->setTransform(deposit.fill->transform().copy());
+  mesh.cell_grid->setName("cell");
+  {
+    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
+    for (auto it = mesh.cell_grid->tree().beginValueOn(); it; ++it) {
+      const openvdb::Coord ijk = it.getCoord();
+      it.setValue(index.at(placement_of(ijk, move_at.getValue(ijk)).key));
+    }
+  }
+
+  // 3. Faces: contacts between cells, open surface, the table.
+  openvdb::CoordBBox bounds = deposit.fill->evalActiveVoxelBoundingBox();
+  const int table_k = bounds.min().z();
+  mesh.table_z_mm = table_k * vs;
+  struct Contact {
+    Eigen::Vector3d vector = Eigen::Vector3d::Zero();
+    double faces = 0.0;
+  };
+  std::unordered_map<std::uint64_t, Contact> contacts;
+  {
+    openvdb::tree::ValueAccessor<const openvdb::FloatTree> fill_at(fill);
+    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> cell_at(mesh.cell_grid->tree());
+    std::optional<openvdb::tree::ValueAccessor<const openvdb::MaskTree>> gap_at;
+    if (deposit.gaps) gap_at.emplace(deposit.gaps->tree());
+    for (auto it = fill.cbeginValueOn(); it; ++it) {
+      const openvdb::Coord ijk = it.getCoord();
+      const double f = *it;
+      const std::int32_t cell = cell_at.getValue(ijk);
+      Eigen::Vector3d open = Eigen::Vector3d::Zero();
+      for (std::size_t d = 0; d < kFaces.size(); ++d) {
+        const openvdb::Coord q = ijk + kFaces[d];
+        const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
+        const double fq = fill_at.isValueOn(q) ? static_cast<double>(fill_at.getValue(q)) : 0.0;
+        if (fq > 0.0) {
+          const std::int32_t other = cell_at.getValue(q);
+          if (other == cell) {
+            if (f > fq) open += normal * (face_area * (f - fq));
+          } else if (d % 2 == 0) {  // each shared face once, from its lower side
+            const auto a = static_cast<std::uint32_t>(std::min(cell, other));
+            const auto b = static_cast<std::uint32_t>(std::max(cell, other));
+            const double sign = cell < other ? 1.0 : -1.0;
+            Contact& c = contacts[(static_cast<std::uint64_t>(a) << 32) | b];
+            c.vector += sign * normal * (face_area * std::min(f, fq));
+            c.faces += face_area * std::min(f, fq);
+          }
+          continue;
+        }
+        if (gap_at && gap_at->isValueOn(q)) continue;  // an enclosed gap: no air
+        if (d == 5 && ijk.z() == table_k) {
+          mesh.cells[static_cast<std::size_t>(cell)].table_area_mm2 += face_area * f;
+          continue;
+        }
+        open += normal * (face_area * f);
+      }
+      mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
+    }
+  }
+  std::vector<std::uint64_t> pairs;
+  pairs.reserve(contacts.size());
+  for (const auto& entry : contacts) pairs.push_back(entry.first);
+  std::sort(pairs.begin(), pairs.end());
+  mesh.links.reserve(pairs.size());
+  for (const std::uint64_t pair : pairs) {
+    ThermalLink link;
+    link.a = static_cast<std::uint32_t>(pair >> 32);
+    link.b = static_cast<std::uint32_t>(pair & 0xFFFFFFFFu);
+    const Contact& c = contacts.at(pair);
+    link.area_vector_mm2 = c.vector;
+    link.faces_mm2 = c.faces;
+    const CellKey ka = keys[link.a], kb = keys[link.b];
+    const bool same_chain = key_chain(ka) == key_chain(kb);
+    const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);
+    link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
+    mesh.links.push_back(link);
+  }
+  return mesh;
+}
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,83 @@
+// The thermal mesh (docs/physics.md, heat transfer in the part): control volumes that follow the beads, built
+// from the deposit's voxels.
+//
+// Consecutive depositing moves that join end to start form one bead (a chain). A chain is cut along its
+// length into pieces of about `cell_length_mm`, each piece across its width into `cells_across` strips (an
+// odd number, so there is a centre strip and two edges) and through its height into `cells_through` slices.
+// Each voxel of the deposit belongs to the cell of the move that laid its material (the deposit's move
+// grid): its place along, across and through that move's bead picks the piece, strip and slice. A cell is
+// therefore a piece of a real bead, including the material that bead pushed into the gaps below it, and it
+// is born when that material landed (the fill-weighted mean of its voxels' deposition times).
+//
+// From the voxels' faces:
+//  - two cells share a face where voxels of both touch: the oriented sum of those faces is the contact's area
+//    vector (its length the area, its direction the normal), exact for a planar contact however the
+//    staircase of voxels runs;
+//  - a cell's open surface is where its material faces the outside air. Per voxel, the faces towards air
+//    (weighted by the voxel's fill, and the fill drop towards a less full voxel of the same cell, so a
+//    surface halfway through a voxel counts once) are summed as vectors and the vector's length is the
+//    voxel's area: a wall at 45° to the grid counts its true area rather than the staircase's √2 times
+//    it. Faces towards an enclosed gap between beads (Deposit::gaps) do not see the air and count nowhere;
+//  - voxels in the lowest row of the deposit rest on the table through their bottom faces.
+// Faces between two cells are open surface of the older one until the younger is born.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <openvdb/openvdb.h>
+#include <Eigen/Core>
+
+#include "core/toolpath.hpp"
+#include "sim/deposit.hpp"
+
+namespace beadtwin::thermal {
+
+struct MeshOptions {
+  int cells_across = 3;         // strips across a bead, odd, 1..15
+  int cells_through = 1;        // slices through a bead's height, 1..15
+  double cell_length_mm = 0.0;  // piece length along a bead; 0: two bead widths
+};
+
+struct ThermalCell {
+  double volume_mm3 = 0.0;
+  Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();
+  double birth_s = 0.0;  // when its material landed
+  // The bead's direction in plan, as an axis (its sign means nothing): the "along" of the conductivity.
+  Eigen::Vector2d along = Eigen::Vector2d::UnitX();
+  double open_area_mm2 = 0.0;   // surface that faces the outside air for good
+  double table_area_mm2 = 0.0;  // surface resting on the table
+  std::size_t move = 0;         // the first move (index into Toolpath::moves) that laid its material
+  int layer = -1;               // that move's toolpath layer
+};
+
+struct ThermalLink {
+  std::uint32_t a = 0, b = 0;  // cells; a < b, so a is born no later than b
+  // Oriented area of the shared faces, from a towards b, mm² (length: the area, direction: the normal).
+  Eigen::Vector3d area_vector_mm2 = Eigen::Vector3d::Zero();
+  double faces_mm2 = 0.0;  // the voxel faces' total area (the staircase's, without orientation)
+  // The contact's area: the area vector's length, or for a contact that wraps round a corner (whose faces
+  // partly cancel in the sum) at least the faces' area over √3, which a planar staircase never falls below.
+  double area_mm2() const;
+  // True where b lands on or against a as a separate bead (another chain, or a part of the same chain that
+  // is not its neighbour, such as where a closed loop meets its start): an interface that must fuse.
+  // False inside one bead (strips, slices and consecutive pieces).
+  bool interface = false;
+};
+
+struct ThermalMesh {
+  double voxel_size_mm = 0.0;
+  double table_z_mm = 0.0;            // the bottom of the deposit's lowest voxel row
+  std::vector<ThermalCell> cells;     // by birth time (ties: by chain, piece, strip, slice)
+  std::vector<ThermalLink> links;     // by (a, b)
+  openvdb::Int32Grid::Ptr cell_grid;  // index of the cell each material voxel belongs to; -1 elsewhere
+  std::size_t chains = 0;
+};
+
+// Builds the mesh of `deposit` (made from `toolpath`). Throws InputError for options out of range (naming the
+// option); a deposit without material gives an empty mesh. Deterministic: independent of the thread count.
+ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& deposit,
+                               const MeshOptions& options = {});
+
+}  // namespace beadtwin::thermal

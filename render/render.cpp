@@ -285,8 +285,8 @@ float shadow_offset_mm(const SurfaceMesh& mesh, double voxel_mm) {
 }
 
 // The image of `mesh` (the deposit's surface) coloured by `albedo`.
-Image render_surface(const sim::Deposit& deposit, const SurfaceMesh& mesh, const Albedo& albedo,
-                     const RenderOptions& options) {
+Image render_surface(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const SurfaceMesh& mesh,
+                     const Albedo& albedo, const RenderOptions& options) {
   const embree::Device device;
   const embree::Scene scene = build_scene(device, mesh);
   const auto frame = [&](const Eigen::AlignedBox3f& bounds) {
@@ -307,7 +307,7 @@ Image render_surface(const sim::Deposit& deposit, const SurfaceMesh& mesh, const
   Image image(width, height);
   tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
     const FlushDenormals flush;
-    LayerProbe probe(*deposit.layer);
+    LayerProbe probe(labels);
     for (int y = rows.begin(); y < rows.end(); ++y) {
       const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
       const Vec3 background = top + t * (bottom - top);
@@ -342,14 +342,23 @@ Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, con
   BT_CHECK(static_cast<bool>(colour));
   const SurfaceMesh mesh = checked_surface(deposit);
   const Palette palette(*deposit.layer, colour, options.unknown_layer);
-  return render_surface(deposit, mesh, Albedo(palette), options);
+  return render_surface(deposit, *deposit.layer, mesh, Albedo(palette), options);
+}
+
+Image render_deposit(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const LayerColour& colour,
+                     const RenderOptions& options) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(colour));
+  const SurfaceMesh mesh = checked_surface(deposit);
+  const Palette palette(labels, colour, options.unknown_layer);
+  return render_surface(deposit, labels, mesh, Albedo(palette), options);
 }
 
 Image render_deposit(const sim::Deposit& deposit, const SurfaceColour& colour, const RenderOptions& options) {
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
   const SurfaceMesh mesh = checked_surface(deposit);
-  return render_surface(deposit, mesh, Albedo(colour), options);
+  return render_surface(deposit, *deposit.layer, mesh, Albedo(colour), options);
 }
 
 }  // namespace beadtwin::render

@@ -54,6 +54,10 @@ struct RenderOptions {
 // of range. A deposit without a layer grid, or an empty `colour`, is a bug (InternalError).
 Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour,
                      const RenderOptions& options = {});
+// The same, coloured by `labels` instead of the layer grid: any grid of non-negative integers on the
+// deposit's material voxels (the thermal cells, say); `colour` is called once per label present.
+Image render_deposit(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const LayerColour& colour,
+                     const RenderOptions& options = {});
 // The same, coloured point by point by `colour` (RenderOptions::unknown_layer is not used: `colour` sees
 // layer -1 and decides). An empty `colour` is a bug (InternalError).
 Image render_deposit(const sim::Deposit& deposit, const SurfaceColour& colour,

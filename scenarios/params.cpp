@@ -439,12 +439,22 @@ constexpr ParamSpec kOutput[] = {
 };
 
 constexpr ParamSpec kThermal[] = {
-    {"nodes_per_layer", T::kInteger, D::kDimensionless, "2", 1, 20, false,
-     "thermal nodes through each layer's thickness", ""},
+    {"cells_across", T::kInteger, D::kDimensionless, "3", 1, 15, false,
+     "thermal cells across a bead, odd: a centre and two edges at 3", "thermal/mesh.hpp"},
+    {"cells_through", T::kInteger, D::kDimensionless, "1", 1, 15, false,
+     "thermal cells through a bead's height", "thermal/mesh.hpp"},
+    {"cell_length", T::kQuantity, D::kLength, "", 0, 1e5, true,
+     "thermal cell length along a bead; absent: two bead widths", "thermal/mesh.hpp", true},
+    {"birth_interval", T::kQuantity, D::kTime, "", 0, 1e4, true,
+     "cells laid within this time are born together; absent: a tenth of the cells' median conduction time "
+     "constant",
+     "thermal/heat.hpp", true},
     {"cooldown", T::kQuantity, D::kTime, "10 min", 0, 1e7, false,
      "time simulated after the last layer (interfaces keep healing)", ""},
-    {"rel_tol", T::kQuantity, D::kDimensionless, "1e-6", 0, 0.1, true, "CVODE relative tolerance", ""},
-    {"abs_tol", T::kQuantity, D::kDimensionless, "1e-4", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
+    {"sample_interval", T::kQuantity, D::kTime, "5 s", 0, 1e5, true,
+     "how often the layers' temperatures are kept for the history plots", ""},
+    {"rel_tol", T::kQuantity, D::kDimensionless, "1e-3", 0, 0.1, true, "CVODE relative tolerance", ""},
+    {"abs_tol", T::kQuantity, D::kDimensionless, "0.05", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
 };
 
 // Tool / melt configurations (patent (48)): named bead sets the sections refer to with `tool:`.

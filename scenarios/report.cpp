@@ -214,10 +214,13 @@ json variant_json(const VariantResult& r) {
                       {"start_s", l.start_s},
                       {"duration_s", l.duration_s},
                       {"substrate_temp_c", stats_json(l.substrate_temp_c)},
-                      {"substrate_at_start_c", number_or_null(l.substrate_at_start_c)},
+                      {"interfaces", l.interfaces},
                       {"healing_min", number_or_null(l.healing)},
-                      {"too_hot", l.too_hot ? 1 : 0},
-                      {"too_cold", l.too_cold ? 1 : 0},
+                      {"healing_mean", number_or_null(l.healing_mean)},
+                      {"too_hot", l.too_hot},
+                      {"too_cold", l.too_cold},
+                      {"too_hot_fraction", l.too_hot_fraction},
+                      {"too_cold_fraction", l.too_cold_fraction},
                       {"verdict", l.verdict},
                       {"fill_ratio", l.fill_ratio > 0 ? json(l.fill_ratio) : json(nullptr)},
                       {"bead_height_mm", l.bead_height_mm},
@@ -423,20 +426,23 @@ std::string substrate_plot(const VariantResult& r) {
     svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="#ddd"/>)svg", l, w - rm, y(temp),
                        y(temp));
   }
+  // The mean as a line, the least and the most as a bar per layer, coloured by the layer's verdict.
   std::string band, line;
   for (std::size_t i = 0; i < r.layers.size(); ++i) {
     const auto& row = r.layers[i];
-    if (!std::isfinite(row.substrate_at_start_c)) continue;
-    line += fmt::format("{}{:.1f},{:.1f}", line.empty() ? "M" : " L", x(static_cast<double>(i)),
-                        y(row.substrate_at_start_c));
-    const std::string colour = hex(verdict_colour(row.too_hot           ? thermal::Verdict::kTooHot
-                                                  : row.too_cold        ? thermal::Verdict::kTooCold
-                                                  : row.verdict == "ok" ? thermal::Verdict::kOk
+    const Stats3& s = row.substrate_temp_c;
+    if (!std::isfinite(s.mean)) continue;
+    const double xi = x(static_cast<double>(i));
+    line += fmt::format("{}{:.1f},{:.1f}", line.empty() ? "M" : " L", xi, y(s.mean));
+    const std::string colour = hex(verdict_colour(row.verdict == "too_hot"    ? thermal::Verdict::kTooHot
+                                                  : row.verdict == "too_cold" ? thermal::Verdict::kTooCold
+                                                  : row.verdict == "ok"       ? thermal::Verdict::kOk
                                                                         : thermal::Verdict::kNoInterface));
+    band += fmt::format(R"svg(<line x1="{0:.1f}" x2="{0:.1f}" y1="{1:.1f}" y2="{2:.1f}" stroke="{3}"/>)svg",
+                        xi, y(s.min), y(s.max), colour);
     band += fmt::format(
-        R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="{}"><title>layer {}: {:.1f} °C, {}</title></circle>)svg",
-        x(static_cast<double>(i)), y(row.substrate_at_start_c), colour, row.index, row.substrate_at_start_c,
-        row.verdict);
+        R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="{}"><title>layer {}: {:.1f} / {:.1f} / {:.1f} °C, {}</title></circle>)svg",
+        xi, y(s.mean), colour, row.index, s.min, s.mean, s.max, row.verdict);
   }
   svg += fmt::format(R"svg(<path d="{}" fill="none" stroke="#333" stroke-width="1.5"/>)svg", line) + band;
   svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle">layer</text>)svg",
@@ -614,19 +620,21 @@ details{margin:1em 0} .muted{color:#777}
     h += files_html(v);
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
          "class=l>section</th><th>start s</th>"
-         "<th>duration s</th><th>substrate °C at start</th><th>substrate °C "
-         "min/mean/max</th><th>healing</th><th class=l>verdict</th></tr>";
+         "<th>duration s</th><th>substrate °C at deposition min/mean/max</th><th>interfaces</th>"
+         "<th>too hot %</th><th>too cold %</th><th>healing min/mean</th><th class=l>verdict</th></tr>";
     for (const auto& l : v.layers) {
+      const Stats3& s = l.substrate_temp_c;
       h += fmt::format(
-          "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td "
-          "class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td><td>{:.1f}</td>"
-          "<td>{:.1f} / {:.1f} / {:.1f}</td><td>{}</td><td class=l>{}</td></tr>",
-          l.too_hot    ? "hot"
-          : l.too_cold ? "cold"
-                       : "",
-          l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, l.substrate_at_start_c,
-          l.substrate_temp_c.min, l.substrate_temp_c.mean, l.substrate_temp_c.max,
-          std::isfinite(l.healing) ? fmt::format("{:.3f}", l.healing) : "–", l.verdict);
+          "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td>"
+          "<td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td class=l>{}</td></tr>",
+          l.verdict == "too_hot"    ? "hot"
+          : l.verdict == "too_cold" ? "cold"
+                                    : "",
+          l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s,
+          std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–",
+          l.interfaces, 100 * l.too_hot_fraction, 100 * l.too_cold_fraction,
+          std::isfinite(l.healing) ? fmt::format("{:.3f} / {:.3f}", l.healing, l.healing_mean) : "–",
+          l.verdict);
     }
     h += "</table></details>";
     h += defects_html(v.defects);

@@ -83,10 +83,14 @@ struct LayerRow {
   double z_mm = 0;
   std::string section;
   double start_s = 0, duration_s = 0;
+  // The interfaces where the layer's beads landed (thermal/summary.hpp): the substrate's temperature where
+  // they landed on top (NaN: on nothing but the table), the least and the mean healing (NaN: no interface),
+  // how many interfaces were too hot or too cold and their share of the interface area, the verdict.
   Stats3 substrate_temp_c;
-  double substrate_at_start_c = 0;
-  double healing = 0;  // NaN for layer 0 (no interface below it)
-  bool too_hot = false, too_cold = false;
+  int interfaces = 0;
+  double healing = 0, healing_mean = 0;
+  int too_hot = 0, too_cold = 0;
+  double too_hot_fraction = 0, too_cold_fraction = 0;
   std::string verdict;
   // The deposit (sim::LayerDeposit): fill ratio (0: outline unknown), bead height after following the
   // substrate, void and ploughed volume, unsupported length.

@@ -19,7 +19,9 @@
 #include "sim/skin.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
-#include "thermal/thermal.hpp"
+#include "thermal/heat.hpp"
+#include "thermal/mesh.hpp"
+#include "thermal/summary.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -56,40 +58,32 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
   return o;
 }
 
-// The layer stack the thermal model integrates. Toolpath layers at the same height (sections side by side,
-// merged by Z) are one thermal layer: their areas and exposed edges add up, and the layer lasts from the
-// first one's start to the last one's end. `of_layer` maps each toolpath layer to its thermal layer.
-struct ThermalStack {
-  std::vector<thermal::LayerInput> layers;
-  std::vector<std::size_t> of_layer;
+// The thermal model of a variant's deposit and what its interfaces add up to.
+struct ThermalRun {
+  thermal::ThermalMesh mesh;
+  thermal::HeatResult heat;
+  std::vector<thermal::FusionSummary> layers;  // parallel to Toolpath::layers
+  std::vector<thermal::Verdict> cells;         // per thermal cell, for the fusion map
 };
 
-ThermalStack thermal_stack(const Toolpath& tp) {
-  ThermalStack stack;
-  for (const ToolpathLayer& l : tp.layers) {
-    double volume = 0.0;
-    for (std::size_t i = l.first_move; i < l.end_move; ++i) volume += tp.moves[i].volume_mm3;
-    const double area = l.outline_area_mm2 > 0 ? l.outline_area_mm2 : volume / l.height_mm;
-    if (!stack.layers.empty() && std::abs(stack.layers.back().z_top_mm - l.z_mm) < 1e-6) {
-      thermal::LayerInput& g = stack.layers.back();
-      g.area_mm2 += area;
-      g.perimeter_mm += l.outline_perimeter_mm;
-      g.start_s = std::min(g.start_s, l.start_s);
-      g.end_s = std::max(g.end_s, l.end_s);
-      g.height_mm = std::max(g.height_mm, l.height_mm);
-    } else {
-      thermal::LayerInput li;
-      li.z_top_mm = l.z_mm;
-      li.height_mm = l.height_mm;
-      li.start_s = l.start_s;
-      li.end_s = std::max(l.end_s, l.start_s);
-      li.area_mm2 = area;
-      li.perimeter_mm = l.outline_perimeter_mm;
-      stack.layers.push_back(li);
-    }
-    stack.of_layer.push_back(stack.layers.size() - 1);
-  }
-  return stack;
+ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit) {
+  ThermalRun out;
+  thermal::MeshOptions mo;
+  mo.cells_across = v.thermal.cells_across;
+  mo.cells_through = v.thermal.cells_through;
+  mo.cell_length_mm = v.thermal.cell_length_mm;
+  out.mesh = thermal::build_thermal_mesh(tp, deposit, mo);
+  thermal::HeatOptions ho;
+  ho.rel_tol = v.thermal.rel_tol;
+  ho.abs_tol_k = v.thermal.abs_tol_k;
+  ho.birth_interval_s = v.thermal.birth_interval_s;
+  ho.cooldown_s = v.thermal.cooldown_s;
+  ho.sample_interval_s = v.thermal.sample_interval_s;
+  out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
+                                 v.machine.environment, ho);
+  out.layers = thermal::summarise_layers(out.mesh, out.heat, tp.layers.size());
+  out.cells = thermal::cell_verdicts(out.mesh, out.heat);
+  return out;
 }
 
 // The part against its CAD: what the comparison needs of the sections, and what it found.
@@ -163,8 +157,7 @@ Stats3 stats_of(const std::vector<double>& values) {
   return s;
 }
 
-Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
-                const thermal::ThermalResult& th) {
+Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d, const ThermalRun& th) {
   Metrics m;
   m.layers = static_cast<int>(tp.layers.size());
   m.print_time_s = tp.total_time_s();
@@ -192,47 +185,42 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
     m.min_layer_fill = std::min(m.min_layer_fill.value_or(l.fill_ratio), l.fill_ratio);
     m.max_layer_fill = std::max(m.max_layer_fill.value_or(l.fill_ratio), l.fill_ratio);
   }
-  m.thermal_energy_error = th.energy_balance_rel_error;
-  m.thermal_steps = th.steps;
-  std::vector<double> durations, healing;
-  int hot = 0, cold = 0;
+  m.thermal_energy_error = th.heat.energy_balance_rel_error;
+  m.thermal_steps = th.heat.steps;
+  std::vector<double> durations;
   for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
-  for (const thermal::LayerResult& r : th.layers) {
-    if (r.verdict == thermal::Verdict::kNoInterface) continue;
-    ++m.interfaces;
-    healing.push_back(r.healing);
-    hot += r.verdict == thermal::Verdict::kTooHot;
-    cold += r.verdict == thermal::Verdict::kTooCold;
-  }
   m.layer_time_s = stats_of(durations);
-  if (m.interfaces > 0) {
-    m.too_hot_fraction = static_cast<double>(hot) / m.interfaces;
-    m.too_cold_fraction = static_cast<double>(cold) / m.interfaces;
-    const Stats3 h = stats_of(healing);
-    m.min_healing = h.min;
-    m.mean_healing = h.mean;
+  const thermal::FusionSummary part = thermal::summarise_part(th.heat);
+  m.interfaces = static_cast<int>(part.interfaces);
+  if (part.interfaces > 0) {
+    m.too_hot_fraction = part.too_hot_fraction();
+    m.too_cold_fraction = part.too_cold_fraction();
+    m.min_healing = part.healing_min;
+    m.mean_healing = part.healing_mean;
   }
   return m;
 }
 
-std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalStack& stack,
-                                 const thermal::ThermalResult& th, const sim::Deposit& d) {
+std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const sim::Deposit& d) {
   std::vector<LayerRow> rows;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
-    const thermal::LayerResult& r = th.layers[stack.of_layer[i]];
+    const thermal::FusionSummary& f = th.layers[i];
     LayerRow row;
     row.index = static_cast<int>(i);
     row.z_mm = l.z_mm;
     row.section = l.section >= 0 ? tp.sections[static_cast<std::size_t>(l.section)] : "";
     row.start_s = l.start_s;
     row.duration_s = l.duration_s();
-    row.substrate_temp_c = {r.substrate_min_c, r.substrate_mean_c, r.substrate_max_c};
-    row.substrate_at_start_c = r.substrate_at_start_c;
-    row.healing = r.healing;
-    row.too_hot = r.verdict == thermal::Verdict::kTooHot;
-    row.too_cold = r.verdict == thermal::Verdict::kTooCold;
-    row.verdict = std::string(thermal::to_string(r.verdict));
+    row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
+    row.interfaces = static_cast<int>(f.interfaces);
+    row.healing = f.healing_min;
+    row.healing_mean = f.healing_mean;
+    row.too_hot = static_cast<int>(f.too_hot);
+    row.too_cold = static_cast<int>(f.too_cold);
+    row.too_hot_fraction = f.too_hot_fraction();
+    row.too_cold_fraction = f.too_cold_fraction();
+    row.verdict = std::string(thermal::to_string(f.verdict()));
     if (i < d.layers.size()) {
       const sim::LayerDeposit& ld = d.layers[i];
       row.fill_ratio = ld.fill_ratio;
@@ -320,28 +308,21 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     }
   });
   const std::optional<CadCheck> cad = stages.run("compare", [&] { return check_against_cad(v, deposit); });
-  const ThermalStack stack = thermal_stack(tp);
-  const thermal::ThermalResult th = stages.run("thermal", [&] {
-    thermal::Options o;
-    o.nodes_per_layer = v.thermal.nodes_per_layer;
-    o.cooldown_s = v.thermal.cooldown_s;
-    o.rel_tol = v.thermal.rel_tol;
-    o.abs_tol_k = v.thermal.abs_tol_k;
-    return thermal::solve_thermal(stack.layers, v.material, v.machine.environment, o);
-  });
+  const ThermalRun th = stages.run("thermal", [&] { return run_thermal(v, tp, deposit); });
   stages.run("render", [&] {
     render::RenderOptions o;
     o.width = v.output.image_width;
     o.height = v.output.image_height;
-    const auto colour = [&](int layer) {
-      if (layer < 0 || static_cast<std::size_t>(layer) >= stack.of_layer.size())
-        return render::Rgb{0.5f, 0.5f, 0.5f};
-      return verdict_colour(th.layers[stack.of_layer[static_cast<std::size_t>(layer)]].verdict);
+    // Each bead's piece coloured by its worst interface: where it landed too hot, too cold, or fused.
+    const render::LayerColour colour = [&](int cell) {
+      return verdict_colour(cell >= 0 && static_cast<std::size_t>(cell) < th.cells.size()
+                                ? th.cells[static_cast<std::size_t>(cell)]
+                                : thermal::Verdict::kNoInterface);
     };
     for (const auto& [view, file] : {std::pair{render::View::kIsometric, "fusion.png"},
                                      std::pair{render::View::kTop, "fusion-top.png"}}) {
       o.view = view;
-      render::write_png(render::render_deposit(deposit, colour, o), dir / file);
+      render::write_png(render::render_deposit(deposit, *th.mesh.cell_grid, colour, o), dir / file);
       res.images.push_back((std::filesystem::path(v.name) / file).string());
     }
     // The sections, each in its own colour, so a person sees where each parameter set applies.
@@ -374,7 +355,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;
   res.metrics.planned_voids = plan_stats.voids_found;
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
-  res.layers = layer_rows(tp, stack, th, deposit);
+  res.layers = layer_rows(tp, th, deposit);
   res.defects = deposit.defects;
   res.notes = deposit.notes;
   if (log)

@@ -820,7 +820,15 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   out_r.finish(output_params());
 
   BlockReader th_r(tree.root["thermal"], "thermal", tree.scenario_src, &tree.overridden);
-  v.thermal.nodes_per_layer = th_r.integer(spec(thermal_params(), "nodes_per_layer"));
+  v.thermal.cells_across = th_r.integer(spec(thermal_params(), "cells_across"));
+  if (v.thermal.cells_across % 2 == 0)
+    th_r.fail(
+        th_r.take("cells_across"), "cells_across",
+        fmt::format("must be odd (a centre strip and edges on both sides), got {}", v.thermal.cells_across));
+  v.thermal.cells_through = th_r.integer(spec(thermal_params(), "cells_through"));
+  v.thermal.cell_length_mm = th_r.optional_quantity(spec(thermal_params(), "cell_length")).value_or(0.0);
+  v.thermal.birth_interval_s = th_r.optional_quantity(spec(thermal_params(), "birth_interval")).value_or(0.0);
+  v.thermal.sample_interval_s = th_r.quantity(spec(thermal_params(), "sample_interval"));
   v.thermal.cooldown_s = th_r.quantity(spec(thermal_params(), "cooldown"));
   v.thermal.rel_tol = th_r.quantity(spec(thermal_params(), "rel_tol"));
   v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));

@@ -60,11 +60,16 @@ struct OutputSpec {
   bool write_fields = true;         // fields.vtu for ParaView
 };
 
+// The thermal model's resolution and integration (thermal/mesh.hpp, thermal/heat.hpp).
 struct ThermalSpec {
-  int nodes_per_layer = 2;
+  int cells_across = 3;
+  int cells_through = 1;
+  double cell_length_mm = 0.0;    // 0: two bead widths
+  double birth_interval_s = 0.0;  // 0: chosen from the cells
+  double sample_interval_s = 5.0;
   double cooldown_s = 600.0;
-  double rel_tol = 1e-6;
-  double abs_tol_k = 1e-4;
+  double rel_tol = 1e-3;
+  double abs_tol_k = 0.05;
 };
 
 // One parameter set, fully resolved: what a run needs, nothing more.

@@ -222,6 +222,11 @@ json variant_json(const VariantResult& r) {
                       {"too_hot_fraction", l.too_hot_fraction},
                       {"too_cold_fraction", l.too_cold_fraction},
                       {"verdict", l.verdict},
+                      {"layer_time_window_s",
+                       {{"min", number_or_null(l.window_min_s)},
+                        {"max", number_or_null(l.window_max_s)},
+                        {"typical_min", number_or_null(l.typical_min_s)},
+                        {"typical_max", number_or_null(l.typical_max_s)}}},
                       {"fill_ratio", l.fill_ratio > 0 ? json(l.fill_ratio) : json(nullptr)},
                       {"bead_height_mm", l.bead_height_mm},
                       {"void_mm3", l.void_mm3},
@@ -395,6 +400,23 @@ std::string fmt_opt(const std::optional<double>& v, const char* spec = "{:.4g}")
 std::string hms(double s) {
   const long t = std::lround(s);
   return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+}
+
+// The layer times that would have put a layer in the window: "120 – 300", "at least 120", "at most 300",
+// "none" (the bounds cross, or no wait would cool it enough), or a dash where nothing bounds them.
+std::string window_range(double min_s, double max_s) {
+  const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
+  if (lo && hi) return min_s <= max_s ? fmt::format("{:.0f} – {:.0f}", min_s, max_s) : std::string("none");
+  if (min_s == std::numeric_limits<double>::infinity()) return "none";
+  if (lo) return fmt::format("at least {:.0f}", min_s);
+  if (hi) return fmt::format("at most {:.0f}", max_s);
+  return "–";
+}
+
+// For the whole landing area (as the verdict counts it), and for the typical interface in brackets.
+std::string window_text(const LayerRow& l) {
+  return window_range(l.window_min_s, l.window_max_s) + " (" +
+         window_range(l.typical_min_s, l.typical_max_s) + ")";
 }
 
 // Substrate temperature at deposition per layer against the fusion window, as an inline SVG.
@@ -621,12 +643,14 @@ details{margin:1em 0} .muted{color:#777}
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
          "class=l>section</th><th>start s</th>"
          "<th>duration s</th><th>substrate °C at deposition min/mean/max</th><th>interfaces</th>"
-         "<th>too hot %</th><th>too cold %</th><th>healing min/mean</th><th class=l>verdict</th></tr>";
+         "<th>too hot %</th><th>too cold %</th><th>healing min/mean</th><th class=l>verdict</th>"
+         "<th>layer time for the window s (typical)</th></tr>";
     for (const auto& l : v.layers) {
       const Stats3& s = l.substrate_temp_c;
       h += fmt::format(
           "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td>"
-          "<td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td class=l>{}</td></tr>",
+          "<td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
+          "class=l>{}</td><td>{}</td></tr>",
           l.verdict == "too_hot"    ? "hot"
           : l.verdict == "too_cold" ? "cold"
                                     : "",
@@ -634,7 +658,7 @@ details{margin:1em 0} .muted{color:#777}
           std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–",
           l.interfaces, 100 * l.too_hot_fraction, 100 * l.too_cold_fraction,
           std::isfinite(l.healing) ? fmt::format("{:.3f} / {:.3f}", l.healing, l.healing_mean) : "–",
-          l.verdict);
+          l.verdict, window_text(l));
     }
     h += "</table></details>";
     h += defects_html(v.defects);

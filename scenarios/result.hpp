@@ -92,6 +92,10 @@ struct LayerRow {
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;
   std::string verdict;
+  // The layer times that would have put the layer in the window (thermal::layer_time_window), s; NaN
+  // where nothing bounds them; min > max when none would.
+  double window_min_s = 0, window_max_s = 0;
+  double typical_min_s = 0, typical_max_s = 0;  // the same for half of the landing area
   // The deposit (sim::LayerDeposit): fill ratio (0: outline unknown), bead height after following the
   // substrate, void and ploughed volume, unsupported length.
   double fill_ratio = 0, bead_height_mm = 0, void_mm3 = 0, plough_mm3 = 0, unsupported_mm = 0;

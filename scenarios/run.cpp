@@ -81,7 +81,10 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.sample_interval_s = v.thermal.sample_interval_s;
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
                                  v.machine.environment, ho);
-  out.layers = thermal::summarise_layers(out.mesh, out.heat, tp.layers.size());
+  std::vector<double> durations;
+  for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
+  out.layers =
+      thermal::summarise_layers(out.mesh, out.heat, durations, v.material, v.machine.environment.ambient_c);
   out.cells = thermal::cell_verdicts(out.mesh, out.heat);
   return out;
 }
@@ -221,6 +224,10 @@ std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const
     row.too_hot_fraction = f.too_hot_fraction();
     row.too_cold_fraction = f.too_cold_fraction();
     row.verdict = std::string(thermal::to_string(f.verdict()));
+    row.window_min_s = f.layer_time_min_s;
+    row.window_max_s = f.layer_time_max_s;
+    row.typical_min_s = f.typical_time_min_s;
+    row.typical_max_s = f.typical_time_max_s;
     if (i < d.layers.size()) {
       const sim::LayerDeposit& ld = d.layers[i];
       row.fill_ratio = ld.fill_ratio;

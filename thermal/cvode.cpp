@@ -87,6 +87,10 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
     preconditioner_.assign(size_, 1.0);
     solver_.reset(SUNLinSol_SPGMR(y_.get(), SUN_PREC_LEFT, options.krylov_dimension, context_.get()));
     if (!solver_) throw InternalError("SUNDIALS: SUNLinSol_SPGMR failed");
+    // Classical Gram-Schmidt with the vectors' fused operations: one pass over memory for all the dot
+    // products of an iteration, where modified Gram-Schmidt makes one pass each.
+    if (SUNLinSol_SPGMRSetGSType(solver_.get(), SUN_CLASSICAL_GS) != 0)
+      throw InternalError("SUNDIALS: SUNLinSol_SPGMRSetGSType failed");
   }
 
   mem_.reset(CVodeCreate(CV_BDF, context_.get()));
@@ -111,6 +115,8 @@ Cvode::~Cvode() = default;
 Cvode::VectorHandle Cvode::make_vector(std::span<const double> init) {
   VectorHandle v(N_VNew_Serial(static_cast<sunindextype>(init.size()), context_.get()));
   if (!v) throw InternalError("SUNDIALS: N_VNew_Serial failed");
+  if (N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0)
+    throw InternalError("SUNDIALS: N_VEnableFusedOps_Serial failed");
   std::span<double> out = values(v.get());
   std::copy(init.begin(), init.end(), out.begin());
   return v;

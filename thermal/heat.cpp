@@ -89,6 +89,14 @@ class PartModel final : public OdeSystem {
       std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i]),
                 neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]),
                 [](const Neighbour& x, const Neighbour& y) { return x.cell < y.cell; });
+    // What the integrator's loops read, packed: neighbour and conductance, 12 bytes where a Neighbour
+    // takes 24.
+    hot_cell_.reserve(neighbours_.size());
+    hot_g_.reserve(neighbours_.size());
+    for (const Neighbour& nb : neighbours_) {
+      hot_cell_.push_back(nb.cell);
+      hot_g_.push_back(nb.conductance_W_K);
+    }
     exposed_m2_ = open_m2_;
     for (std::size_t i = 0; i < n_; ++i)
       for (const Neighbour& nb : neighbours(i)) exposed_m2_[i] += nb.area_m2;
@@ -143,22 +151,22 @@ class PartModel final : public OdeSystem {
     abs_tol_J_ = std::max(total * abs_tol_k, 1e-12);
   }
 
+  // dT/dt of born cell i in state y, K/s; its boundary loss, W, in `loss`.
+  double rate(std::size_t i, std::span<const double> y, double& loss) const {
+    const std::size_t born = born_;
+    const double t = y[i];
+    double flux = 0.0;
+    for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k)
+      flux += hot_g_[k] * (y[hot_cell_[k]] - t);
+    const double tk = t + kKelvinOffset;
+    loss = exposed_m2_[i] * (h_ * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
+           table_W_K_[i] * (t - bed_c_);
+    return (flux - loss) / capacity_[i];
+  }
+
   void rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) override {
     const std::size_t born = born_;
-    for_cells(born, [&](std::size_t i) {
-      const double t = y[i];
-      double flux = 0.0;
-      for (const Neighbour& nb : neighbours(i)) {
-        if (nb.cell >= born) break;
-        flux += nb.conductance_W_K * (y[nb.cell] - t);
-      }
-      const double tk = t + kKelvinOffset;
-      const double loss =
-          exposed_m2_[i] * (h_ * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
-          table_W_K_[i] * (t - bed_c_);
-      loss_[i] = loss;
-      ydot[i] = (flux - loss) / capacity_[i];
-    });
+    for_cells(born, [&](std::size_t i) { ydot[i] = rate(i, y, loss_[i]); });
     double q = 0.0;
     for (std::size_t i = 0; i < born; ++i) q += loss_[i];
     for (std::size_t i = born; i < cap_; ++i) ydot[i] = 0.0;
@@ -170,10 +178,9 @@ class PartModel final : public OdeSystem {
     const std::size_t born = born_;
     for_cells(born, [&](std::size_t i) {
       double sum = 0.0;
-      for (const Neighbour& nb : neighbours(i)) {
-        if (nb.cell >= born) break;
-        sum += nb.conductance_W_K * (v[nb.cell] - v[i]);
-      }
+      const double vi = v[i];
+      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k)
+        sum += hot_g_[k] * (v[hot_cell_[k]] - vi);
       const double d_loss = loss_derivative(i, y[i]) * v[i];
       loss_[i] = d_loss;
       jv[i] = (sum - d_loss) / capacity_[i];
@@ -188,10 +195,7 @@ class PartModel final : public OdeSystem {
     const std::size_t born = born_;
     for_cells(born, [&](std::size_t i) {
       double g = 0.0;
-      for (const Neighbour& nb : neighbours(i)) {
-        if (nb.cell >= born) break;
-        g += nb.conductance_W_K;
-      }
+      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k) g += hot_g_[k];
       diagonal[i] = -(g + loss_derivative(i, y[i])) / capacity_[i];
     });
     for (std::size_t i = born; i < cap_; ++i) diagonal[i] = 0.0;
@@ -230,7 +234,9 @@ class PartModel final : public OdeSystem {
   std::vector<double> table_W_K_;   // bed contact conductance
   std::vector<std::size_t> first_;
   std::vector<Neighbour> neighbours_;
-  mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
+  std::vector<std::uint32_t> hot_cell_;  // neighbours_[k].cell
+  std::vector<double> hot_g_;            // neighbours_[k].conductance_W_K
+  mutable std::vector<double> loss_;     // per cell, scratch of rhs and jacobian_times
   std::size_t born_ = 0;
   std::size_t cap_ = 0;
   double deposition_c_, ambient_c_, ambient_k4_, bed_c_, h_, eps_sigma_;
@@ -310,6 +316,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     result.interfaces.push_back(r);
   }
   std::vector<double> integral(result.interfaces.size(), 0.0);  // ∫ dt / t_w so far
+  std::vector<double> birth_time(n, 0.0);                       // when each cell was born (its group's time)
   const Reptation reptation(material);
   // A cell is warm when it may be above the healing threshold during a step: at either end (with a margin
   // for what the interpolant does between them). An interface heals only while one of its cells is warm.
@@ -348,10 +355,17 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   before.push_back(0.0);  // energy lost
   const auto born_group = [&](const Group& g, std::span<double> state) {
     const std::size_t begin = model.born();
+    for (std::size_t i = begin; i < g.end; ++i) birth_time[i] = g.time_s;
     for (std::size_t i = begin; i < g.end; ++i)
       for (const std::size_t k : by_younger[i]) {
         InterfaceResult& r = result.interfaces[k];
-        r.substrate_c = r.older < begin ? state[r.older] : material.deposition_temp_c;
+        r.substrate_c = material.deposition_temp_c;
+        r.elapsed_s = g.time_s - birth_time[r.older];
+        if (r.older < begin) {
+          double loss = 0.0;
+          r.substrate_c = state[r.older];
+          r.substrate_rate_K_s = model.rate(r.older, state, loss);
+        }
       }
     model.birth(g.end, state);
   };
@@ -367,8 +381,8 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     const InterfaceResult& r = result.interfaces[k];
     return reptation.rate_per_s(0.5 * (state[r.older] + state[r.younger]));
   };
-  // The interfaces that heal over the step now ending: born (both cells), not yet fully healed, and with a
-  // warm cell; each once.
+  // The interfaces that heal over the step now ending: born (both cells) and with a warm cell; each once.
+  // The integral goes on past 1 (full healing): how far past says how much colder the interface could be.
   const auto find_healing = [&](std::span<const double> start, std::span<const double> end) {
     const std::size_t born = model.born();
     for (std::size_t i = 0; i < born; ++i) warm[i] = std::max(start[i], end[i]) >= warm_c;
@@ -378,7 +392,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       for (const std::uint32_t k : by_cell[i]) {
         const InterfaceResult& r = result.interfaces[k];
         const std::uint32_t other = r.older == i ? r.younger : r.older;
-        if (r.younger >= born || integral[k] >= 1.0) continue;
+        if (r.younger >= born) continue;
         if (other < i && warm[other]) continue;  // counted from the other cell
         healing_now.push_back(k);
       }
@@ -435,8 +449,10 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     cvode->reinit(t, before, std::max(gap, 1e-3 * interval));
   }
   advance(t_end);
-  for (std::size_t k = 0; k < integral.size(); ++k)
+  for (std::size_t k = 0; k < integral.size(); ++k) {
+    result.interfaces[k].healing_integral = integral[k];
     result.interfaces[k].healing = std::min(1.0, std::pow(integral[k], 0.25));
+  }
   for (InterfaceResult& r : result.interfaces)
     r.verdict = judge_interface(r.substrate_c, r.on_top, r.healing, material);
 

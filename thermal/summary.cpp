@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/units.hpp"
 
 namespace beadtwin::thermal {
 namespace {
@@ -59,17 +63,100 @@ Verdict FusionSummary::verdict() const {
 }
 
 std::vector<FusionSummary> summarise_layers(const ThermalMesh& mesh, const HeatResult& heat,
-                                            std::size_t layer_count) {
+                                            std::span<const double> durations_s, const Material& material,
+                                            double ambient_c) {
+  const std::size_t layer_count = durations_s.size();
   std::vector<FusionSummary> layers(layer_count);
   std::vector<double> on_top_area(layer_count, 0.0);
+  std::vector<std::vector<InterfaceResult>> landing(layer_count);
   for (const InterfaceResult& r : heat.interfaces) {
     const int layer = mesh.cells[r.younger].layer;
     if (layer < 0 || static_cast<std::size_t>(layer) >= layer_count) continue;
-    add(layers[static_cast<std::size_t>(layer)], r);
-    if (r.on_top) on_top_area[static_cast<std::size_t>(layer)] += r.area_mm2;
+    const auto k = static_cast<std::size_t>(layer);
+    add(layers[k], r);
+    if (r.on_top) {
+      on_top_area[k] += r.area_mm2;
+      if (mesh.cells[r.older].layer != layer) landing[k].push_back(r);
+    }
   }
-  for (std::size_t k = 0; k < layer_count; ++k) finish(layers[k], on_top_area[k]);
+  for (std::size_t k = 0; k < layer_count; ++k) {
+    finish(layers[k], on_top_area[k]);
+    const LayerTimeWindow w =
+        layer_time_window(landing[k], durations_s[k], material, ambient_c, 1.0 - kVerdictShare);
+    layers[k].layer_time_min_s = w.min_s;
+    layers[k].layer_time_max_s = w.max_s;
+    const LayerTimeWindow typical = layer_time_window(landing[k], durations_s[k], material, ambient_c, 0.5);
+    layers[k].typical_time_min_s = typical.min_s;
+    layers[k].typical_time_max_s = typical.max_s;
+  }
   return layers;
+}
+
+namespace {
+
+// The wait w (s, either sign) at which the extra cooling `(T_s − T∞) exp(−w/τ)` brings a substrate at
+// `from_c` to `to_c`; +infinity when it never gets there by waiting (not cooling, or `to_c` at or below the
+// air), -infinity when no shorter wait makes it hot enough (`to_c` above the deposition temperature).
+double wait_to_reach(double from_c, double to_c, double rate_K_s, double ambient_c, double deposition_c) {
+  if (to_c > deposition_c) return -std::numeric_limits<double>::infinity();
+  if (to_c <= ambient_c || !(rate_K_s < 0.0) || from_c <= ambient_c)
+    return std::numeric_limits<double>::infinity();
+  const double tau = (from_c - ambient_c) / -rate_K_s;
+  return tau * std::log((from_c - ambient_c) / (to_c - ambient_c));
+}
+
+// The value below which `share` of the total weight lies (the lowest weighted quantile).
+double weighted_quantile(std::vector<std::pair<double, double>> value_weight, double share) {
+  if (value_weight.empty()) return kNaN;
+  std::sort(value_weight.begin(), value_weight.end());
+  double total = 0.0;
+  for (const auto& [v, w] : value_weight) total += w;
+  double sum = 0.0;
+  for (const auto& [v, w] : value_weight) {
+    sum += w;
+    if (sum >= share * total) return v;
+  }
+  return value_weight.back().first;
+}
+
+}  // namespace
+
+LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
+                                  const Material& material, double ambient_c, double share) {
+  const double t_dep = material.deposition_temp_c;
+  const double ea_r = material.healing_activation_J_mol / kGasConstant_J_molK;
+  std::vector<std::pair<double, double>> hot, cold;  // (wait, area)
+  for (const InterfaceResult& r : landing) {
+    // Laid together with the bead on it (no layer change between them), or warming as it was covered (a
+    // neighbour laid just before): no cooling curve to follow.
+    if (!(r.substrate_rate_K_s < 0.0)) continue;
+    // Too hot unless the substrate is at or below the support limit.
+    hot.emplace_back(
+        wait_to_reach(r.substrate_c, material.support_limit_c, r.substrate_rate_K_s, ambient_c, t_dep),
+        r.area_mm2);
+    // Healing: the substrate temperature that would give the required D_h.
+    double needed_c = t_dep;  // nothing healed at all: only the hottest substrate might
+    if (r.healing_integral > 0.0) {
+      const double contact_k = 0.5 * (t_dep + r.substrate_c) + kKelvinOffset;
+      const double inv =
+          1.0 / contact_k -
+          4.0 / ea_r * std::log(material.required_healing / std::pow(r.healing_integral, 0.25));
+      needed_c = inv > 0.0 ? 2.0 * (1.0 / inv - kKelvinOffset) - t_dep : t_dep + 1.0;
+    }
+    cold.emplace_back(wait_to_reach(r.substrate_c, needed_c, r.substrate_rate_K_s, ambient_c, t_dep),
+                      r.area_mm2);
+  }
+  LayerTimeWindow w;
+  if (hot.empty()) return w;
+  // The shortest: the wait 99 % of the landing area needs to be cool enough; the longest: the wait at which
+  // the most demanding 1 % stops healing.
+  const double need = weighted_quantile(hot, share);
+  const double allow = weighted_quantile(cold, 1.0 - share);
+  if (std::isfinite(need)) w.min_s = std::max(0.0, duration_s + need);
+  if (std::isfinite(allow)) w.max_s = std::max(0.0, duration_s + allow);
+  if (need == std::numeric_limits<double>::infinity()) w.min_s = std::numeric_limits<double>::infinity();
+  if (allow == -std::numeric_limits<double>::infinity()) w.max_s = 0.0;
+  return w;
 }
 
 FusionSummary summarise_part(const HeatResult& heat) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "thermal/fusion.hpp"
@@ -31,12 +32,37 @@ struct FusionSummary {
   // The problem covering most of the interface area when at least `kVerdictShare` of it has one, else ok;
   // kNoInterface without interfaces.
   Verdict verdict() const;
+  // Per layer: the layer times, s, that would have put it in the window (see layer_time_window), for all
+  // but kVerdictShare of its landing area (the verdict's measure), and for half of it (the typical
+  // interface); NaN where nothing bounds them, +infinity for a minimum no wait reaches. min > max: no layer
+  // time would.
+  double layer_time_min_s = kNaN, layer_time_max_s = kNaN;
+  double typical_time_min_s = kNaN, typical_time_max_s = kNaN;
 };
 constexpr double kVerdictShare = 0.01;
 
 // One summary per toolpath layer (by the younger cell's layer; cells outside [0, layer_count) are left out).
+// `durations_s`: each layer's time as printed (for the layer-time window), `ambient_c` the air's.
 std::vector<FusionSummary> summarise_layers(const ThermalMesh& mesh, const HeatResult& heat,
-                                            std::size_t layer_count);
+                                            std::span<const double> durations_s, const Material& material,
+                                            double ambient_c);
+
+// What a layer time L' would have done, as a change of the wait at the layer change (every interface where a
+// bead lands on the layer below stands L' − L longer or shorter before it is covered; interfaces within the
+// layer do not change). Per interface, from what the solution knows as the bead landed:
+//  - the substrate cools on exponentially towards the air, T∞ + (T_s − T∞) exp(−w/τ), with τ = (T_s − T∞) /
+//    (−dT_s/dt) from its cooling rate at that moment;
+//  - the healing integral scales as the reptation time at the first contact temperature (T_dep + T_s)/2:
+//    the history keeps its shape, shifted by the change of the contact temperature.
+// The shortest layer time keeps `share` of the landing area at or below the support limit; the longest keeps
+// `share` of it healing as required. Interfaces whose substrate was not cooling as it was covered (laid
+// together with it, or just warmed by a neighbour) have no curve to follow and are left out. A first-order
+// estimate: it says which way to move and about how far, not the exact layer time.
+struct LayerTimeWindow {
+  double min_s = kNaN, max_s = kNaN;
+};
+LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
+                                  const Material& material, double ambient_c, double share);
 FusionSummary summarise_part(const HeatResult& heat);
 
 // Per cell, its worst interface as the younger one (too hot before too cold before ok); kNoInterface for a

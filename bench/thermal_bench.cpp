@@ -3,7 +3,7 @@
 // integrator's work, the energy balance, the verdicts and the real-time factor (simulated print time over
 // the solve's wall time). bench/bench_thermal.sh runs it with /usr/bin/time for the peak memory.
 //
-//   thermal_bench SCENARIO [BIRTH_INTERVAL_S]
+//   thermal_bench SCENARIO [BIRTH_INTERVAL_S [REL_TOL ABS_TOL_K]]   (0: the default)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -26,8 +26,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: thermal_bench SCENARIO [BIRTH_INTERVAL_S]\n");
+  if (argc < 2 || argc > 5 || argc == 4) {
+    std::fprintf(stderr, "usage: thermal_bench SCENARIO [BIRTH_INTERVAL_S [REL_TOL ABS_TOL_K]]\n");
     return 2;
   }
   try {
@@ -45,7 +45,11 @@ int main(int argc, char** argv) {
     std::printf("mesh %.2f s, %zu chains, %zu cells, %zu links, %zu interfaces\n", seconds_since(t0),
                 mesh.chains, mesh.cells.size(), mesh.links.size(), interfaces);
     thermal::HeatOptions o;
-    if (argc == 3) o.birth_interval_s = std::atof(argv[2]);
+    if (argc >= 3) o.birth_interval_s = std::atof(argv[2]);
+    if (argc == 5) {
+      o.rel_tol = std::atof(argv[3]);
+      o.abs_tol_k = std::atof(argv[4]);
+    }
     t0 = std::chrono::steady_clock::now();
     const thermal::HeatResult h =
         thermal::solve_heat(mesh, tp.layers.size(), tp.total_time_s(), v.material, v.machine.environment, o);

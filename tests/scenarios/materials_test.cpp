@@ -1,0 +1,91 @@
+// The shipped material library: every file loads through a scenario and holds physically sensible values.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include <gtest/gtest.h>
+
+#include "scenarios/embedded.hpp"
+#include "scenarios/scenario.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+// The names of the shipped materials: materials/NAME.yaml among the embedded files.
+std::vector<std::string> shipped_materials() {
+  std::vector<std::string> names;
+  const std::string prefix = "materials/", suffix = ".yaml";
+  for (const auto& [path, text] : shipped_files())
+    if (path.starts_with(prefix) && path.ends_with(suffix))
+      names.push_back(path.substr(prefix.size(), path.size() - prefix.size() - suffix.size()));
+  return names;
+}
+
+Material load_material(const std::string& name) {
+  const std::string text = fmt::format(R"(name: m
+units: {{length: mm}}
+machine: lsam-ph15
+material: {}
+part:
+  box: {{size: [200, 200, 20]}}
+sections:
+  - name: all
+    z: [0, 20]
+    layer_height: 5
+    bead_width: 20
+)",
+                                       name);
+  const Scenario sc = load_scenario_text(text, "materials_test.yaml");
+  EXPECT_EQ(sc.variants.size(), 1u);
+  return sc.variants.at(0).material;
+}
+
+TEST(Materials, ShippedLibraryHoldsTheReferenceAndNeatPolymers) {
+  const std::vector<std::string> names = shipped_materials();
+  for (const char* expected : {"cf-abs-20", "abs", "pla"})
+    EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+}
+
+// Each shipped material loads, is named after its file, and has positive physical values and a fusion
+// window in a sensible order.
+TEST(Materials, EveryShippedMaterialLoadsWithSensibleValues) {
+  for (const std::string& name : shipped_materials()) {
+    SCOPED_TRACE(name);
+    const Material m = load_material(name);
+    EXPECT_EQ(m.name, name);
+    EXPECT_GT(m.density_kg_m3, 0.0);
+    EXPECT_GT(m.specific_heat_J_kgK, 0.0);
+    EXPECT_GT(m.conductivity_along_W_mK, 0.0);
+    EXPECT_GT(m.conductivity_across_W_mK, 0.0);
+    EXPECT_GT(m.conductivity_through_W_mK, 0.0);
+    EXPECT_GT(m.emissivity, 0.0);
+    EXPECT_LE(m.emissivity, 1.0);
+    EXPECT_GT(m.reptation_time_ref_s, 0.0);
+    EXPECT_GT(m.healing_activation_J_mol, 0.0);
+    EXPECT_GE(m.price_per_kg, 0.0);
+    // Fusion window: heals only above the minimum, which is no hotter than the support limit; the bead is
+    // laid hotter than both and than T_g.
+    EXPECT_LE(m.healing_min_temp_c, m.support_limit_c);
+    EXPECT_LT(m.support_limit_c, m.deposition_temp_c);
+    EXPECT_LT(m.glass_transition_c, m.deposition_temp_c);
+    EXPECT_GE(m.healing_min_temp_c, m.glass_transition_c) << "heals in the glass";
+    EXPECT_GT(m.healing_ref_temp_c, m.healing_min_temp_c);
+    EXPECT_GT(m.required_healing, 0.0);
+    EXPECT_LE(m.required_healing, 1.0);
+  }
+}
+
+// Neat polymers conduct heat alike in every direction; their files say so with three equal values.
+TEST(Materials, NeatPolymersAreIsotropic) {
+  for (const char* name : {"abs", "pla"}) {
+    SCOPED_TRACE(name);
+    const Material m = load_material(name);
+    EXPECT_EQ(m.conductivity_along_W_mK, m.conductivity_across_W_mK);
+    EXPECT_EQ(m.conductivity_along_W_mK, m.conductivity_through_W_mK);
+  }
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

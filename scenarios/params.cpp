@@ -453,6 +453,10 @@ constexpr ParamSpec kThermal[] = {
      "time simulated after the last layer (interfaces keep healing)", ""},
     {"sample_interval", T::kQuantity, D::kTime, "5 s", 0, 1e5, true,
      "how often the layers' temperatures are kept for the history plots", ""},
+    {"snapshots", T::kQuantity, D::kTime, "", 0, 1e7, false,
+     "times [t, ...] (or `end`, the end of the print) at which every cell's temperature is written: "
+     "temperature-<t>s.vdb (voxels) and .vtp (cell centroids, ParaView); absent: none",
+     "thermal/snapshot_files.hpp", true},
     {"rel_tol", T::kQuantity, D::kDimensionless, "1e-3", 0, 0.1, true, "CVODE relative tolerance", ""},
     {"abs_tol", T::kQuantity, D::kDimensionless, "0.05", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
 };

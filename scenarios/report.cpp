@@ -192,9 +192,13 @@ json files_json(const VariantResult& r) {
                  ? json(static_cast<double>(f.bead_stl_triangles) / static_cast<double>(f.skin_triangles))
                  : json(nullptr)}};
   if (!f.fields.empty()) fields = {{"path", f.fields}, {"bytes", f.fields_bytes}, {"cells", f.fields_cells}};
+  json snapshots = json::array();
+  for (const ExportedFiles::Snapshot& s : f.snapshots)
+    snapshots.push_back({{"time_s", s.time_s}, {"vdb", s.vdb}, {"vtp", s.vtp}});
   return {{"deposit", {{"path", r.deposit_file}, {"bytes", f.deposit_bytes}}},
           {"skin", skin},
-          {"fields", fields}};
+          {"fields", fields},
+          {"temperature_snapshots", snapshots}};
 }
 
 json variant_json(const VariantResult& r) {
@@ -390,6 +394,11 @@ std::string files_html(const VariantResult& r) {
         "<tr><td class=l>{}</td><td>{}</td><td class=l>voxel fields for ParaView, {} cells "
         "(one per voxel holding material)</td></tr>",
         link(f.fields), byte_size(f.fields_bytes), f.fields_cells);
+  for (const ExportedFiles::Snapshot& s : f.snapshots)
+    h += fmt::format(
+        "<tr><td class=l>{} {}</td><td></td><td class=l>temperatures at {:.0f} s: on the voxels (VDB) and at "
+        "the thermal cells' centroids (ParaView)</td></tr>",
+        link(s.vdb), link(s.vtp), s.time_s);
   return h + "</table>";
 }
 

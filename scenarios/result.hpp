@@ -119,6 +119,12 @@ struct ExportedFiles {
   // A bead-by-bead STL of the same print (sim::bead_by_bead_stl): its triangles and its size.
   std::size_t bead_stl_triangles = 0;
   std::uintmax_t bead_stl_bytes = 0;
+  // Temperature snapshots (thermal/snapshot_files.hpp): time, and the .vdb and .vtp files.
+  struct Snapshot {
+    double time_s = 0;
+    std::string vdb, vtp;
+  };
+  std::vector<Snapshot> snapshots;
   std::string fields;  // voxel fields for ParaView, .vtu
   std::uintmax_t fields_bytes = 0;
   std::size_t fields_cells = 0;

@@ -21,6 +21,7 @@
 #include "slicer/plan.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
+#include "thermal/snapshot_files.hpp"
 #include "thermal/summary.hpp"
 
 namespace beadtwin::scenarios {
@@ -79,6 +80,8 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;
+  for (const double t : v.thermal.snapshot_times_s)
+    ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
                                  v.machine.environment, ho);
   std::vector<double> durations;
@@ -316,6 +319,17 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   });
   const std::optional<CadCheck> cad = stages.run("compare", [&] { return check_against_cad(v, deposit); });
   const ThermalRun th = stages.run("thermal", [&] { return run_thermal(v, tp, deposit); });
+  if (!th.heat.snapshots.empty())
+    stages.run("snapshots", [&] {
+      for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {
+        const std::string stem = fmt::format("temperature-{:.0f}s", s.time_s);
+        thermal::write_temperature_vdb(th.mesh, s, dir / (stem + ".vdb"));
+        thermal::write_temperature_vtp(th.mesh, s, dir / (stem + ".vtp"));
+        const std::filesystem::path rel(v.name);
+        res.exported.snapshots.push_back(
+            {s.time_s, (rel / (stem + ".vdb")).string(), (rel / (stem + ".vtp")).string()});
+      }
+    });
   stages.run("render", [&] {
     render::RenderOptions o;
     o.width = v.output.image_width;

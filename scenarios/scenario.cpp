@@ -828,6 +828,20 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.thermal.cells_through = th_r.integer(spec(thermal_params(), "cells_through"));
   v.thermal.cell_length_mm = th_r.optional_quantity(spec(thermal_params(), "cell_length")).value_or(0.0);
   v.thermal.birth_interval_s = th_r.optional_quantity(spec(thermal_params(), "birth_interval")).value_or(0.0);
+  if (YAML::Node snaps = th_r.take("snapshots"); snaps.IsDefined()) {
+    const ParamSpec& s = spec(thermal_params(), "snapshots");
+    if (!snaps.IsSequence())
+      th_r.fail(snaps, "snapshots", "expected a list of times, such as [30 min, 1 h, end]");
+    for (const YAML::Node& t : snaps) {
+      if (t.IsScalar() && t.Scalar() == "end") {
+        v.thermal.snapshot_times_s.push_back(std::numeric_limits<double>::infinity());
+        continue;
+      }
+      const double value = th_r.parse(t, s.dim, "snapshots");
+      th_r.check_range(s, value, t);
+      v.thermal.snapshot_times_s.push_back(value);
+    }
+  }
   v.thermal.sample_interval_s = th_r.quantity(spec(thermal_params(), "sample_interval"));
   v.thermal.cooldown_s = th_r.quantity(spec(thermal_params(), "cooldown"));
   v.thermal.rel_tol = th_r.quantity(spec(thermal_params(), "rel_tol"));

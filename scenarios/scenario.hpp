@@ -70,6 +70,8 @@ struct ThermalSpec {
   double cooldown_s = 600.0;
   double rel_tol = 1e-3;
   double abs_tol_k = 0.05;
+  // Temperature snapshots, s; +infinity: the end of the print.
+  std::vector<double> snapshot_times_s;
 };
 
 // One parameter set, fully resolved: what a run needs, nothing more.

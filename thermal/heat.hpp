@@ -41,6 +41,15 @@ struct HeatOptions {
   double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
+  // Times at which every cell's temperature is kept (thermal/snapshot_files.hpp), s; outside the simulated
+  // span they are clamped to its ends.
+  std::vector<double> snapshot_times_s;
+};
+
+// Every cell's temperature at one moment, °C; NaN for cells not yet born.
+struct TemperatureSnapshot {
+  double time_s = 0.0;
+  std::vector<float> temp_c;
 };
 
 struct InterfaceResult {
@@ -64,7 +73,8 @@ struct HeatResult {
   std::vector<double> sample_times_s;  // from the first birth to the end, every sample interval
   // [toolpath layer][sample]: volume-weighted mean temperature of the layer's born cells, °C; NaN before any.
   std::vector<std::vector<float>> layer_temp_c;
-  std::vector<float> final_temp_c;  // per cell, at the end
+  std::vector<float> final_temp_c;             // per cell, at the end
+  std::vector<TemperatureSnapshot> snapshots;  // at HeatOptions::snapshot_times_s, in time order
   // Energy relative to ambient, J: brought in by births, lost through the boundary (negative when the bed
   // heats the part), stored at the end; energy_balance_rel_error = |in − lost − stored| / max(|in|, |lost| +
   // |stored|).

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace beadtwin {
 
@@ -30,8 +32,13 @@ struct Material {
 struct Environment {
   double ambient_c = 18.0;
   double bed_temp_c = 65.0;
-  bool bed_insulated = false;        // true: adiabatic table instead of one held at bed_temp_c
-  double convection_W_m2K = 7.0;     // natural convection on free faces
+  bool bed_insulated = false;     // true: adiabatic table instead of one held at bed_temp_c
+  double convection_W_m2K = 7.0;  // natural convection on free faces
+  // When not empty, the convection coefficient by height above the table instead: (height mm, W/m²K)
+  // points in increasing height, linear between them and constant beyond the first and the last (a part in
+  // an enclosure whose air is stiller, or a fan, at some heights).
+  std::vector<std::pair<double, double>> convection_by_height;
+  double convection_at(double height_mm) const;
   double bed_contact_W_m2K = 100.0;  // contact conductance between the first layer and the table
 };
 

@@ -342,6 +342,10 @@ constexpr ParamSpec kMachine[] = {
      "table is an insulator (no heat flows into it)", ""},
     {"environment.convection", T::kQuantity, D::kHeatTransferCoeff, "7 W/m2K", 0, 1000, false,
      "natural convection coefficient on free faces", "Compton et al. 2017"},
+    {"environment.convection_by_height", T::kQuantity, D::kHeatTransferCoeff, "", 0, 1000, false,
+     "convection coefficient by height above the table instead: [[height, h], ...] in increasing height, "
+     "linear between the points, constant beyond them (h in W/m2K unless given with units)",
+     "thermal/heat.hpp", true},
     {"environment.bed_contact", T::kQuantity, D::kHeatTransferCoeff, "100 W/m2K", 0, 1e5, false,
      "contact conductance between the first layer and the table", "estimate"},
     {"gcode.units", T::kString, D::kDimensionless, "in", 0, 0, false, "units of the print program: in or mm",

@@ -172,6 +172,22 @@ Machine read_machine(BlockReader& r) {
   m.environment.bed_temp_c = r.quantity(spec(t, "environment.bed_temp"));
   m.environment.bed_insulated = r.boolean(spec(t, "environment.bed_insulated"));
   m.environment.convection_W_m2K = r.quantity(spec(t, "environment.convection"));
+  if (YAML::Node profile = r.take("environment.convection_by_height"); profile.IsDefined()) {
+    const ParamSpec& s = spec(t, "environment.convection_by_height");
+    const std::string key = "environment.convection_by_height";
+    if (!profile.IsSequence() || profile.size() == 0)
+      r.fail(profile, key, "expected a list of [height, h] points, such as [[0 m, 7], [2 m, 12]]");
+    for (const YAML::Node& p : profile) {
+      if (!p.IsSequence() || p.size() != 2) r.fail(p, key, "expected a point [height, h]");
+      const double height = r.parse(p[0], Dimension::kLength, key);
+      const double h = r.parse(p[1], s.dim, key);
+      r.check_range(s, h, p[1]);
+      if (!m.environment.convection_by_height.empty() &&
+          height <= m.environment.convection_by_height.back().first)
+        r.fail(p, key, "heights must increase from one point to the next");
+      m.environment.convection_by_height.emplace_back(height, h);
+    }
+  }
   m.environment.bed_contact_W_m2K = r.quantity(spec(t, "environment.bed_contact"));
   const std::string units = r.string(spec(t, "gcode.units"));
   if (units != "in" && units != "mm")

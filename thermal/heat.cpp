@@ -48,14 +48,16 @@ class PartModel final : public OdeSystem {
         ambient_c_(env.ambient_c),
         ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
         bed_c_(env.bed_temp_c),
-        h_(env.convection_W_m2K),
+
         eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
     const double rho_c = material.density_kg_m3 * material.specific_heat_J_kgK;
     capacity_.resize(n_);
     open_m2_.resize(n_);
     table_W_K_.resize(n_);
+    h_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
       const ThermalCell& c = mesh.cells[i];
+      h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
       capacity_[i] = rho_c * c.volume_mm3 * kM3PerMm3;
       open_m2_[i] = c.open_area_mm2 * kM2PerMm2;
       table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
@@ -159,7 +161,7 @@ class PartModel final : public OdeSystem {
     for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k)
       flux += hot_g_[k] * (y[hot_cell_[k]] - t);
     const double tk = t + kKelvinOffset;
-    loss = exposed_m2_[i] * (h_ * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
+    loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
            table_W_K_[i] * (t - bed_c_);
     return (flux - loss) / capacity_[i];
   }
@@ -211,7 +213,7 @@ class PartModel final : public OdeSystem {
   // d(loss)/dT of cell i at temperature t, W/K.
   double loss_derivative(std::size_t i, double t) const {
     const double tk = t + kKelvinOffset;
-    return exposed_m2_[i] * (h_ + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
+    return exposed_m2_[i] * (h_[i] + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
   }
 
   template <class F>
@@ -239,7 +241,8 @@ class PartModel final : public OdeSystem {
   mutable std::vector<double> loss_;     // per cell, scratch of rhs and jacobian_times
   std::size_t born_ = 0;
   std::size_t cap_ = 0;
-  double deposition_c_, ambient_c_, ambient_k4_, bed_c_, h_, eps_sigma_;
+  std::vector<double> h_;  // convection coefficient at the cell's height, W/m²K
+  double deposition_c_, ambient_c_, ambient_k4_, bed_c_, eps_sigma_;
   double energy_in_J_ = 0.0;
   double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
 };

@@ -143,6 +143,36 @@ TEST(Scenario, OverriddenValueErrorsPointAtTheVariant) {
   EXPECT_EQ(e.key(), "machine.environment.bed_temp");
 }
 
+// The thermal keys of issue 7: convection by height (heights in the machine block's units unless given),
+// snapshot times with `end`, and an even number of cells across is an error at its line.
+TEST(Scenario, ThermalKeysAreReadAndCheckedWhereWritten) {
+  const std::string with =
+      replace(kGood, "gates:", "thermal:\n  snapshots: [10 min, end]\n  cells_across: 5\ngates:");
+  const Variant v =
+      load_scenario_text(
+          replace(with, "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}",
+                  "    set: {machine.environment.convection_by_height: [[0 mm, 5], [1000 mm, 12]]}"),
+          "test.yaml")
+          .variants[1];
+  ASSERT_EQ(v.machine.environment.convection_by_height.size(), 2u);
+  EXPECT_DOUBLE_EQ(v.machine.environment.convection_by_height[1].first, 1000.0);  // mm
+  EXPECT_DOUBLE_EQ(v.machine.environment.convection_at(500.0), 8.5);
+  EXPECT_EQ(v.thermal.cells_across, 5);
+  ASSERT_EQ(v.thermal.snapshot_times_s.size(), 2u);
+  EXPECT_DOUBLE_EQ(v.thermal.snapshot_times_s[0], 600.0);
+  EXPECT_TRUE(std::isinf(v.thermal.snapshot_times_s[1]));
+  const InputError even = load_error(replace(with, "cells_across: 5", "cells_across: 4"));
+  EXPECT_EQ(even.key(), "thermal.cells_across");
+  EXPECT_NE(std::string(even.what()).find("odd"), std::string::npos);
+  const InputError down = load_error(
+      replace(kGood, "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}",
+              "    set: {machine.environment.convection_by_height: [[100, 5], [50, 12]]}"));
+  EXPECT_EQ(down.key(), "machine.environment.convection_by_height");
+  EXPECT_NE(std::string(down.what()).find("increase"), std::string::npos);
+  const InputError snaps = load_error(replace(with, "[10 min, end]", "[10 furlongs]"));
+  EXPECT_EQ(snaps.key(), "thermal.snapshots");
+}
+
 // The skin by default; the voxel fields for ParaView (about 60 bytes a voxel) when asked for.
 TEST(Scenario, OutputFilesForOtherProgramsHaveDefaultsAndCanBeChosen) {
   const Variant def = load_scenario_text(kGood, "test.yaml").variants[0];

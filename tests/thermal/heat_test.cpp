@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -155,6 +156,34 @@ TEST(HeatLumped, OneCellCoolsExponentially) {
 
 // Faces towards a cell not yet born are open surface: a cube whose neighbour is born late cools through its
 // own open area and the shared face (τ₁ = C / (h (A_open + A_link))) until then. Same formula as above.
+// h varying with height (Environment::convection_by_height): two separate cubes, one low and one high, each
+// cools as a lumped body with the coefficient at its own height (linear between the points), and beyond the
+// last point the last value holds.
+TEST(HeatLumped, ConvectionVariesWithHeight) {
+  const Material material = test_material();
+  Environment env;
+  env.bed_insulated = true;
+  env.ambient_c = 18.0;
+  env.convection_by_height = {{0.0, 5.0}, {1000.0, 15.0}};
+  EXPECT_DOUBLE_EQ(env.convection_at(-5.0), 5.0);
+  EXPECT_DOUBLE_EQ(env.convection_at(250.0), 7.5);
+  EXPECT_DOUBLE_EQ(env.convection_at(2000.0), 15.0);
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 1.0;
+  mesh.cells.push_back(cell_at({10.0, 10.0, 250.0}, 8000.0));    // h 7.5
+  mesh.cells.push_back(cell_at({100.0, 10.0, 1500.0}, 8000.0));  // h 15 (beyond the last point)
+  for (ThermalCell& c : mesh.cells) c.open_area_mm2 = 2000.0;
+  const double c = capacity_J_K(material, 8000.0);
+  HeatOptions options;
+  options.cooldown_s = 1000.0;
+  const HeatResult result = solve_heat(mesh, 1, 0.0, material, env, options);
+  const double t0 = material.deposition_temp_c, ta = env.ambient_c;
+  for (const auto& [i, h] : {std::pair{0, 7.5}, std::pair{1, 15.0}}) {
+    const double exact = ta + (t0 - ta) * std::exp(-1000.0 / (c / (h * 2000.0e-6)));
+    EXPECT_NEAR(result.final_temp_c[static_cast<std::size_t>(i)], exact, 0.01 * (t0 - ta)) << "cell " << i;
+  }
+}
+
 TEST(HeatLumped, FaceTowardsAnUnbornNeighbourIsOpenSurface) {
   const Material material = test_material();
   Environment env;

@@ -236,6 +236,16 @@ json variant_json(const VariantResult& r) {
                       {"void_mm3", l.void_mm3},
                       {"plough_mm3", l.plough_mm3},
                       {"unsupported_mm", l.unsupported_mm}});
+  json sections = json::array();
+  for (const SectionRow& s : r.sections)
+    sections.push_back({{"name", s.name},
+                        {"interfaces", s.interfaces},
+                        {"substrate_temp_c", stats_json(s.substrate_temp_c)},
+                        {"healing_min", number_or_null(s.healing)},
+                        {"healing_mean", number_or_null(s.healing_mean)},
+                        {"too_hot_fraction", s.too_hot_fraction},
+                        {"too_cold_fraction", s.too_cold_fraction},
+                        {"verdict", s.verdict}});
   json defects = json::array();
   for (std::size_t i = 0; i < std::min(r.defects.size(), kDefectsInJson); ++i) {
     const sim::Defect& d = r.defects[i];
@@ -297,6 +307,7 @@ json variant_json(const VariantResult& r) {
         {"thermal",
          {{"energy_balance_rel_error", m.thermal_energy_error}, {"cvode_steps", m.thermal_steps}}}}},
       {"layers", layers},
+      {"sections", sections},
       {"defects", defects},
       {"images", r.images},
       {"program", r.program},
@@ -649,6 +660,21 @@ details{margin:1em 0} .muted{color:#777}
     h += "</table>";
     h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a></p>", esc(v.program));
     h += files_html(v);
+    h += "<h3>Fusion by section</h3><table><tr><th class=l>section</th><th>interfaces</th><th>substrate °C "
+         "at deposition min/mean/max</th><th>too hot %</th><th>too cold %</th><th>healing min/mean</th>"
+         "<th class=l>verdict</th></tr>";
+    for (const SectionRow& sr : v.sections) {
+      const Stats3& s = sr.substrate_temp_c;
+      h += fmt::format(
+          "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
+          "class=l>{}</td></tr>",
+          esc(sr.name), sr.interfaces,
+          std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–",
+          100 * sr.too_hot_fraction, 100 * sr.too_cold_fraction,
+          std::isfinite(sr.healing) ? fmt::format("{:.3f} / {:.3f}", sr.healing, sr.healing_mean) : "–",
+          sr.verdict);
+    }
+    h += "</table>";
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
          "class=l>section</th><th>start s</th>"
          "<th>duration s</th><th>substrate °C at deposition min/mean/max</th><th>interfaces</th>"

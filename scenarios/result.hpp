@@ -101,6 +101,16 @@ struct LayerRow {
   double fill_ratio = 0, bead_height_mm = 0, void_mm3 = 0, plough_mm3 = 0, unsupported_mm = 0;
 };
 
+// The interfaces where one section's beads landed (thermal/summary.hpp), as LayerRow has them per layer.
+struct SectionRow {
+  std::string name;
+  int interfaces = 0;
+  Stats3 substrate_temp_c;
+  double healing = 0, healing_mean = 0;
+  double too_hot_fraction = 0, too_cold_fraction = 0;
+  std::string verdict;
+};
+
 struct GateResult {
   std::string name;  // the expression as written
   std::string expr;
@@ -135,6 +145,7 @@ struct VariantResult {
   const Variant* variant = nullptr;
   Metrics metrics;
   std::vector<LayerRow> layers;
+  std::vector<SectionRow> sections;
   std::vector<GateResult> gates;
   std::vector<std::string> images;  // relative to the output directory
   std::string program;              // relative path of the print program

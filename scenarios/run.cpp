@@ -244,6 +244,29 @@ std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const
   return rows;
 }
 
+std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th) {
+  std::vector<int> section_of_cell;
+  section_of_cell.reserve(th.mesh.cells.size());
+  for (const thermal::ThermalCell& c : th.mesh.cells) section_of_cell.push_back(tp.moves[c.move].section);
+  const std::vector<thermal::FusionSummary> sums =
+      thermal::summarise_groups(th.heat, section_of_cell, tp.sections.size());
+  std::vector<SectionRow> rows;
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    const thermal::FusionSummary& f = sums[k];
+    SectionRow row;
+    row.name = tp.sections[k];
+    row.interfaces = static_cast<int>(f.interfaces);
+    row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
+    row.healing = f.healing_min;
+    row.healing_mean = f.healing_mean;
+    row.too_hot_fraction = f.too_hot_fraction();
+    row.too_cold_fraction = f.too_cold_fraction();
+    row.verdict = std::string(thermal::to_string(f.verdict()));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 bool compare(double value, GateOp op, double threshold) {
   switch (op) {
     case GateOp::kLess:
@@ -377,6 +400,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   res.metrics.planned_voids = plan_stats.voids_found;
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   res.layers = layer_rows(tp, th, deposit);
+  res.sections = section_rows(tp, th);
   res.defects = deposit.defects;
   res.notes = deposit.notes;
   if (log)

@@ -170,6 +170,20 @@ FusionSummary summarise_part(const HeatResult& heat) {
   return s;
 }
 
+std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<const int> group_of_cell,
+                                            std::size_t group_count) {
+  std::vector<FusionSummary> groups(group_count);
+  std::vector<double> on_top_area(group_count, 0.0);
+  for (const InterfaceResult& r : heat.interfaces) {
+    const int g = group_of_cell[r.younger];
+    if (g < 0 || static_cast<std::size_t>(g) >= group_count) continue;
+    add(groups[static_cast<std::size_t>(g)], r);
+    if (r.on_top) on_top_area[static_cast<std::size_t>(g)] += r.area_mm2;
+  }
+  for (std::size_t k = 0; k < group_count; ++k) finish(groups[k], on_top_area[k]);
+  return groups;
+}
+
 std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& heat) {
   std::vector<Verdict> out(mesh.cells.size(), Verdict::kNoInterface);
   for (const InterfaceResult& r : heat.interfaces)

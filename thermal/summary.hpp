@@ -64,6 +64,10 @@ struct LayerTimeWindow {
 LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
                                   const Material& material, double ambient_c, double share);
 FusionSummary summarise_part(const HeatResult& heat);
+// One summary per group, by the group of the younger cell (`group_of_cell`, one entry per cell; a group
+// outside [0, group_count) is left out): the sections of a print, say.
+std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<const int> group_of_cell,
+                                            std::size_t group_count);
 
 // Per cell, its worst interface as the younger one (too hot before too cold before ok); kNoInterface for a
 // cell that landed on nothing but the table and touches nothing older.

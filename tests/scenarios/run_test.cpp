@@ -69,6 +69,10 @@ TEST(Run, SmallScenarioEndToEnd) {
     for (const auto& l : v["layers"]) per_layer += l["interfaces"].get<int>();
     EXPECT_GT(m["interfaces"]["count"].get<int>(), 5);
     EXPECT_EQ(m["interfaces"]["count"].get<int>(), per_layer);
+    // And so do the sections'.
+    ASSERT_EQ(v["sections"].size(), 2u);
+    EXPECT_EQ(v["sections"][0]["name"], "floor");
+    EXPECT_EQ(v["sections"][0]["interfaces"].get<int>() + v["sections"][1]["interfaces"].get<int>(), per_layer);
     // Conservation: every commanded mm³ is in the voxel model.
     EXPECT_NEAR(m["deposited_volume_mm3"].get<double>() / m["commanded_volume_mm3"].get<double>(), 1.0, 0.02);
     ASSERT_EQ(v["layers"].size(), 6u);

@@ -12,6 +12,12 @@ struct Material {
   std::string name;
   double density_kg_m3 = 1140.0;
   double specific_heat_J_kgK = 1640.0;
+  // When not empty, the specific heat by temperature instead: (°C, J/kg·K) points in increasing temperature,
+  // linear between them and constant beyond the first and the last.
+  std::vector<std::pair<double, double>> specific_heat_by_temp;
+  double specific_heat_at(double temp_c) const;
+  // ∫ c_p dT from `from_c` to `to_c`, J/kg.
+  double enthalpy_J_kg(double from_c, double to_c) const;
   // Orthotropic conductivity: along the bead, across it (in the layer plane), through the layer thickness.
   double conductivity_along_W_mK = 0.17;
   double conductivity_across_W_mK = 0.17;

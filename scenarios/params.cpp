@@ -386,6 +386,10 @@ constexpr ParamSpec kMaterial[] = {
     {"description", T::kString, D::kDimensionless, "-", 0, 0, false, "what the material is", ""},
     {"density", T::kQuantity, D::kDensity, "", 0, 1e5, true, "density of the printed material", ""},
     {"specific_heat", T::kQuantity, D::kSpecificHeat, "", 0, 1e5, true, "specific heat capacity", ""},
+    {"specific_heat_by_temp", T::kQuantity, D::kSpecificHeat, "", 0, 1e5, true,
+     "specific heat by temperature instead: [[T, c_p], ...] in increasing temperature, linear between the "
+     "points, constant beyond them",
+     "thermal/heat.hpp", true},
     {"conductivity.along", T::kQuantity, D::kConductivity, "", 0, 1e3, true,
      "thermal conductivity along the bead", ""},
     {"conductivity.across", T::kQuantity, D::kConductivity, "", 0, 1e3, true,

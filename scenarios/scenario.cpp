@@ -226,6 +226,22 @@ Material read_material(BlockReader& r) {
   (void)r.string(spec(t, "description"));
   m.density_kg_m3 = r.quantity(spec(t, "density"));
   m.specific_heat_J_kgK = r.quantity(spec(t, "specific_heat"));
+  if (YAML::Node table = r.take("specific_heat_by_temp"); table.IsDefined()) {
+    const ParamSpec& s = spec(t, "specific_heat_by_temp");
+    const std::string key = "specific_heat_by_temp";
+    if (!table.IsSequence() || table.size() == 0)
+      r.fail(table, key,
+             "expected a list of [temperature, c_p] points, such as [[25 C, 1400], [200 C, 2000]]");
+    for (const YAML::Node& p : table) {
+      if (!p.IsSequence() || p.size() != 2) r.fail(p, key, "expected a point [temperature, c_p]");
+      const double temp = r.parse(p[0], Dimension::kTemperature, key);
+      const double cp = r.parse(p[1], s.dim, key);
+      r.check_range(s, cp, p[1]);
+      if (!m.specific_heat_by_temp.empty() && temp <= m.specific_heat_by_temp.back().first)
+        r.fail(p, key, "temperatures must increase from one point to the next");
+      m.specific_heat_by_temp.emplace_back(temp, cp);
+    }
+  }
   m.conductivity_along_W_mK = r.quantity(spec(t, "conductivity.along"));
   m.conductivity_across_W_mK = r.quantity(spec(t, "conductivity.across"));
   m.conductivity_through_W_mK = r.quantity(spec(t, "conductivity.through"));

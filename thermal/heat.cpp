@@ -44,6 +44,8 @@ class PartModel final : public OdeSystem {
  public:
   PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env)
       : n_(mesh.cells.size()),
+        material_(material),
+        variable_cp_(!material.specific_heat_by_temp.empty()),
         deposition_c_(material.deposition_temp_c),
         ambient_c_(env.ambient_c),
         ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
@@ -52,6 +54,7 @@ class PartModel final : public OdeSystem {
         eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
     const double rho_c = material.density_kg_m3 * material.specific_heat_J_kgK;
     capacity_.resize(n_);
+    mass_kg_.resize(n_);
     open_m2_.resize(n_);
     table_W_K_.resize(n_);
     h_.resize(n_);
@@ -59,6 +62,7 @@ class PartModel final : public OdeSystem {
       const ThermalCell& c = mesh.cells[i];
       h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
       capacity_[i] = rho_c * c.volume_mm3 * kM3PerMm3;
+      mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
       open_m2_[i] = c.open_area_mm2 * kM2PerMm2;
       table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
     }
@@ -133,7 +137,7 @@ class PartModel final : public OdeSystem {
         if (nb.cell < end) exposed_m2_[i] -= nb.area_m2;
       for (const Neighbour& nb : neighbours(i))
         if (nb.cell < born_) exposed_m2_[nb.cell] -= nb.area_m2;
-      energy_in_J_ += capacity_[i] * (deposition_c_ - ambient_c_);
+      energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
     }
     born_ = end;
   }
@@ -141,7 +145,7 @@ class PartModel final : public OdeSystem {
   double energy_in_J() const { return energy_in_J_; }
   double energy_stored_J(std::span<const double> y) const {
     double e = 0.0;
-    for (std::size_t i = 0; i < born_; ++i) e += capacity_[i] * (y[i] - ambient_c_);
+    for (std::size_t i = 0; i < born_; ++i) e += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, y[i]);
     return e;
   }
 
@@ -163,7 +167,7 @@ class PartModel final : public OdeSystem {
     const double tk = t + kKelvinOffset;
     loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
            table_W_K_[i] * (t - bed_c_);
-    return (flux - loss) / capacity_[i];
+    return (flux - loss) / heat_capacity(i, t);
   }
 
   void rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) override {
@@ -185,7 +189,7 @@ class PartModel final : public OdeSystem {
         sum += hot_g_[k] * (v[hot_cell_[k]] - vi);
       const double d_loss = loss_derivative(i, y[i]) * v[i];
       loss_[i] = d_loss;
-      jv[i] = (sum - d_loss) / capacity_[i];
+      jv[i] = (sum - d_loss) / heat_capacity(i, y[i]);
     });
     double q = 0.0;
     for (std::size_t i = 0; i < born; ++i) q += loss_[i];
@@ -198,7 +202,7 @@ class PartModel final : public OdeSystem {
     for_cells(born, [&](std::size_t i) {
       double g = 0.0;
       for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k) g += hot_g_[k];
-      diagonal[i] = -(g + loss_derivative(i, y[i])) / capacity_[i];
+      diagonal[i] = -(g + loss_derivative(i, y[i])) / heat_capacity(i, y[i]);
     });
     for (std::size_t i = born; i < cap_; ++i) diagonal[i] = 0.0;
     diagonal[cap_] = 0.0;
@@ -210,6 +214,12 @@ class PartModel final : public OdeSystem {
   }
 
  private:
+  // m c_p(T) of cell i, J/K. (The Jacobian leaves out the change of c_p with T: Newton's matrix need not
+  // be exact.)
+  double heat_capacity(std::size_t i, double t) const {
+    return variable_cp_ ? mass_kg_[i] * material_.specific_heat_at(t) : capacity_[i];
+  }
+
   // d(loss)/dT of cell i at temperature t, W/K.
   double loss_derivative(std::size_t i, double t) const {
     const double tk = t + kKelvinOffset;
@@ -230,7 +240,10 @@ class PartModel final : public OdeSystem {
   }
 
   std::size_t n_;
-  std::vector<double> capacity_;    // J/K
+  std::vector<double> capacity_;  // J/K at the constant specific heat
+  std::vector<double> mass_kg_;
+  Material material_;
+  bool variable_cp_ = false;
   std::vector<double> open_m2_;     // open for good
   std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
   std::vector<double> table_W_K_;   // bed contact conductance

@@ -171,6 +171,17 @@ TEST(Scenario, ThermalKeysAreReadAndCheckedWhereWritten) {
   EXPECT_NE(std::string(down.what()).find("increase"), std::string::npos);
   const InputError snaps = load_error(replace(with, "[10 min, end]", "[10 furlongs]"));
   EXPECT_EQ(snaps.key(), "thermal.snapshots");
+  const Variant cp =
+      load_scenario_text(
+          replace(kGood, "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}",
+                  "    set: {material.specific_heat_by_temp: [[20 C, 1200], [200 C, 2000]]}"),
+          "test.yaml")
+          .variants[1];
+  EXPECT_DOUBLE_EQ(cp.material.specific_heat_at(110.0), 1600.0);
+  const InputError cold = load_error(
+      replace(kGood, "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}",
+              "    set: {material.specific_heat_by_temp: [[200 C, 1200], [20 C, 2000]]}"));
+  EXPECT_EQ(cold.key(), "material.specific_heat_by_temp");
 }
 
 // The skin by default; the voxel fields for ParaView (about 60 bytes a voxel) when asked for.

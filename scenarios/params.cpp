@@ -454,7 +454,7 @@ constexpr ParamSpec kThermal[] = {
     {"cell_length", T::kQuantity, D::kLength, "", 0, 1e5, true,
      "thermal cell length along a bead; absent: two bead widths", "thermal/mesh.hpp", true},
     {"birth_interval", T::kQuantity, D::kTime, "", 0, 1e4, true,
-     "cells laid within this time are born together; absent: a tenth of the cells' median conduction time "
+     "cells laid within this time are born together; absent: a fifth of the cells' median conduction time "
      "constant",
      "thermal/heat.hpp", true},
     {"cooldown", T::kQuantity, D::kTime, "10 min", 0, 1e7, false,

@@ -296,7 +296,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     tau.reserve(n);
     for (std::size_t i = 0; i < n; ++i) tau.push_back(model.time_constant_s(i));
     std::nth_element(tau.begin(), tau.begin() + static_cast<std::ptrdiff_t>(n / 2), tau.end());
-    interval = std::isfinite(tau[n / 2]) ? 0.1 * tau[n / 2] : 1.0;
+    interval = std::isfinite(tau[n / 2]) ? 0.2 * tau[n / 2] : 1.0;
   }
   result.birth_interval_s = interval;
   struct Group {
@@ -475,7 +475,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       cvode = std::make_unique<Cvode>(model, t, before, co);
     }
     // The first step tries to reach the next group at once: the temperatures move slowly against the birth
-    // interval (it is a tenth of a cell's time constant), so CVODE usually takes it.
+    // interval (it is a fifth of a cell's time constant), so CVODE usually takes it.
     const double gap = g + 1 < groups.size() ? groups[g + 1].time_s - t : interval;
     cvode->reinit(t, before, std::max(gap, 1e-3 * interval));
   }

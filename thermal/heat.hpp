@@ -35,7 +35,7 @@ namespace beadtwin::thermal {
 struct HeatOptions {
   double rel_tol = 1e-3;    // CVODE relative tolerance
   double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
-  // Cells laid within this time are born together, s; 0: a tenth of the cells' median conduction time
+  // Cells laid within this time are born together, s; 0: a fifth of the cells' median conduction time
   // constant (C / ΣG), which keeps the births' grouping well inside how fast a cell's temperature can move.
   double birth_interval_s = 0.0;
   double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0

@@ -496,7 +496,7 @@ TEST(HeatHealing, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
   mesh.cells.push_back(cell_at({5.0, 5.0, 15.0}, 1000.0, 10.0, 1));
   mesh.links.push_back(link(0, 1, {0.0, 0.0, 100.0}, true));
   HeatOptions options;
-  options.birth_interval_s = 0.5;  // the default (a tenth of C/G ≈ 53 s) would merge the two births
+  options.birth_interval_s = 0.5;  // the default (a fifth of C/G ≈ 106 s) would merge the two births
   options.cooldown_s = 30.0;
   const HeatResult result = solve_heat(mesh, 2, 0.0, material, adiabatic(), options);
 

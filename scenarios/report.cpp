@@ -599,11 +599,13 @@ details{margin:1em 0} .muted{color:#777}
                        fmt_opt(g.value), g.passed ? "pass" : "<b>fail</b>");
     h += "</table>";
     h += fmt::format(
-        "<h3>The part, coloured by fusion verdict</h3><p class=legend>"
-        "<span style=\"background:{}\"></span>fuses <span style=\"background:{}\"></span>too hot (substrate "
-        "above the "
-        "support limit) <span style=\"background:{}\"></span>too cold (interface does not heal) "
-        "<span style=\"background:{}\"></span>first layer (on the table)</p>",
+        "<h3>The part, coloured by fusion verdict</h3><p class=legend>Each piece of bead by its worst "
+        "interface "
+        "where it landed: <span style=\"background:{}\"></span>fuses <span "
+        "style=\"background:{}\"></span>too "
+        "hot (the substrate under it above the support limit) <span style=\"background:{}\"></span>too cold "
+        "(an interface that does not heal) <span style=\"background:{}\"></span>no interface (on the table "
+        "alone)</p>",
         hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
         hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kNoInterface)));
     for (const auto& img : v.images) {

@@ -444,6 +444,12 @@ constexpr ParamSpec kOutput[] = {
      "the voxel fields fill, time_s and layer for ParaView: vtu (VTK XML unstructured grid, one cell "
      "per voxel holding material; about 60 bytes a voxel, 200 MB for the default scenario) or none",
      "sim/deposit_files.hpp"},
+    {"history_layers", T::kInteger, D::kDimensionless, "[0, 14, 29]", 0, 100000, false,
+     "a list of toolpath layers (numbered from 0 at the table, as in the report's layer table) whose mean "
+     "temperature against time report.html plots and report.json keeps (temperature_history), every "
+     "thermal.sample_interval; layers the print does not reach are left out; [] for none. The default is "
+     "the 1st, 15th and 30th layer",
+     "scenarios/report.cpp"},
 };
 
 constexpr ParamSpec kThermal[] = {

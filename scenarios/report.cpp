@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 #include <fmt/format.h>
@@ -201,6 +202,24 @@ json files_json(const VariantResult& r) {
           {"temperature_snapshots", snapshots}};
 }
 
+// Rounded for the file: a hundredth of a kelvin and of a second is far below what the model resolves, and
+// keeps a float's tail of digits out of report.json.
+json rounded(double v) {
+  return std::isfinite(v) ? json(std::round(v * 100.0) / 100.0) : json(nullptr);
+}
+
+json history_json(const TemperatureHistory& h) {
+  json times = json::array();
+  for (const double t : h.times_s) times.push_back(rounded(t));
+  json layers = json::array();
+  for (const LayerHistory& l : h.layers) {
+    json temps = json::array();
+    for (const float temp : l.temp_c) temps.push_back(rounded(temp));
+    layers.push_back({{"index", l.index}, {"temp_c", std::move(temps)}});
+  }
+  return {{"times_s", std::move(times)}, {"layers", std::move(layers)}};
+}
+
 json variant_json(const VariantResult& r) {
   const Metrics& m = r.metrics;
   json gates = json::array();
@@ -308,6 +327,7 @@ json variant_json(const VariantResult& r) {
          {{"energy_balance_rel_error", m.thermal_energy_error}, {"cvode_steps", m.thermal_steps}}}}},
       {"layers", layers},
       {"sections", sections},
+      {"temperature_history", history_json(r.temperature_history)},
       {"defects", defects},
       {"images", r.images},
       {"program", r.program},
@@ -496,6 +516,131 @@ std::string substrate_plot(const VariantResult& r) {
   return svg;
 }
 
+// A round step (1, 2 or 5 times a power of ten) that cuts `range` into about `parts`.
+double nice_step(double range, int parts) {
+  const double raw = range / parts;
+  const double decade = std::pow(10.0, std::floor(std::log10(raw)));
+  for (const double m : {1.0, 2.0, 5.0})
+    if (m * decade >= raw) return m * decade;
+  return 10.0 * decade;
+}
+
+// 1st, 2nd, 3rd, 4th, ..., 11th, 12th, 13th, ..., 21st.
+std::string ordinal(int n) {
+  const int tens = n % 100, ones = n % 10;
+  const char* suffix = tens >= 11 && tens <= 13 ? "th"
+                       : ones == 1              ? "st"
+                       : ones == 2              ? "nd"
+                       : ones == 3              ? "rd"
+                                                : "th";
+  return fmt::format("{}{}", n, suffix);
+}
+
+// The chosen layers' mean temperature against time, with the support limit and T_g, as an inline SVG.
+std::string history_plot(const VariantResult& r) {
+  const TemperatureHistory& hist = r.temperature_history;
+  if (hist.layers.empty() || hist.times_s.size() < 2 || !r.variant) return {};
+  static constexpr const char* kColours[] = {"#1f77b4", "#e07b00", "#2ca02c", "#9467bd",
+                                             "#8c564b", "#d62728", "#17becf", "#7f7f7f"};
+  const Material& mat = r.variant->material;
+  const double support = mat.support_limit_c, tg = mat.glass_transition_c;
+  // The legend runs in rows of four under the axis.
+  const std::size_t per_row = 4, rows = (hist.layers.size() + per_row - 1) / per_row;
+  const double w = 760, l = 56, rm = 16, t = 16, b = 46 + 16 * static_cast<double>(rows);
+  const double h = 238 + b;
+  double lo = std::min({r.variant->machine.environment.ambient_c, tg, support});
+  double hi = std::max({mat.deposition_temp_c, tg, support});
+  for (const LayerHistory& layer : hist.layers)
+    for (const float temp : layer.temp_c)
+      if (std::isfinite(temp)) {
+        lo = std::min(lo, double{temp});
+        hi = std::max(hi, double{temp});
+      }
+  // A little room above and below the lines, and the grid at round temperatures within.
+  if (!(hi > lo)) hi = lo + 1.0;
+  const double pad = 0.03 * (hi - lo);
+  lo -= pad;
+  hi += pad;
+  const double y_step = nice_step(hi - lo, 5);
+  // Time on the print's clock, from its start.
+  const double t0 = std::min(0.0, hist.times_s.front()), t1 = hist.times_s.back();
+  // Minutes once the history is longer than twenty of them.
+  const double unit_s = t1 - t0 > 1200.0 ? 60.0 : 1.0;
+  const auto x = [&](double time) { return l + (w - l - rm) * (time - t0) / (t1 - t0); };
+  const auto y = [&](double temp) { return t + (h - t - b) * (1 - (temp - lo) / (hi - lo)); };
+  std::string svg = fmt::format(
+      R"svg(<svg viewBox="0 0 {} {}" width="{}" height="{}" role="img" aria-label="layer temperature against time">)svg",
+      w, h, w, h);
+  for (double temp = std::ceil(lo / y_step) * y_step; temp <= hi; temp += y_step) {
+    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="#ddd"/>)svg", l, w - rm,
+                       y(temp), y(temp));
+    svg += fmt::format(R"svg(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{:.0f}</text>)svg",
+                       l - 6, y(temp) + 4, temp);
+  }
+  const double x_step = nice_step((t1 - t0) / unit_s, 8);
+  for (double k = std::ceil(t0 / unit_s / x_step) * x_step; k * unit_s <= t1 + 1e-9; k += x_step) {
+    svg += fmt::format(R"svg(<line x1="{0:.1f}" x2="{0:.1f}" y1="{1}" y2="{2}" stroke="#eee"/>)svg",
+                       x(k * unit_s), t, h - b);
+    svg += fmt::format(R"svg(<text x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{:g}</text>)svg",
+                       x(k * unit_s), h - b + 14, k);
+  }
+  // The support limit above its line, T_g below its own, so the two labels stay apart.
+  svg += fmt::format(
+      R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="{}" stroke-dasharray="4 3"/>)svg", l,
+      w - rm, y(support), y(support), hex(verdict_colour(thermal::Verdict::kTooHot)));
+  svg += fmt::format(
+      R"svg(<text x="{}" y="{:.1f}" font-size="11" fill="#b33" text-anchor="end">support limit {:.0f} °C</text>)svg",
+      w - rm - 4, y(support) - 4, support);
+  svg += fmt::format(
+      R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="#555" stroke-dasharray="2 3"/>)svg", l,
+      w - rm, y(tg), y(tg));
+  svg += fmt::format(
+      R"svg(<text x="{}" y="{:.1f}" font-size="11" fill="#555" text-anchor="end">T_g {:.0f} °C</text>)svg",
+      w - rm - 4, y(tg) + 13, tg);
+  // One line per layer, broken where it has no value (before the layer is laid).
+  for (std::size_t k = 0; k < hist.layers.size(); ++k) {
+    const LayerHistory& layer = hist.layers[k];
+    const char* colour = kColours[k % std::size(kColours)];
+    std::string path;
+    bool pen_down = false;
+    for (std::size_t i = 0; i < layer.temp_c.size() && i < hist.times_s.size(); ++i) {
+      if (!std::isfinite(layer.temp_c[i])) {
+        pen_down = false;
+        continue;
+      }
+      path += fmt::format("{}{:.1f},{:.1f}", pen_down ? " L" : (path.empty() ? "M" : " M"),
+                          x(hist.times_s[i]), y(layer.temp_c[i]));
+      pen_down = true;
+    }
+    svg += fmt::format(R"svg(<path d="{}" fill="none" stroke="{}" stroke-width="1.5"/>)svg", path, colour);
+    const double lx = l + 160.0 * static_cast<double>(k % per_row);
+    const double ly = h - b + 48 + 16 * static_cast<double>(k / per_row);
+    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-width="2"/>)svg", lx,
+                       lx + 18, ly - 4, ly - 4, colour);
+    svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11">layer {} (the {})</text>)svg", lx + 22, ly,
+                       layer.index, ordinal(layer.index + 1));
+  }
+  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle">time, {}</text>)svg",
+                     (l + w - rm) / 2, h - b + 30, unit_s > 1.0 ? "min" : "s");
+  svg += fmt::format(
+      R"svg(<text x="14" y="{0}" font-size="12" transform="rotate(-90 14 {0})" text-anchor="middle">layer mean °C</text>)svg",
+      (t + h - b) / 2);
+  svg += "</svg>";
+  return svg;
+}
+
+// What the history plot shows, for the line above it.
+std::string history_caption(const VariantResult& r) {
+  const double interval = r.variant ? r.variant->thermal.sample_interval_s : 0.0;
+  return fmt::format(
+      "<p class=muted>The mean temperature of each chosen layer's beads laid so far (volume-weighted "
+      "over its thermal cells), every {:g} s. Layers are numbered from 0 at the table, as in the layer "
+      "table, so layer 14 is the 15th layer printed (papers usually count from 1: their layer 15). "
+      "Dashed: the support limit (a substrate above it is too soft to carry the next layer) and the "
+      "glass transition T_g. Choose the layers with <code>output.history_layers</code>.</p>",
+      interval);
+}
+
 // The part against its CAD: the deviation map with its scale, and the numbers.
 std::string cad_html(const VariantResult& v) {
   const Metrics& m = v.metrics;
@@ -627,6 +772,8 @@ details{margin:1em 0} .muted{color:#777}
     }
     h += cad_html(v);
     h += "<h3>Substrate temperature when each layer lands</h3>" + substrate_plot(v);
+    if (const std::string plot = history_plot(v); !plot.empty())
+      h += "<h3>Temperature of chosen layers against time</h3>" + history_caption(v) + plot;
     const Metrics& m = v.metrics;
     h += "<h3>Metrics</h3><table>";
     auto row = [&h](std::string_view k, const std::string& val) {

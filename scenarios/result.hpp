@@ -111,6 +111,17 @@ struct SectionRow {
   std::string verdict;
 };
 
+// The mean temperature of chosen layers against time (output.history_layers), from the thermal model's
+// samples (thermal::HeatResult::layer_temp_c: the volume-weighted mean over the layer's cells laid so far).
+struct LayerHistory {
+  int index = 0;              // toolpath layer, from 0
+  std::vector<float> temp_c;  // per sample, °C; NaN before the layer's first cell is laid
+};
+struct TemperatureHistory {
+  std::vector<double> times_s;  // every thermal.sample_interval from the first cell's birth
+  std::vector<LayerHistory> layers;
+};
+
 struct GateResult {
   std::string name;  // the expression as written
   std::string expr;
@@ -146,6 +157,7 @@ struct VariantResult {
   Metrics metrics;
   std::vector<LayerRow> layers;
   std::vector<SectionRow> sections;
+  TemperatureHistory temperature_history;
   std::vector<GateResult> gates;
   std::vector<std::string> images;  // relative to the output directory
   std::string program;              // relative path of the print program

@@ -267,6 +267,18 @@ std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th) {
   return rows;
 }
 
+// The layers' temperature against time that the report keeps: the chosen layers the print reaches.
+TemperatureHistory temperature_history(const Variant& v, const thermal::HeatResult& heat) {
+  TemperatureHistory out;
+  out.times_s = heat.sample_times_s;
+  for (const int index : v.output.history_layers) {
+    const auto i = static_cast<std::size_t>(index);
+    if (index < 0 || i >= heat.layer_temp_c.size()) continue;
+    out.layers.push_back({index, heat.layer_temp_c[i]});
+  }
+  return out;
+}
+
 bool compare(double value, GateOp op, double threshold) {
   switch (op) {
     case GateOp::kLess:
@@ -401,6 +413,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   res.layers = layer_rows(tp, th, deposit);
   res.sections = section_rows(tp, th);
+  res.temperature_history = temperature_history(v, th.heat);
   res.defects = deposit.defects;
   res.notes = deposit.notes;
   if (log)

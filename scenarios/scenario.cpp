@@ -275,6 +275,33 @@ Eigen::Vector3d read_vector(BlockReader& r, const std::string& key, bool require
   return v;
 }
 
+// A list of whole numbers [a, b, ...] (absent: the spec's default), each in the spec's range, none twice.
+std::vector<int> read_integer_list(BlockReader& r, const ParamSpec& spec) {
+  const YAML::Node node = r.take(spec.key);
+  const bool given = node.IsDefined() && !node.IsNull();
+  const YAML::Node list = given ? node : YAML::Load(std::string(spec.default_text));
+  if (!list.IsSequence())
+    r.fail(node, spec.key, fmt::format("expected a list of whole numbers such as {}", spec.default_text));
+  std::vector<int> out;
+  for (const YAML::Node& item : list) {
+    const std::string text = item.IsScalar() ? item.Scalar() : "";
+    std::size_t used = 0;
+    long v = 0;
+    try {
+      v = std::stol(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != text.size())
+      r.fail(item, spec.key, fmt::format("expected a whole number but found '{}'", text));
+    r.check_range(spec, static_cast<double>(v), item);
+    if (std::find(out.begin(), out.end(), v) != out.end())
+      r.fail(item, spec.key, fmt::format("{} is in the list twice", v));
+    out.push_back(static_cast<int>(v));
+  }
+  return out;
+}
+
 // Meshes read while loading, shared by the variants that use the same file at the same scale, with the
 // repairs their reading reported.
 struct MeshCache {
@@ -849,6 +876,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   if (fields != "vtu" && fields != "none")
     out_r.fail(out_r.take("fields"), "fields", fmt::format("expected vtu or none but found '{}'", fields));
   v.output.write_fields = fields == "vtu";
+  v.output.history_layers = read_integer_list(out_r, spec(output_params(), "history_layers"));
   out_r.finish(output_params());
 
   BlockReader th_r(tree.root["thermal"], "thermal", tree.scenario_src, &tree.overridden);

@@ -58,6 +58,9 @@ struct OutputSpec {
   double skin_adaptivity = 0.2;     // 0..1 (sim::extract_skin)
   double skin_tolerance_mm = 0.3;   // simplification tolerance (sim::extract_skin)
   bool write_fields = true;         // fields.vtu for ParaView
+  // Toolpath layers (from 0) whose mean temperature against time the report keeps; those the print does not
+  // reach are left out when it runs.
+  std::vector<int> history_layers = {0, 14, 29};
 };
 
 // The thermal model's resolution and integration (thermal/mesh.hpp, thermal/heat.hpp).

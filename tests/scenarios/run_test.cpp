@@ -100,6 +100,15 @@ TEST(Run, SmallScenarioEndToEnd) {
     for (const char* key : {"fill_ratio", "bead_height_mm", "void_mm3", "plough_mm3", "unsupported_mm"})
       EXPECT_TRUE(v["layers"][0].contains(key)) << key;
     EXPECT_NEAR(v["layers"][0]["bead_height_mm"].get<double>(), 5.0, 0.5);
+    // The temperature history of the default layers (0, 14, 29) the print reaches: six layers, only layer 0.
+    const auto& history = v["temperature_history"];
+    ASSERT_EQ(history["layers"].size(), 1u);
+    EXPECT_EQ(history["layers"][0]["index"], 0);
+    ASSERT_GT(history["times_s"].size(), 10u);
+    EXPECT_EQ(history["layers"][0]["temp_c"].size(), history["times_s"].size());
+    EXPECT_LE(history["layers"][0]["temp_c"][0].get<double>(), 200.0 + 1e-6);
+    const double interval = history["times_s"][1].get<double>() - history["times_s"][0].get<double>();
+    EXPECT_NEAR(interval, 5.0, 0.011);  // thermal.sample_interval, rounded to 0.01 s
   }
   // Files for other programs: by default the skin as PLY, and here the fields as .vtu, beside deposit.vdb;
   // the slow variant asks for an STL skin and no fields.

@@ -218,6 +218,39 @@ TEST(Scenario, UnknownOutputFileTypesNameTheKeyAndTheChoices) {
   EXPECT_EQ(adaptivity.key(), "output.skin_adaptivity");
 }
 
+// The layers whose temperature history the report keeps: the 1st, 15th and 30th by default, a list of layer
+// indices from 0, or none; anything else is an error naming the key and where it was written.
+TEST(Scenario, HistoryLayersAreAListOfLayerIndices) {
+  EXPECT_EQ(load_scenario_text(kGood, "test.yaml").variants[0].output.history_layers,
+            (std::vector<int>{0, 14, 29}));
+  const auto with_output = [](const std::string& output) {
+    return replace(kGood, "variants:\n", "output: " + output + "\nvariants:\n");
+  };
+  const Scenario chosen =
+      load_scenario_text(replace(with_output("{history_layers: [3, 1]}"), "bed_temp: 90 C}",
+                                 "bed_temp: 90 C, output.history_layers: []}"),
+                         "test.yaml");
+  EXPECT_EQ(chosen.variants[0].output.history_layers, (std::vector<int>{3, 1}));
+  EXPECT_TRUE(chosen.variants[1].output.history_layers.empty());
+  for (const char* bad : {"{history_layers: 5}", "{history_layers: [1, -2]}", "{history_layers: [1.5]}",
+                          "{history_layers: [2, 2]}", "{history_layers: [[1]]}"}) {
+    SCOPED_TRACE(bad);
+    const InputError e = load_error(with_output(bad));
+    EXPECT_EQ(e.key(), "output.history_layers");
+    EXPECT_EQ(e.where().file, "test.yaml");
+    EXPECT_EQ(e.where().line, 20);
+  }
+  EXPECT_NE(std::string(load_error(with_output("{history_layers: [2, 2]}")).what()).find("twice"),
+            std::string::npos);
+  EXPECT_NE(std::string(load_error(with_output("{history_layers: [1, -2]}")).what()).find("out of range"),
+            std::string::npos);
+  // Set by a variant: the message points at the variant's line.
+  const InputError set =
+      load_error(replace(kGood, "bed_temp: 90 C}", "bed_temp: 90 C, output.history_layers: [x]}"));
+  EXPECT_EQ(set.key(), "output.history_layers");
+  EXPECT_EQ(set.where().line, 23);
+}
+
 TEST(Gates, ParseAndEvaluate) {
   const InputError bad = load_error(replace(kGood, "porosity < 0.05", "prosity < 0.05"));
   EXPECT_EQ(bad.where().line, 25);

@@ -1,0 +1,322 @@
+// The thin wall of Compton et al. 2017 (scenarios/compton-wall.yaml): the shipped scenario holds the paper's
+// set-up and runs; and the 3-D thermal model of the wall, printed and deposited as a run does it, agrees with
+// the 1-D stacked-layer model (thermal/thermal.hpp) where the two make the same assumptions.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/units.hpp"
+#include "scenarios/embedded.hpp"
+#include "scenarios/run.hpp"
+#include "scenarios/scenario.hpp"
+#include "sim/deposit.hpp"
+#include "thermal/heat.hpp"
+#include "thermal/mesh.hpp"
+#include "thermal/thermal.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+Scenario compton_scenario() {
+  return load_scenario_text(shipped_files().at("compton-wall.yaml"), "<built-in>/compton-wall.yaml");
+}
+
+// The wall cut to its first `layers` layers.
+void keep_layers(Variant& v, int layers) {
+  slicer::SectionParams& wall = v.sections.at(0);
+  wall.z_max_mm = wall.z_min_mm + layers * wall.layer_height_mm;
+}
+
+// The first move of a layer that lays material (a layer's moves start with the travel to it).
+const Move& first_deposit(const Toolpath& tp, std::size_t layer) {
+  const ToolpathLayer& l = tp.layers.at(layer);
+  for (std::size_t m = l.first_move; m < l.end_move; ++m)
+    if (tp.moves[m].deposits()) return tp.moves[m];
+  throw InternalError(fmt::format("layer {} lays nothing", layer));
+}
+
+std::string read(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// The shipped scenario as it is: the paper's numbers, a straight wall laid in one direction, 40 s a layer.
+TEST(ComptonWall, ScenarioHoldsThePapersSetUp) {
+  const Scenario sc = compton_scenario();
+  ASSERT_EQ(sc.variants.size(), 2u);
+  for (const Variant& v : sc.variants) {
+    SCOPED_TRACE(v.name);
+    EXPECT_EQ(v.material.name, "cf-abs-20");
+    EXPECT_DOUBLE_EQ(v.material.density_kg_m3, 1140.0);
+    EXPECT_DOUBLE_EQ(v.material.specific_heat_J_kgK, 1640.0);
+    EXPECT_DOUBLE_EQ(v.material.deposition_temp_c, 200.0);
+    EXPECT_DOUBLE_EQ(v.material.emissivity, 0.85);
+    EXPECT_DOUBLE_EQ(v.machine.environment.ambient_c, 18.0);
+    EXPECT_DOUBLE_EQ(v.machine.environment.bed_temp_c, 65.0);
+    EXPECT_DOUBLE_EQ(v.machine.environment.convection_W_m2K, 7.0);
+    ASSERT_EQ(v.sections.size(), 1u);
+    EXPECT_DOUBLE_EQ(v.sections[0].bead_width_mm, 20.0);
+    EXPECT_DOUBLE_EQ(v.sections[0].layer_height_mm, 4.064);
+    EXPECT_NEAR(v.sections[0].z_max_mm - v.sections[0].z_min_mm, 150 * 4.064, 1e-9);
+    EXPECT_FALSE(v.sections[0].outline_closed);
+    EXPECT_EQ(v.output.history_layers, (std::vector<int>{0, 14, 29}));
+  }
+  EXPECT_DOUBLE_EQ(sc.variants[0].material.conductivity_through_W_mK, 0.35);
+  for (const double k :
+       {sc.variants[1].material.conductivity_along_W_mK, sc.variants[1].material.conductivity_across_W_mK,
+        sc.variants[1].material.conductivity_through_W_mK})
+    EXPECT_DOUBLE_EQ(k, 0.17);  // Compton et al.'s isotropic value
+  // Every layer is laid from the same end, 40 s after the one below (1 m of bead and the travel back).
+  Variant v = sc.variants[0];
+  keep_layers(v, 4);
+  const Toolpath tp = variant_toolpath(v);
+  ASSERT_EQ(tp.layers.size(), 4u);
+  for (std::size_t i = 1; i < tp.layers.size(); ++i) {
+    EXPECT_NEAR(first_deposit(tp, i).start_s - first_deposit(tp, i - 1).start_s, 40.0, 0.01) << "layer " << i;
+    EXPECT_DOUBLE_EQ(first_deposit(tp, i).start.x(), first_deposit(tp, 0).start.x()) << "layer " << i;
+    EXPECT_DOUBLE_EQ(first_deposit(tp, i).start.y(), first_deposit(tp, 0).start.y()) << "layer " << i;
+    EXPECT_NEAR(first_deposit(tp, i).length_mm(), 1000.0, 1e-6);
+  }
+}
+
+// The shipped scenario runs as `beadtwin run` runs it, both variants, all 150 layers (small pictures), and
+// its report keeps the history of layers 0, 14 and 29 and plots it.
+TEST(ComptonWall, ShippedScenarioRuns) {
+  Scenario sc = compton_scenario();
+  for (Variant& v : sc.variants) {
+    v.output.image_width = 160;
+    v.output.image_height = 100;
+  }
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_compton_wall";
+  std::filesystem::remove_all(o.out_dir);
+  const RunResult r = run_scenario(sc, o);
+  EXPECT_TRUE(r.passed);
+  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  ASSERT_EQ(j["variants"].size(), 2u);
+  for (const auto& v : j["variants"]) {
+    SCOPED_TRACE(v["name"].get<std::string>());
+    const auto& m = v["metrics"];
+    EXPECT_EQ(m["layers"], 150);
+    // The layer time as the report counts it (from the travel to a layer to its last bead): 40 s, but for
+    // the first layer, which has no travel before it.
+    EXPECT_NEAR(m["layer_time_s"]["max"].get<double>(), 40.0, 0.01);
+    EXPECT_LT(m["thermal"]["energy_balance_rel_error"].get<double>(), 1e-3);
+    const auto& h = v["temperature_history"];
+    const std::size_t samples = h["times_s"].size();
+    // Every 5 s from the first bead to 10 min after the last (150 layers of 40 s).
+    EXPECT_NEAR(static_cast<double>(samples), (150 * 40.0 + 600.0) / 5.0, 3.0);
+    ASSERT_EQ(h["layers"].size(), 3u);
+    int k = 0;
+    for (const int index : {0, 14, 29}) {
+      const auto& layer = h["layers"][static_cast<std::size_t>(k++)];
+      EXPECT_EQ(layer["index"], index);
+      ASSERT_EQ(layer["temp_c"].size(), samples);
+      // No value before the layer's first bead; then from the deposition temperature down towards the air.
+      std::size_t first = 0;
+      while (first < samples && layer["temp_c"][first].is_null()) ++first;
+      ASSERT_LT(first, samples);
+      // Cells are born in groups, at the middle of each group's birth times (at most half a birth interval,
+      // here 6.7 s, after the first of them), and sampled every 5 s.
+      EXPECT_NEAR(h["times_s"][first].get<double>(), 40.0 * index, 15.0);
+      EXPECT_LE(layer["temp_c"][first].get<double>(), 200.0 + 1e-6);
+      EXPECT_GT(layer["temp_c"][first].get<double>(), 150.0);
+      const double last = layer["temp_c"][samples - 1].get<double>();
+      EXPECT_GT(last, 18.0);
+      EXPECT_LT(last, index == 0 ? 65.0 : 30.0);  // the first layer lies on the 65 C table
+    }
+  }
+  const std::string html = read(o.out_dir / "report.html");
+  EXPECT_NE(html.find("aria-label=\"layer temperature against time\""), std::string::npos);
+  EXPECT_NE(html.find("layer 29 (the 30th)"), std::string::npos);
+  EXPECT_NE(html.find("support limit 125 °C"), std::string::npos);
+  EXPECT_NE(html.find("T_g 110 °C"), std::string::npos);
+}
+
+// The wall as the 3-D model sees it, per toolpath layer.
+struct LayerGeometry {
+  double volume_mm3 = 0.0;   // its cells' volume
+  double open_mm2 = 0.0;     // their surface open to the air for good: sides, ends (and the top of the last)
+  double contact_mm2 = 0.0;  // their contact with the layer below
+  double table_mm2 = 0.0;    // their contact with the table
+};
+
+std::vector<LayerGeometry> geometry(const thermal::ThermalMesh& mesh, std::size_t layers) {
+  std::vector<LayerGeometry> g(layers);
+  for (const thermal::ThermalCell& c : mesh.cells) {
+    LayerGeometry& l = g.at(static_cast<std::size_t>(c.layer));
+    l.volume_mm3 += c.volume_mm3;
+    l.open_mm2 += c.open_area_mm2;
+    l.table_mm2 += c.table_area_mm2;
+  }
+  for (const thermal::ThermalLink& link : mesh.links) {
+    const int la = mesh.cells[link.a].layer, lb = mesh.cells[link.b].layer;
+    if (std::abs(la - lb) == 1)
+      g.at(static_cast<std::size_t>(std::max(la, lb))).contact_mm2 += link.area_mm2();
+  }
+  return g;
+}
+
+// A sampled history at t, linear between samples; NaN outside it or before the layer exists.
+double at_time(const std::vector<double>& times, const std::vector<float>& values, double t) {
+  if (times.empty() || t < times.front() || t > times.back()) return std::numeric_limits<double>::quiet_NaN();
+  const auto k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+  if (k == times.size()) return values.back();
+  const double w = (t - times[k - 1]) / (times[k] - times[k - 1]);
+  return (1.0 - w) * values[k - 1] + w * values[k];
+}
+
+struct Agreement {
+  double max_K = 0.0, rms_K = 0.0;
+  std::size_t samples = 0;
+};
+
+// The 3-D layer means against the 1-D model's at every 3-D sample once the layer is all laid. The 1-D layer
+// lands at once at the layer's first bead; the 3-D cells land along the wall, each `birth − first bead`
+// later, and each column of the wall lives the 1-D history that much later: the 3-D mean is compared with the
+// 1-D history averaged over the cells' shifts (volume-weighted, as the 3-D mean is).
+Agreement compare(const thermal::ThermalMesh& mesh, const thermal::HeatResult& heat,
+                  const std::vector<thermal::LayerInput>& stack, const thermal::ThermalResult& one_d) {
+  Agreement a;
+  double sum2 = 0.0;
+  for (std::size_t i = 0; i < stack.size(); ++i) {
+    double last_birth = 0.0, volume = 0.0;
+    for (const thermal::ThermalCell& c : mesh.cells)
+      if (static_cast<std::size_t>(c.layer) == i) {
+        last_birth = std::max(last_birth, c.birth_s);
+        volume += c.volume_mm3;
+      }
+    for (std::size_t k = 0; k < heat.sample_times_s.size(); ++k) {
+      const double t = heat.sample_times_s[k];
+      if (t < last_birth + heat.birth_interval_s) continue;  // the layer's last group is born by then
+      double expected = 0.0;
+      for (const thermal::ThermalCell& c : mesh.cells)
+        if (static_cast<std::size_t>(c.layer) == i)
+          expected += c.volume_mm3 * at_time(one_d.sample_times_s, one_d.layer_temp_c[i],
+                                             t - (c.birth_s - stack[i].start_s));
+      const double diff = heat.layer_temp_c[i][k] - expected / volume;
+      a.max_K = std::max(a.max_K, std::abs(diff));
+      sum2 += diff * diff;
+      ++a.samples;
+    }
+  }
+  a.rms_K = a.samples > 0 ? std::sqrt(sum2 / static_cast<double>(a.samples)) : 0.0;
+  return a;
+}
+
+// The 3-D model of the Compton wall against the 1-D model of the same wall.
+//
+// Made the same:
+//  - one control volume through each layer's height in both (cells_through 1, nodes_per_layer 1), and one
+//    across the bead in 3-D (cells_across 1): each piece of the wall is a column of lumped layers, as the
+//    1-D model's stack is;
+//  - the 1-D layer's footprint is the 3-D layer's volume over its height: the bead's stadium section along
+//    the wall (the outline's rectangle, length x bead width, would hold 4.6 % more material). The 3-D
+//    model's contacts between layers and with the table come out equal to it (checked below): each
+//    4.064 mm layer fills its own two rows of 2.032 mm voxels;
+//  - the 1-D layer's exposed edges are the 3-D layer's open surface. Checked below against the outline's
+//    perimeter (the wall's two sides, which Compton et al.'s model exposes): 1 % more, the wall's ends and
+//    its flanks as the voxels count them. The last layer's open surface holds its top, which the 1-D model
+//    adds itself; the voxels count its rounded top corners once (each voxel's open faces as one vector),
+//    so top and sides come to 10 % less than the flat top and sides, which is why the 1-D model takes the
+//    3-D area rather than the outline's (with the outline's, the top layers differ by up to 3 K as the
+//    wall cools);
+//  - the same material, convection, radiation and table, and the same times: the 1-D layer lands at once
+//    when the 3-D layer's first bead does, and the comparison follows each column of the wall the time its
+//    own bead landed later (see compare).
+// What still differs, and how much it can move a layer's mean:
+//  - births in groups: a 3-D cell is born at its group's middle, up to half a birth interval (here 4.3 s)
+//    from its own time, while a young layer cools by up to 1.5 K/s. The groups run evenly along the layer,
+//    so their shifts cancel in the mean except for the two partial groups at its ends (2 of 9): up to
+//    1.5 K/s x 2.2 s x 2/9 = 0.7 K, while the layer is young;
+//  - conduction along the wall, between columns laid up to 38 s apart and towards the cooler ends: it moves
+//    heat within a layer, so the mean changes only through the curvature of radiation over the 10-20 K
+//    along the layer, below 0.05 K;
+//  - the integrators: at 1e-5 relative tolerance, with the 1-D history read between 1 s samples, below
+//    0.05 K.
+// So within 0.8 K at tight tolerances. At the run's default tolerances (relative 1e-3, absolute 0.05 K) the
+// 3-D integrator adds up to 1 % of the 182 K between deposition and the air (tests/thermal/heat_test.cpp:
+// within 1 % of analytic solutions at the defaults): within 2.6 K.
+TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
+  constexpr int kLayers = 25;  // 1000 s of printing: the wall is past its first layers' transient
+  Variant v = compton_scenario().variants[0];
+  keep_layers(v, kLayers);
+  const Toolpath tp = variant_toolpath(v);
+  ASSERT_EQ(tp.layers.size(), static_cast<std::size_t>(kLayers));
+  const sim::Deposit deposit = sim::deposit(tp, deposit_options(v));
+  thermal::MeshOptions mo;
+  mo.cells_across = 1;
+  mo.cells_through = 1;
+  const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, deposit, mo);
+  const std::vector<LayerGeometry> geo = geometry(mesh, tp.layers.size());
+
+  // The 3-D model's areas are the 1-D model's, as the comment above says.
+  const double mid_h = tp.layers[kLayers / 2].height_mm;
+  const LayerGeometry& mid = geo[kLayers / 2];
+  for (std::size_t i = 1; i < geo.size(); ++i)
+    EXPECT_NEAR(geo[i].contact_mm2 / (geo[i].volume_mm3 / tp.layers[i].height_mm), 1.0, 0.01)
+        << "layer " << i;
+  EXPECT_NEAR(geo[0].table_mm2 / (geo[0].volume_mm3 / tp.layers[0].height_mm), 1.0, 0.01);
+  EXPECT_NEAR(mid.open_mm2 / (tp.layers[kLayers / 2].outline_perimeter_mm * mid_h), 1.0, 0.02);
+  // The bead's section, A = h (w − h) + π h² / 4, along the 1 m wall.
+  const double w = 20.0, h = 4.064;
+  EXPECT_NEAR(mid.volume_mm3, (h * (w - h) + kPi * h * h / 4) * 1000.0, 1e-3 * mid.volume_mm3);
+  RecordProperty("open_area_over_outline_sides", fmt::format("{:.4f}", mid.open_mm2 / (2000.0 * mid_h)));
+  RecordProperty("top_layer_open_over_top_and_sides",
+                 fmt::format("{:.4f}", geo.back().open_mm2 / (geo.back().volume_mm3 / h + 2000.0 * h)));
+
+  // The 1-D stack of the same wall.
+  std::vector<thermal::LayerInput> stack;
+  for (std::size_t i = 0; i < tp.layers.size(); ++i) {
+    const ToolpathLayer& l = tp.layers[i];
+    thermal::LayerInput in;
+    in.z_top_mm = l.z_mm;
+    in.height_mm = l.height_mm;
+    in.start_s = in.end_s = first_deposit(tp, i).start_s;
+    in.area_mm2 = geo[i].volume_mm3 / l.height_mm;
+    const bool last = i + 1 == tp.layers.size();
+    in.perimeter_mm = (geo[i].open_mm2 - (last ? in.area_mm2 : 0.0)) / l.height_mm;
+    stack.push_back(in);
+  }
+
+  for (const bool tight : {true, false}) {
+    SCOPED_TRACE(tight ? "tight tolerances" : "the run's tolerances");
+    thermal::HeatOptions ho;
+    ho.cooldown_s = 400.0;
+    if (tight) {
+      ho.rel_tol = 1e-5;
+      ho.abs_tol_k = 1e-3;
+    } else {
+      ho.rel_tol = v.thermal.rel_tol;
+      ho.abs_tol_k = v.thermal.abs_tol_k;
+    }
+    const thermal::HeatResult heat =
+        thermal::solve_heat(mesh, tp.layers.size(), tp.total_time_s(), v.material, v.machine.environment, ho);
+    thermal::Options o1;
+    o1.nodes_per_layer = 1;
+    o1.cooldown_s = heat.end_time_s - stack.back().end_s;
+    o1.sample_interval_s = 1.0;
+    const thermal::ThermalResult one_d = thermal::solve_thermal(stack, v.material, v.machine.environment, o1);
+    const Agreement a = compare(mesh, heat, stack, one_d);
+    const std::string tag = tight ? "tight" : "default";
+    RecordProperty("max_difference_K_" + tag, fmt::format("{:.3f}", a.max_K));
+    RecordProperty("rms_difference_K_" + tag, fmt::format("{:.3f}", a.rms_K));
+    EXPECT_GT(a.samples, 4000u);  // every layer through the print and 400 s of cooling
+    EXPECT_LT(a.max_K, tight ? 0.8 : 2.6);
+  }
+}
+
+}  // namespace
+}  // namespace beadtwin::scenarios

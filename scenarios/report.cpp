@@ -442,6 +442,16 @@ std::string hms(double s) {
   return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
 }
 
+// Substrate temperatures min / mean / max, or a dash where no bead landed on anything.
+std::string substrate_text(const Stats3& s) {
+  return std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–";
+}
+
+// Healing min / mean, or a dash without interfaces.
+std::string healing_text(double min, double mean) {
+  return std::isfinite(min) ? fmt::format("{:.3f} / {:.3f}", min, mean) : "–";
+}
+
 // The layer times that would have put a layer in the window: "120 – 300", "at least 120", "at most 300",
 // "none" (the bounds cross, or no wait would cool it enough), or a dash where nothing bounds them.
 std::string window_range(double min_s, double max_s) {
@@ -817,11 +827,8 @@ details{margin:1em 0} .muted{color:#777}
       h += fmt::format(
           "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
           "class=l>{}</td></tr>",
-          esc(sr.name), sr.interfaces,
-          std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–",
-          100 * sr.too_hot_fraction, 100 * sr.too_cold_fraction,
-          std::isfinite(sr.healing) ? fmt::format("{:.3f} / {:.3f}", sr.healing, sr.healing_mean) : "–",
-          sr.verdict);
+          esc(sr.name), sr.interfaces, substrate_text(s), 100 * sr.too_hot_fraction,
+          100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean), sr.verdict);
     }
     h += "</table>";
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
@@ -838,10 +845,8 @@ details{margin:1em 0} .muted{color:#777}
           l.verdict == "too_hot"    ? "hot"
           : l.verdict == "too_cold" ? "cold"
                                     : "",
-          l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s,
-          std::isfinite(s.mean) ? fmt::format("{:.1f} / {:.1f} / {:.1f}", s.min, s.mean, s.max) : "–",
-          l.interfaces, 100 * l.too_hot_fraction, 100 * l.too_cold_fraction,
-          std::isfinite(l.healing) ? fmt::format("{:.3f} / {:.3f}", l.healing, l.healing_mean) : "–",
+          l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, substrate_text(s), l.interfaces,
+          100 * l.too_hot_fraction, 100 * l.too_cold_fraction, healing_text(l.healing, l.healing_mean),
           l.verdict, window_text(l));
     }
     h += "</table></details>";

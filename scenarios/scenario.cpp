@@ -284,16 +284,7 @@ std::vector<int> read_integer_list(BlockReader& r, const ParamSpec& spec) {
     r.fail(node, spec.key, fmt::format("expected a list of whole numbers such as {}", spec.default_text));
   std::vector<int> out;
   for (const YAML::Node& item : list) {
-    const std::string text = item.IsScalar() ? item.Scalar() : "";
-    std::size_t used = 0;
-    long v = 0;
-    try {
-      v = std::stol(text, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != text.size())
-      r.fail(item, spec.key, fmt::format("expected a whole number but found '{}'", text));
+    const long v = r.whole_number(item.IsScalar() ? item.Scalar() : "", item, spec.key);
     r.check_range(spec, static_cast<double>(v), item);
     if (std::find(out.begin(), out.end(), v) != out.end())
       r.fail(item, spec.key, fmt::format("{} is in the list twice", v));

@@ -207,8 +207,13 @@ std::optional<double> BlockReader::optional_quantity(const ParamSpec& spec) {
 int BlockReader::integer(const ParamSpec& spec) {
   bool from_default = false;
   YAML::Node node = value_or_default(spec, from_default);
-  const std::string text =
-      from_default ? std::string(spec.default_text) : (node.IsScalar() ? node.Scalar() : "");
+  const long v = from_default ? whole_number(std::string(spec.default_text), node, spec.key)
+                              : whole_number(node.IsScalar() ? node.Scalar() : "", node, spec.key);
+  if (!from_default) check_range(spec, static_cast<double>(v), node);
+  return static_cast<int>(v);
+}
+
+long BlockReader::whole_number(const std::string& text, const YAML::Node& node, std::string_view key) const {
   std::size_t used = 0;
   long v = 0;
   try {
@@ -217,9 +222,8 @@ int BlockReader::integer(const ParamSpec& spec) {
     used = 0;
   }
   if (used == 0 || used != text.size())
-    fail(node, spec.key, fmt::format("expected a whole number but found '{}'", text));
-  if (!from_default) check_range(spec, static_cast<double>(v), node);
-  return static_cast<int>(v);
+    fail(node, key, fmt::format("expected a whole number but found '{}'", text));
+  return v;
 }
 
 bool BlockReader::boolean(const ParamSpec& spec) {

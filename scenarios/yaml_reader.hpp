@@ -50,6 +50,8 @@ class BlockReader {
 
   // Parses a scalar node as a quantity of `dim`, with this block's default units; `key` for messages.
   double parse(const YAML::Node& node, Dimension dim, const std::string& key) const;
+  // `text` (the scalar of `node`) as a whole number; fails naming `key` when it is not one.
+  long whole_number(const std::string& text, const YAML::Node& node, std::string_view key) const;
   // Checks a value against a spec's range.
   void check_range(const ParamSpec& spec, double value, const YAML::Node& node) const;
 

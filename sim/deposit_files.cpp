@@ -158,7 +158,6 @@ void write_fields(const Deposit& d, const Layout& l, Chunked& out) {
 
 void write_deposit_vdb(const Deposit& deposit, const std::filesystem::path& path) {
   require_material(deposit, path);
-  openvdb::initialize();
   const openvdb::FloatGrid::Ptr fill = named<openvdb::FloatGrid>(deposit.fill, "fill", "fraction");
   fill->setGridClass(openvdb::GRID_FOG_VOLUME);
   const openvdb::FloatGrid::Ptr density = named<openvdb::FloatGrid>(deposit.fill, "density", "fraction");
@@ -167,9 +166,14 @@ void write_deposit_vdb(const Deposit& deposit, const std::filesystem::path& path
                                named<openvdb::Int32Grid>(deposit.layer, "layer", "layer index")};
   if (deposit.move) grids.push_back(named<openvdb::Int32Grid>(deposit.move, "move", "toolpath move index"));
   openvdb::MetaMap meta;
+  meta.insertMeta("voxel_size_mm", openvdb::DoubleMetadata(deposit.voxel_size_mm));
+  write_vdb(grids, meta, path);
+}
+
+void write_vdb(const openvdb::GridPtrVec& grids, openvdb::MetaMap meta, const std::filesystem::path& path) {
+  openvdb::initialize();
   meta.insertMeta("creator", openvdb::StringMetadata("beadtwin"));
   meta.insertMeta("length_unit", openvdb::StringMetadata("mm"));
-  meta.insertMeta("voxel_size_mm", openvdb::DoubleMetadata(deposit.voxel_size_mm));
   AtomicPath out(path);
   try {
     openvdb::io::File file(out.temp().string());

@@ -24,6 +24,10 @@ namespace beadtwin::sim {
 // renamed: the file gets shallow copies.
 void write_deposit_vdb(const Deposit& deposit, const std::filesystem::path& path);
 
+// Writes `grids` to an OpenVDB file atomically, with `meta` and the file metadata creator = beadtwin and
+// length_unit = mm (what every beadtwin VDB carries). Throws std::runtime_error naming `path` when it cannot.
+void write_vdb(const openvdb::GridPtrVec& grids, openvdb::MetaMap meta, const std::filesystem::path& path);
+
 // What write_deposit_vtu wrote.
 struct VtuCounts {
   std::size_t cells = 0;   // one per voxel that holds material

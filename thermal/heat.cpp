@@ -50,12 +50,11 @@ class PartModel final : public OdeSystem {
         ambient_c_(env.ambient_c),
         ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
         bed_c_(env.bed_temp_c),
-
         eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
     const double rho_c = material.density_kg_m3 * material.specific_heat_J_kgK;
     capacity_.resize(n_);
     mass_kg_.resize(n_);
-    open_m2_.resize(n_);
+    exposed_m2_.resize(n_);
     table_W_K_.resize(n_);
     h_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
@@ -63,7 +62,7 @@ class PartModel final : public OdeSystem {
       h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
       capacity_[i] = rho_c * c.volume_mm3 * kM3PerMm3;
       mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
-      open_m2_[i] = c.open_area_mm2 * kM2PerMm2;
+      exposed_m2_[i] = c.open_area_mm2 * kM2PerMm2;
       table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
     }
     std::vector<std::size_t> count(n_ + 1, 0);
@@ -73,7 +72,7 @@ class PartModel final : public OdeSystem {
     }
     for (std::size_t i = 0; i < n_; ++i) count[i + 1] += count[i];
     first_ = count;
-    neighbours_.resize(count[n_]);
+    std::vector<Neighbour> neighbours(count[n_]);
     std::vector<std::size_t> next(count.begin(), count.end() - 1);
     const double half_voxel = 0.5 * mesh.voxel_size_mm;
     for (const ThermalLink& l : mesh.links) {
@@ -87,25 +86,26 @@ class PartModel final : public OdeSystem {
       const double k_n = normal.dot(k * normal);
       const double distance = std::max(std::abs((b.centroid_mm - a.centroid_mm).dot(normal)), half_voxel);
       const double g = k_n * area * kM2PerMm2 / (distance * kMPerMm);
-      neighbours_[next[l.a]++] = {l.b, g, area * kM2PerMm2};
-      neighbours_[next[l.b]++] = {l.a, g, area * kM2PerMm2};
+      neighbours[next[l.a]++] = {l.b, g, area * kM2PerMm2};
+      neighbours[next[l.b]++] = {l.a, g, area * kM2PerMm2};
     }
-    // Sorted by neighbour, so the born ones come first.
+    // Sorted by neighbour, so the born ones come first; kept as three arrays, so that the integrator's
+    // loops read 12 bytes a neighbour (who and the conductance) rather than a whole Neighbour.
     for (std::size_t i = 0; i < n_; ++i)
-      std::sort(neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i]),
-                neighbours_.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]),
+      std::sort(neighbours.begin() + static_cast<std::ptrdiff_t>(first_[i]),
+                neighbours.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]),
                 [](const Neighbour& x, const Neighbour& y) { return x.cell < y.cell; });
-    // What the integrator's loops read, packed: neighbour and conductance, 12 bytes where a Neighbour
-    // takes 24.
-    hot_cell_.reserve(neighbours_.size());
-    hot_g_.reserve(neighbours_.size());
-    for (const Neighbour& nb : neighbours_) {
-      hot_cell_.push_back(nb.cell);
-      hot_g_.push_back(nb.conductance_W_K);
+    nb_cell_.reserve(neighbours.size());
+    nb_g_.reserve(neighbours.size());
+    nb_area_m2_.reserve(neighbours.size());
+    for (const Neighbour& nb : neighbours) {
+      nb_cell_.push_back(nb.cell);
+      nb_g_.push_back(nb.conductance_W_K);
+      nb_area_m2_.push_back(nb.area_m2);
     }
-    exposed_m2_ = open_m2_;
+    // Every contact is open surface until the neighbour is born.
     for (std::size_t i = 0; i < n_; ++i)
-      for (const Neighbour& nb : neighbours(i)) exposed_m2_[i] += nb.area_m2;
+      for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) exposed_m2_[i] += nb_area_m2_[k];
     loss_.assign(n_, 0.0);
   }
 
@@ -119,13 +119,10 @@ class PartModel final : public OdeSystem {
   std::size_t size() const { return cap_ + 1; }
   std::size_t born() const { return born_; }
   double capacity(std::size_t i) const { return capacity_[i]; }
-  std::span<const Neighbour> neighbours(std::size_t i) const {
-    return {neighbours_.data() + first_[i], first_[i + 1] - first_[i]};
-  }
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const {
     double g = table_W_K_[i];
-    for (const Neighbour& nb : neighbours(i)) g += nb.conductance_W_K;
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) g += nb_g_[k];
     return g > 0.0 ? capacity_[i] / g : std::numeric_limits<double>::infinity();
   }
 
@@ -133,10 +130,10 @@ class PartModel final : public OdeSystem {
   void birth(std::size_t end, std::span<double> y) {
     for (std::size_t i = born_; i < end; ++i) {
       y[i] = deposition_c_;
-      for (const Neighbour& nb : neighbours(i))
-        if (nb.cell < end) exposed_m2_[i] -= nb.area_m2;
-      for (const Neighbour& nb : neighbours(i))
-        if (nb.cell < born_) exposed_m2_[nb.cell] -= nb.area_m2;
+      for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+        if (nb_cell_[k] < end) exposed_m2_[i] -= nb_area_m2_[k];
+        if (nb_cell_[k] < born_) exposed_m2_[nb_cell_[k]] -= nb_area_m2_[k];
+      }
       energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
     }
     born_ = end;
@@ -162,8 +159,8 @@ class PartModel final : public OdeSystem {
     const std::size_t born = born_;
     const double t = y[i];
     double flux = 0.0;
-    for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k)
-      flux += hot_g_[k] * (y[hot_cell_[k]] - t);
+    for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
+      flux += nb_g_[k] * (y[nb_cell_[k]] - t);
     const double tk = t + kKelvinOffset;
     loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
            table_W_K_[i] * (t - bed_c_);
@@ -185,8 +182,8 @@ class PartModel final : public OdeSystem {
     for_cells(born, [&](std::size_t i) {
       double sum = 0.0;
       const double vi = v[i];
-      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k)
-        sum += hot_g_[k] * (v[hot_cell_[k]] - vi);
+      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
+        sum += nb_g_[k] * (v[nb_cell_[k]] - vi);
       const double d_loss = loss_derivative(i, y[i]) * v[i];
       loss_[i] = d_loss;
       jv[i] = (sum - d_loss) / heat_capacity(i, y[i]);
@@ -201,7 +198,7 @@ class PartModel final : public OdeSystem {
     const std::size_t born = born_;
     for_cells(born, [&](std::size_t i) {
       double g = 0.0;
-      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && hot_cell_[k] < born; ++k) g += hot_g_[k];
+      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k) g += nb_g_[k];
       diagonal[i] = -(g + loss_derivative(i, y[i])) / heat_capacity(i, y[i]);
     });
     for (std::size_t i = born; i < cap_; ++i) diagonal[i] = 0.0;
@@ -244,14 +241,14 @@ class PartModel final : public OdeSystem {
   std::vector<double> mass_kg_;
   Material material_;
   bool variable_cp_ = false;
-  std::vector<double> open_m2_;     // open for good
   std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
   std::vector<double> table_W_K_;   // bed contact conductance
   std::vector<std::size_t> first_;
-  std::vector<Neighbour> neighbours_;
-  std::vector<std::uint32_t> hot_cell_;  // neighbours_[k].cell
-  std::vector<double> hot_g_;            // neighbours_[k].conductance_W_K
-  mutable std::vector<double> loss_;     // per cell, scratch of rhs and jacobian_times
+  // Neighbours of cell i at [first_[i], first_[i + 1]), by index: who, the conductance, the contact area.
+  std::vector<std::uint32_t> nb_cell_;
+  std::vector<double> nb_g_;
+  std::vector<double> nb_area_m2_;
+  mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
   std::size_t born_ = 0;
   std::size_t cap_ = 0;
   std::vector<double> h_;  // convection coefficient at the cell's height, W/m²K
@@ -332,7 +329,6 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     result.interfaces.push_back(r);
   }
   std::vector<double> integral(result.interfaces.size(), 0.0);  // ∫ dt / t_w so far
-  std::vector<double> birth_time(n, 0.0);                       // when each cell was born (its group's time)
   const Reptation reptation(material);
   // A cell is warm when it may be above the healing threshold during a step: at either end (with a margin
   // for what the interpolant does between them). An interface heals only while one of its cells is warm.
@@ -382,12 +378,10 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   before.push_back(0.0);  // energy lost
   const auto born_group = [&](const Group& g, std::span<double> state) {
     const std::size_t begin = model.born();
-    for (std::size_t i = begin; i < g.end; ++i) birth_time[i] = g.time_s;
     for (std::size_t i = begin; i < g.end; ++i)
       for (const std::size_t k : by_younger[i]) {
         InterfaceResult& r = result.interfaces[k];
         r.substrate_c = material.deposition_temp_c;
-        r.elapsed_s = g.time_s - birth_time[r.older];
         if (r.older < begin) {
           double loss = 0.0;
           r.substrate_c = state[r.older];

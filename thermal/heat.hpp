@@ -57,10 +57,8 @@ struct InterfaceResult {
   double area_mm2 = 0.0;
   bool on_top = false;       // the younger lands on the older (contact within 60° of horizontal)
   double substrate_c = 0.0;  // the older cell's temperature as the younger was born
-  // How fast the older cell was cooling then, K/s (NaN when both were born together), and how long it had
-  // stood, s: the time between the two cells' births.
+  // How fast the older cell was cooling then, K/s (NaN when both were born together).
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
-  double elapsed_s = 0.0;
   double healing_integral = 0.0;  // ∫ dt / t_w over the interface's history, not capped at 1
   double healing = 0.0;           // min(1, D_h) = min(1, healing_integral^¼)
   Verdict verdict = Verdict::kOk;

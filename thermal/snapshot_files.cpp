@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "sim/deposit_files.hpp"
 
 namespace beadtwin::thermal {
 namespace {
@@ -34,7 +35,6 @@ void write_temperature_vdb(const ThermalMesh& mesh, const TemperatureSnapshot& s
                            const std::filesystem::path& path) {
   BT_CHECK(mesh.cell_grid != nullptr);
   BT_CHECK_OP(snapshot.temp_c.size(), ==, mesh.cells.size());
-  openvdb::initialize();
   auto temperature = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
   temperature->setTransform(mesh.cell_grid->transform().copy());
   temperature->setName("temperature_c");
@@ -47,18 +47,8 @@ void write_temperature_vdb(const ThermalMesh& mesh, const TemperatureSnapshot& s
     }
   }
   openvdb::MetaMap meta;
-  meta.insertMeta("creator", openvdb::StringMetadata("beadtwin"));
-  meta.insertMeta("length_unit", openvdb::StringMetadata("mm"));
   meta.insertMeta("time_s", openvdb::DoubleMetadata(snapshot.time_s));
-  AtomicPath out(path);
-  try {
-    openvdb::io::File file(out.temp().string());
-    file.write(openvdb::GridPtrVec{temperature}, meta);
-    file.close();
-  } catch (const openvdb::Exception& e) {
-    throw std::runtime_error(fmt::format("cannot write {}: {}", path.string(), e.what()));
-  }
-  out.commit();
+  sim::write_vdb(openvdb::GridPtrVec{temperature}, meta, path);
 }
 
 std::size_t write_temperature_vtp(const ThermalMesh& mesh, const TemperatureSnapshot& snapshot,

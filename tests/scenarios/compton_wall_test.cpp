@@ -20,12 +20,15 @@
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
+#include "tests/read_file.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
 #include "thermal/thermal.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
+
+using testing::read_file;
 
 Scenario compton_scenario() {
   return load_scenario_text(shipped_files().at("compton-wall.yaml"), "<built-in>/compton-wall.yaml");
@@ -43,13 +46,6 @@ const Move& first_deposit(const Toolpath& tp, std::size_t layer) {
   for (std::size_t m = l.first_move; m < l.end_move; ++m)
     if (tp.moves[m].deposits()) return tp.moves[m];
   throw InternalError(fmt::format("layer {} lays nothing", layer));
-}
-
-std::string read(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
 }
 
 // The shipped scenario as it is: the paper's numbers, a straight wall laid in one direction, 40 s a layer.
@@ -104,7 +100,7 @@ TEST(ComptonWall, ShippedScenarioRuns) {
   std::filesystem::remove_all(o.out_dir);
   const RunResult r = run_scenario(sc, o);
   EXPECT_TRUE(r.passed);
-  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
   ASSERT_EQ(j["variants"].size(), 2u);
   for (const auto& v : j["variants"]) {
     SCOPED_TRACE(v["name"].get<std::string>());
@@ -138,7 +134,7 @@ TEST(ComptonWall, ShippedScenarioRuns) {
       EXPECT_LT(last, index == 0 ? 65.0 : 30.0);  // the first layer lies on the 65 C table
     }
   }
-  const std::string html = read(o.out_dir / "report.html");
+  const std::string html = read_file(o.out_dir / "report.html");
   EXPECT_NE(html.find("aria-label=\"layer temperature against time\""), std::string::npos);
   EXPECT_NE(html.find("layer 29 (the 30th)"), std::string::npos);
   EXPECT_NE(html.find("support limit 125 °C"), std::string::npos);

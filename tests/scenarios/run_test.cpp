@@ -10,9 +10,12 @@
 #include <nlohmann/json.hpp>
 
 #include "scenarios/scenario.hpp"
+#include "tests/read_file.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
+
+using testing::read_file;
 
 const std::string kSmall = R"(name: small-box
 units: {length: mm}
@@ -33,13 +36,6 @@ gates:
   - interfaces.too_hot_fraction <= 0.5
 )";
 
-std::string read(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 TEST(Run, SmallScenarioEndToEnd) {
   const Scenario sc = load_scenario_text(kSmall, "small.yaml");
   const auto out = std::filesystem::temp_directory_path() / "beadtwin_run_test";
@@ -49,7 +45,7 @@ TEST(Run, SmallScenarioEndToEnd) {
   const RunResult r = run_scenario(sc, o);
   ASSERT_EQ(r.variants.size(), 2u);
 
-  const auto j = nlohmann::json::parse(read(out / "report.json"));
+  const auto j = nlohmann::json::parse(read_file(out / "report.json"));
   EXPECT_EQ(j["tool"], "beadtwin");
   EXPECT_EQ(j["scenario"], "small-box");
   EXPECT_EQ(j["passed"].get<bool>(), r.passed);
@@ -72,7 +68,8 @@ TEST(Run, SmallScenarioEndToEnd) {
     // And so do the sections'.
     ASSERT_EQ(v["sections"].size(), 2u);
     EXPECT_EQ(v["sections"][0]["name"], "floor");
-    EXPECT_EQ(v["sections"][0]["interfaces"].get<int>() + v["sections"][1]["interfaces"].get<int>(), per_layer);
+    EXPECT_EQ(v["sections"][0]["interfaces"].get<int>() + v["sections"][1]["interfaces"].get<int>(),
+              per_layer);
     // Conservation: every commanded mm³ is in the voxel model.
     EXPECT_NEAR(m["deposited_volume_mm3"].get<double>() / m["commanded_volume_mm3"].get<double>(), 1.0, 0.02);
     ASSERT_EQ(v["layers"].size(), 6u);
@@ -128,14 +125,14 @@ TEST(Run, SmallScenarioEndToEnd) {
   EXPECT_EQ(fast_files["fields"]["bytes"].get<std::uintmax_t>(),
             std::filesystem::file_size(out / "fast/fields.vtu"));
   EXPECT_EQ(fast_files["fields"]["cells"], j["variants"][0]["metrics"]["deposit"]["voxels"]);
-  EXPECT_EQ(read(out / "fast/skin.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
-  EXPECT_NE(read(out / "fast/fields.vtu").find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
+  EXPECT_EQ(read_file(out / "fast/skin.ply").rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+  EXPECT_NE(read_file(out / "fast/fields.vtu").find("<VTKFile type=\"UnstructuredGrid\""), std::string::npos);
   const auto& slow_files = j["variants"][1]["files"];
   EXPECT_EQ(slow_files["skin"]["path"], "slow/skin.stl");
   EXPECT_TRUE(std::filesystem::exists(out / "slow/skin.stl"));
   EXPECT_TRUE(slow_files["fields"].is_null());
   EXPECT_FALSE(std::filesystem::exists(out / "slow/fields.vtu"));
-  const std::string html = read(out / "report.html");
+  const std::string html = read_file(out / "report.html");
   EXPECT_NE(html.find("<a href=\"fast/skin.ply\">fast/skin.ply</a>"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"fast/fields.vtu\">fast/fields.vtu</a>"), std::string::npos);
   EXPECT_NE(html.find("times the skin's"), std::string::npos);
@@ -162,7 +159,7 @@ TEST(Run, SmallScenarioEndToEnd) {
       EXPECT_TRUE(m[key].is_number()) << key;
     EXPECT_TRUE(m["cad"]["deviation_map"]["white_at_mm"].is_number());
   }
-  EXPECT_NE(read(out / "report.html").find("<img src=\"fast/deviation.png\""), std::string::npos);
+  EXPECT_NE(read_file(out / "report.html").find("<img src=\"fast/deviation.png\""), std::string::npos);
   // The slow variant prints the same part with longer layer times, so its substrate is colder.
   const auto& fast = j["variants"][0];
   const auto& slow = j["variants"][1];
@@ -171,12 +168,12 @@ TEST(Run, SmallScenarioEndToEnd) {
   EXPECT_LT(slow["layers"][5]["substrate_temp_c"]["mean"].get<double>(),
             fast["layers"][5]["substrate_temp_c"]["mean"].get<double>());
 
-  const std::string junit = read(out / "junit.xml");
+  const std::string junit = read_file(out / "junit.xml");
   EXPECT_NE(junit.find("<testsuites"), std::string::npos);
   EXPECT_NE(junit.find("testcase classname=\"small-box.fast\" name=\"porosity &lt; 0.5\""), std::string::npos)
       << junit;
-  EXPECT_NE(read(out / "report.html").find("<img src=\"fast/fusion.png\""), std::string::npos);
-  EXPECT_NE(read(out / "summary.md").find("| fast |"), std::string::npos);
+  EXPECT_NE(read_file(out / "report.html").find("<img src=\"fast/fusion.png\""), std::string::npos);
+  EXPECT_NE(read_file(out / "summary.md").find("| fast |"), std::string::npos);
   // Nothing half-written is left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << e.path();
@@ -199,7 +196,7 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_default";
   std::filesystem::remove_all(o.out_dir);
   (void)run_scenario(sc, o);
-  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
   ASSERT_EQ(j["variants"].size(), 1u);
   const auto& m = j["variants"][0]["metrics"];
   ASSERT_TRUE(m["min_stock_mm"].is_number()) << m.dump();
@@ -233,7 +230,7 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   ASSERT_EQ(images.size(), 4u);
   EXPECT_EQ(images[3], "baseline/deviation.png");
   EXPECT_GT(std::filesystem::file_size(o.out_dir / images[3].get<std::string>()), 1000u);
-  const std::string html = read(o.out_dir / "report.html");
+  const std::string html = read_file(o.out_dir / "report.html");
   EXPECT_NE(html.find("The part against its CAD"), std::string::npos);
   EXPECT_NE(html.find("<img src=\"baseline/deviation.png\""), std::string::npos);
 }
@@ -271,14 +268,14 @@ gates:
   ASSERT_EQ(r.variants[0].gates.size(), 1u);
   EXPECT_NE(r.variants[0].gates[0].message.find("not measured"), std::string::npos)
       << r.variants[0].gates[0].message;
-  const auto j = nlohmann::json::parse(read(o.out_dir / "report.json"));
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
   EXPECT_TRUE(j["variants"][0]["metrics"]["interfaces"]["min_healing"].is_null());
   // An AM Outline prints a path, not a part: there is no CAD to measure against, and no deviation map.
   EXPECT_TRUE(j["variants"][0]["metrics"]["min_stock_mm"].is_null());
   EXPECT_TRUE(j["variants"][0]["metrics"]["undercut_fraction"].is_null());
   EXPECT_TRUE(j["variants"][0]["metrics"]["cad"].is_null());
   EXPECT_EQ(j["variants"][0]["images"].size(), 3u);
-  EXPECT_NE(read(o.out_dir / "summary.md").find("| —"), std::string::npos);
+  EXPECT_NE(read_file(o.out_dir / "summary.md").find("| —"), std::string::npos);
 }
 
 }  // namespace

@@ -14,22 +14,18 @@
 
 #include <openvdb/openvdb.h>
 
+#include "tests/read_file.hpp"
 #include "tests/sim/lsam_beads.hpp"
 
 namespace beadtwin::thermal {
 namespace {
 
+using testing::read_file;
+
 using testing::bead;
 using testing::kBeadHeight;
 using testing::timed;
 using testing::travel;
-
-std::string read(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct Solved {
   ThermalMesh mesh;
@@ -111,7 +107,7 @@ TEST(SnapshotFiles, VtpPointsAreTheBornCellsCentroids) {
   const TemperatureSnapshot& snap = s.heat.snapshots[1];
   const std::size_t n = write_temperature_vtp(s.mesh, snap, path);
   EXPECT_EQ(n, s.mesh.cells.size());
-  const std::string text = read(path);
+  const std::string text = read_file(path);
   EXPECT_NE(text.find("<VTKFile type=\"PolyData\""), std::string::npos);
   EXPECT_NE(text.find("NumberOfPoints=\"" + std::to_string(n) + "\""), std::string::npos);
   // The appended data: points first (3 floats each), then the temperatures.

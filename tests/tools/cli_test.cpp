@@ -8,7 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/read_file.hpp"
+
 namespace {
+
+using beadtwin::testing::read_file;
 
 struct Result {
   int code = -1;
@@ -146,11 +150,6 @@ TEST(Cli, AbsurdResolutionsAreInputErrors) {
 }  // namespace
 
 namespace {
-
-std::string read_file(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 // `beadtwin check PROGRAM` (issue 5 item 5): a program from another slicer, simulated as written, with the
 // machine inferred and said so; with a baseline, both side by side; a program written as a Fanuc macro

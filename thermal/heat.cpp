@@ -45,14 +45,11 @@ class PartModel final : public OdeSystem {
   PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env)
       : n_(mesh.cells.size()),
         material_(material),
-        variable_cp_(!material.specific_heat_by_temp.empty()),
         deposition_c_(material.deposition_temp_c),
         ambient_c_(env.ambient_c),
         ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
         bed_c_(env.bed_temp_c),
         eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
-    const double rho_c = material.density_kg_m3 * material.specific_heat_J_kgK;
-    capacity_.resize(n_);
     mass_kg_.resize(n_);
     exposed_m2_.resize(n_);
     table_W_K_.resize(n_);
@@ -60,7 +57,6 @@ class PartModel final : public OdeSystem {
     for (std::size_t i = 0; i < n_; ++i) {
       const ThermalCell& c = mesh.cells[i];
       h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
-      capacity_[i] = rho_c * c.volume_mm3 * kM3PerMm3;
       mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
       exposed_m2_[i] = c.open_area_mm2 * kM2PerMm2;
       table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
@@ -118,12 +114,11 @@ class PartModel final : public OdeSystem {
   std::size_t capacity() const { return cap_; }
   std::size_t size() const { return cap_ + 1; }
   std::size_t born() const { return born_; }
-  double capacity(std::size_t i) const { return capacity_[i]; }
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const {
     double g = table_W_K_[i];
     for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) g += nb_g_[k];
-    return g > 0.0 ? capacity_[i] / g : std::numeric_limits<double>::infinity();
+    return g > 0.0 ? heat_capacity(i, deposition_c_) / g : std::numeric_limits<double>::infinity();
   }
 
   // Cells [born_, end) are born: at the deposition temperature in y, their faces towards born cells closed.
@@ -150,7 +145,7 @@ class PartModel final : public OdeSystem {
     rel_tol_ = rel_tol;
     abs_tol_k_ = abs_tol_k;
     double total = 0.0;
-    for (double c : capacity_) total += c;
+    for (std::size_t i = 0; i < n_; ++i) total += heat_capacity(i, deposition_c_);
     abs_tol_J_ = std::max(total * abs_tol_k, 1e-12);
   }
 
@@ -213,9 +208,7 @@ class PartModel final : public OdeSystem {
  private:
   // m c_p(T) of cell i, J/K. (The Jacobian leaves out the change of c_p with T: Newton's matrix need not
   // be exact.)
-  double heat_capacity(std::size_t i, double t) const {
-    return variable_cp_ ? mass_kg_[i] * material_.specific_heat_at(t) : capacity_[i];
-  }
+  double heat_capacity(std::size_t i, double t) const { return mass_kg_[i] * material_.specific_heat_at(t); }
 
   // d(loss)/dT of cell i at temperature t, W/K.
   double loss_derivative(std::size_t i, double t) const {
@@ -237,10 +230,8 @@ class PartModel final : public OdeSystem {
   }
 
   std::size_t n_;
-  std::vector<double> capacity_;  // J/K at the constant specific heat
   std::vector<double> mass_kg_;
   Material material_;
-  bool variable_cp_ = false;
   std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
   std::vector<double> table_W_K_;   // bed contact conductance
   std::vector<std::size_t> first_;

@@ -66,21 +66,19 @@ std::vector<FusionSummary> summarise_layers(const ThermalMesh& mesh, const HeatR
                                             std::span<const double> durations_s, const Material& material,
                                             double ambient_c) {
   const std::size_t layer_count = durations_s.size();
-  std::vector<FusionSummary> layers(layer_count);
-  std::vector<double> on_top_area(layer_count, 0.0);
+  std::vector<int> layer_of_cell;
+  layer_of_cell.reserve(mesh.cells.size());
+  for (const ThermalCell& c : mesh.cells) layer_of_cell.push_back(c.layer);
+  std::vector<FusionSummary> layers = summarise_groups(heat, layer_of_cell, layer_count);
+  // Where beads landed on the layer below: what a change of layer time acts on.
   std::vector<std::vector<InterfaceResult>> landing(layer_count);
   for (const InterfaceResult& r : heat.interfaces) {
-    const int layer = mesh.cells[r.younger].layer;
-    if (layer < 0 || static_cast<std::size_t>(layer) >= layer_count) continue;
-    const auto k = static_cast<std::size_t>(layer);
-    add(layers[k], r);
-    if (r.on_top) {
-      on_top_area[k] += r.area_mm2;
-      if (mesh.cells[r.older].layer != layer) landing[k].push_back(r);
-    }
+    const int layer = layer_of_cell[r.younger];
+    if (r.on_top && layer >= 0 && static_cast<std::size_t>(layer) < layer_count &&
+        layer_of_cell[r.older] != layer)
+      landing[static_cast<std::size_t>(layer)].push_back(r);
   }
   for (std::size_t k = 0; k < layer_count; ++k) {
-    finish(layers[k], on_top_area[k]);
     const LayerTimeWindow w =
         layer_time_window(landing[k], durations_s[k], material, ambient_c, 1.0 - kVerdictShare);
     layers[k].layer_time_min_s = w.min_s;
@@ -160,14 +158,9 @@ LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, doub
 }
 
 FusionSummary summarise_part(const HeatResult& heat) {
-  FusionSummary s;
-  double on_top_area = 0.0;
-  for (const InterfaceResult& r : heat.interfaces) {
-    add(s, r);
-    if (r.on_top) on_top_area += r.area_mm2;
-  }
-  finish(s, on_top_area);
-  return s;
+  std::size_t cells = 0;
+  for (const InterfaceResult& r : heat.interfaces) cells = std::max<std::size_t>(cells, r.younger + 1);
+  return summarise_groups(heat, std::vector<int>(cells, 0), 1).front();
 }
 
 std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<const int> group_of_cell,

@@ -220,6 +220,19 @@ json history_json(const TemperatureHistory& h) {
   return {{"times_s", std::move(times)}, {"layers", std::move(layers)}};
 }
 
+// The numbers of a layer's or a section's interfaces.
+json fusion_json(const FusionRow& f) {
+  return {{"substrate_temp_c", stats_json(f.substrate_temp_c)},
+          {"interfaces", f.interfaces},
+          {"healing_min", number_or_null(f.healing)},
+          {"healing_mean", number_or_null(f.healing_mean)},
+          {"too_hot", f.too_hot},
+          {"too_cold", f.too_cold},
+          {"too_hot_fraction", f.too_hot_fraction},
+          {"too_cold_fraction", f.too_cold_fraction},
+          {"verdict", f.verdict}};
+}
+
 json variant_json(const VariantResult& r) {
   const Metrics& m = r.metrics;
   json gates = json::array();
@@ -230,41 +243,31 @@ json variant_json(const VariantResult& r) {
                      {"passed", g.passed},
                      {"message", g.message}});
   json layers = json::array();
-  for (const auto& l : r.layers)
-    layers.push_back({{"index", l.index},
-                      {"z_mm", l.z_mm},
-                      {"section", l.section},
-                      {"start_s", l.start_s},
-                      {"duration_s", l.duration_s},
-                      {"substrate_temp_c", stats_json(l.substrate_temp_c)},
-                      {"interfaces", l.interfaces},
-                      {"healing_min", number_or_null(l.healing)},
-                      {"healing_mean", number_or_null(l.healing_mean)},
-                      {"too_hot", l.too_hot},
-                      {"too_cold", l.too_cold},
-                      {"too_hot_fraction", l.too_hot_fraction},
-                      {"too_cold_fraction", l.too_cold_fraction},
-                      {"verdict", l.verdict},
-                      {"layer_time_window_s",
-                       {{"min", number_or_null(l.window_min_s)},
-                        {"max", number_or_null(l.window_max_s)},
-                        {"typical_min", number_or_null(l.typical_min_s)},
-                        {"typical_max", number_or_null(l.typical_max_s)}}},
-                      {"fill_ratio", l.fill_ratio > 0 ? json(l.fill_ratio) : json(nullptr)},
-                      {"bead_height_mm", l.bead_height_mm},
-                      {"void_mm3", l.void_mm3},
-                      {"plough_mm3", l.plough_mm3},
-                      {"unsupported_mm", l.unsupported_mm}});
+  for (const auto& l : r.layers) {
+    json row = fusion_json(l);
+    row.update({{"index", l.index},
+                {"z_mm", l.z_mm},
+                {"section", l.section},
+                {"start_s", l.start_s},
+                {"duration_s", l.duration_s},
+                {"layer_time_window_s",
+                 {{"min", number_or_null(l.window_min_s)},
+                  {"max", number_or_null(l.window_max_s)},
+                  {"typical_min", number_or_null(l.typical_min_s)},
+                  {"typical_max", number_or_null(l.typical_max_s)}}},
+                {"fill_ratio", l.fill_ratio > 0 ? json(l.fill_ratio) : json(nullptr)},
+                {"bead_height_mm", l.bead_height_mm},
+                {"void_mm3", l.void_mm3},
+                {"plough_mm3", l.plough_mm3},
+                {"unsupported_mm", l.unsupported_mm}});
+    layers.push_back(row);
+  }
   json sections = json::array();
-  for (const SectionRow& s : r.sections)
-    sections.push_back({{"name", s.name},
-                        {"interfaces", s.interfaces},
-                        {"substrate_temp_c", stats_json(s.substrate_temp_c)},
-                        {"healing_min", number_or_null(s.healing)},
-                        {"healing_mean", number_or_null(s.healing_mean)},
-                        {"too_hot_fraction", s.too_hot_fraction},
-                        {"too_cold_fraction", s.too_cold_fraction},
-                        {"verdict", s.verdict}});
+  for (const SectionRow& s : r.sections) {
+    json row = fusion_json(s);
+    row["name"] = s.name;
+    sections.push_back(row);
+  }
   json defects = json::array();
   for (std::size_t i = 0; i < std::min(r.defects.size(), kDefectsInJson); ++i) {
     const sim::Defect& d = r.defects[i];

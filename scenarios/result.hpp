@@ -78,20 +78,24 @@ struct Metrics {
   std::optional<double> get(const std::string& name) const;
 };
 
-struct LayerRow {
-  int index = 0;
-  double z_mm = 0;
-  std::string section;
-  double start_s = 0, duration_s = 0;
-  // The interfaces where the layer's beads landed (thermal/summary.hpp): the substrate's temperature where
-  // they landed on top (NaN: on nothing but the table), the least and the mean healing (NaN: no interface),
-  // how many interfaces were too hot or too cold and their share of the interface area, the verdict.
-  Stats3 substrate_temp_c;
+// What the interfaces where a layer's or a section's beads landed add up to (thermal/summary.hpp): the
+// substrate's temperature where they landed on top (NaN: on nothing but the table), the least and the mean
+// healing (NaN: no interface), how many interfaces were too hot or too cold and their share of the interface
+// area, the verdict.
+struct FusionRow {
   int interfaces = 0;
+  Stats3 substrate_temp_c;
   double healing = 0, healing_mean = 0;
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;
   std::string verdict;
+};
+
+struct LayerRow : FusionRow {
+  int index = 0;
+  double z_mm = 0;
+  std::string section;
+  double start_s = 0, duration_s = 0;
   // The layer times that would have put the layer in the window (thermal::layer_time_window), s; NaN
   // where nothing bounds them; min > max when none would.
   double window_min_s = 0, window_max_s = 0;
@@ -101,14 +105,9 @@ struct LayerRow {
   double fill_ratio = 0, bead_height_mm = 0, void_mm3 = 0, plough_mm3 = 0, unsupported_mm = 0;
 };
 
-// The interfaces where one section's beads landed (thermal/summary.hpp), as LayerRow has them per layer.
-struct SectionRow {
+// A section's interfaces, as LayerRow has them per layer.
+struct SectionRow : FusionRow {
   std::string name;
-  int interfaces = 0;
-  Stats3 substrate_temp_c;
-  double healing = 0, healing_mean = 0;
-  double too_hot_fraction = 0, too_cold_fraction = 0;
-  std::string verdict;
 };
 
 // The mean temperature of chosen layers against time (output.history_layers), from the thermal model's

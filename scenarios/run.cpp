@@ -207,26 +207,33 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d, con
   return m;
 }
 
+// The report's numbers of a summary of interfaces.
+FusionRow fusion_row(const thermal::FusionSummary& f) {
+  FusionRow row;
+  row.interfaces = static_cast<int>(f.interfaces);
+  row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
+  row.healing = f.healing_min;
+  row.healing_mean = f.healing_mean;
+  row.too_hot = static_cast<int>(f.too_hot);
+  row.too_cold = static_cast<int>(f.too_cold);
+  row.too_hot_fraction = f.too_hot_fraction();
+  row.too_cold_fraction = f.too_cold_fraction();
+  row.verdict = std::string(thermal::to_string(f.verdict()));
+  return row;
+}
+
 std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const sim::Deposit& d) {
   std::vector<LayerRow> rows;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
     const thermal::FusionSummary& f = th.layers[i];
     LayerRow row;
+    static_cast<FusionRow&>(row) = fusion_row(f);
     row.index = static_cast<int>(i);
     row.z_mm = l.z_mm;
     row.section = l.section >= 0 ? tp.sections[static_cast<std::size_t>(l.section)] : "";
     row.start_s = l.start_s;
     row.duration_s = l.duration_s();
-    row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
-    row.interfaces = static_cast<int>(f.interfaces);
-    row.healing = f.healing_min;
-    row.healing_mean = f.healing_mean;
-    row.too_hot = static_cast<int>(f.too_hot);
-    row.too_cold = static_cast<int>(f.too_cold);
-    row.too_hot_fraction = f.too_hot_fraction();
-    row.too_cold_fraction = f.too_cold_fraction();
-    row.verdict = std::string(thermal::to_string(f.verdict()));
     row.window_min_s = f.layer_time_min_s;
     row.window_max_s = f.layer_time_max_s;
     row.typical_min_s = f.typical_time_min_s;
@@ -252,16 +259,9 @@ std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th) {
       thermal::summarise_groups(th.heat, section_of_cell, tp.sections.size());
   std::vector<SectionRow> rows;
   for (std::size_t k = 0; k < sums.size(); ++k) {
-    const thermal::FusionSummary& f = sums[k];
     SectionRow row;
+    static_cast<FusionRow&>(row) = fusion_row(sums[k]);
     row.name = tp.sections[k];
-    row.interfaces = static_cast<int>(f.interfaces);
-    row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
-    row.healing = f.healing_min;
-    row.healing_mean = f.healing_mean;
-    row.too_hot_fraction = f.too_hot_fraction();
-    row.too_cold_fraction = f.too_cold_fraction();
-    row.verdict = std::string(thermal::to_string(f.verdict()));
     rows.push_back(row);
   }
   return rows;

@@ -18,6 +18,7 @@
 
 #include <openvdb/io/File.h>
 
+#include "tests/read_file.hpp"
 #include "tests/sim/ring_deposit.hpp"
 
 namespace beadtwin::sim {
@@ -25,7 +26,7 @@ namespace {
 
 using testing::fresh_dir;
 using testing::get;
-using testing::read_all;
+using beadtwin::testing::read_file;
 using testing::ring;
 
 // A .vtu as a reader sees it: the counts from the XML, and each appended array's bytes.
@@ -73,7 +74,7 @@ TEST(DepositVtu, ParsesBackWithTheDepositsVoxelsAndValues) {
   const Deposit& d = ring();
   const auto path = fresh_dir("files_vtu") / "fields.vtu";
   const VtuCounts counts = write_deposit_vtu(d, path);
-  const Vtu v = parse_vtu(read_all(path));
+  const Vtu v = parse_vtu(read_file(path));
   EXPECT_NE(v.xml.find(R"(<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" )"
                        R"(header_type="UInt64">)"),
             std::string::npos)
@@ -166,14 +167,14 @@ TEST(DepositVtu, VtkReadsIt) {
       "c.GetArray('layer').GetRange()[1], c.GetArray('time_s').GetRange()[1], g.GetBounds()[4], "
       "r.GetErrorCode())";
   const std::string out = (dir / "vtk.txt").string();
-  ASSERT_EQ(std::system((python + " -c \"" + script + "\" > " + out + " 2>&1").c_str()), 0) << read_all(out);
-  std::istringstream words(read_all(out));
+  ASSERT_EQ(std::system((python + " -c \"" + script + "\" > " + out + " 2>&1").c_str()), 0) << read_file(out);
+  std::istringstream words(read_file(out));
   std::size_t cells = 0, points = 0;
   int type = 0, error = -1;
   double max_fill = 0, max_layer = 0, max_time = 0, z_min = 1;
   words >> cells >> points >> type >> max_fill >> max_layer >> max_time >> z_min >> error;
-  EXPECT_EQ(error, 0) << read_all(out);
-  EXPECT_EQ(cells, ring().active_voxels) << read_all(out);
+  EXPECT_EQ(error, 0) << read_file(out);
+  EXPECT_EQ(cells, ring().active_voxels) << read_file(out);
   EXPECT_GT(points, cells);
   EXPECT_EQ(type, 11);  // VTK_VOXEL
   EXPECT_NEAR(max_fill, 1.0, 1e-6);

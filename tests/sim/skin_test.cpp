@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "tests/read_file.hpp"
 #include "tests/sim/ring_deposit.hpp"
 
 namespace beadtwin::sim {
@@ -21,7 +22,7 @@ namespace {
 
 using testing::fresh_dir;
 using testing::get;
-using testing::read_all;
+using beadtwin::testing::read_file;
 using testing::ring;
 
 // Every directed edge of a closed, consistently oriented mesh appears once, and so does its reverse.
@@ -125,7 +126,7 @@ TEST(Skin, PlyReadsBackAsWritten) {
   const SkinMesh mesh = extract_skin(ring(), 0.2);
   const auto path = fresh_dir("skin_ply") / "skin.ply";
   write_mesh(mesh, path, MeshFormat::kPly);
-  const SkinMesh back = read_ply(read_all(path));
+  const SkinMesh back = read_ply(read_file(path));
   ASSERT_EQ(back.points_mm.size(), mesh.points_mm.size());
   ASSERT_EQ(back.triangles.size(), mesh.triangles.size());
   for (std::size_t i = 0; i < mesh.points_mm.size(); ++i) EXPECT_EQ(back.points_mm[i], mesh.points_mm[i]);
@@ -137,7 +138,7 @@ TEST(Skin, StlReadsBackWithOutwardNormals) {
   const SkinMesh mesh = extract_skin(ring(), 0.2);
   const auto path = fresh_dir("skin_stl") / "skin.stl";
   write_mesh(mesh, path, MeshFormat::kStl);
-  const std::string bytes = read_all(path);
+  const std::string bytes = read_file(path);
   ASSERT_GE(bytes.size(), 84u);
   EXPECT_NE(bytes.rfind("solid", 0), 0u) << "a binary STL must not start like an ASCII one";
   const auto n = get<std::uint32_t>(bytes, 80);

@@ -12,6 +12,7 @@
 #include <sunmatrix/sunmatrix_band.h>
 
 #include "core/error.hpp"
+#include "thermal/vector_ops.hpp"
 
 namespace beadtwin::thermal {
 
@@ -121,6 +122,7 @@ Cvode::VectorHandle Cvode::make_vector(std::span<const double> init) {
   if (!v) throw InternalError("SUNDIALS: N_VNew_Serial failed");
   if (N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0)
     throw InternalError("SUNDIALS: N_VEnableFusedOps_Serial failed");
+  use_blocked_vector_ops(v.get());
   std::span<double> out = values(v.get());
   std::copy(init.begin(), init.end(), out.begin());
   return v;

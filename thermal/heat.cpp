@@ -277,15 +277,17 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   PartModel model(mesh, material, env);
   model.set_tolerances(options.rel_tol, options.abs_tol_k);
 
-  // The birth interval and the groups of cells born together.
-  double interval = options.birth_interval_s;
-  if (interval <= 0.0) {
+  // The cells' median conduction time constant sets the birth interval and the longest step.
+  double median_tau = 5.0;
+  {
     std::vector<double> tau;
     tau.reserve(n);
     for (std::size_t i = 0; i < n; ++i) tau.push_back(model.time_constant_s(i));
     std::nth_element(tau.begin(), tau.begin() + static_cast<std::ptrdiff_t>(n / 2), tau.end());
-    interval = std::isfinite(tau[n / 2]) ? 0.2 * tau[n / 2] : 1.0;
+    if (std::isfinite(tau[n / 2])) median_tau = tau[n / 2];
   }
+  // The birth interval and the groups of cells born together.
+  const double interval = options.birth_interval_s > 0.0 ? options.birth_interval_s : 0.2 * median_tau;
   result.birth_interval_s = interval;
   struct Group {
     std::size_t end = 0;  // cells [previous end, end)
@@ -386,6 +388,12 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   CvodeOptions co;
   co.solver = LinearSolver::kGmres;
   co.krylov_dimension = options.krylov_dimension;
+  // No step longer than a few cell time constants. GMRES with a diagonal preconditioner carries a
+  // correction a few cells per iteration; over a step of many time constants (a long pause, the cooldown
+  // towards steady state) a temperature depends on cells far away, GMRES stops short of it, and the Newton
+  // test, which sees only small corrections, passes a state kelvins off. A steady bar of 50 cells ends
+  // 1e-3 of its temperature drop off its own network with no limit, 2e-5 with this one (heat_test).
+  co.max_step_s = 4.0 * median_tau;
   auto cvode = std::make_unique<Cvode>(model, t0, before, co);
   long steps = 0, rhs = 0, linear = 0;  // of the integrators replaced
   double t = t0;

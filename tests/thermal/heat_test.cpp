@@ -5,6 +5,7 @@
 #include "thermal/heat.hpp"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -571,6 +572,66 @@ TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {
   const HeatResult result = solve_heat(ThermalMesh{}, 0, 0.0, test_material(), Environment{});
   EXPECT_TRUE(result.final_temp_c.empty());
   EXPECT_TRUE(result.interfaces.empty());
+}
+
+// ---- threads ---------------------------------------------------------------------------------------------
+
+// The same result, to the last bit, on 1 and 2 threads (DESIGN §5). The block is large enough (18,000
+// cells) that the model's loops and the vector operations of thermal/vector_ops.hpp both split into
+// parallel blocks; radiation on, so the right-hand side is nonlinear.
+TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
+  constexpr int kNx = 30, kNy = 30, kLayers = 20;
+  constexpr double kSide = 5.0, kHeight = 4.0;
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 1.0;
+  const auto index = [&](int x, int y, int z) { return static_cast<std::uint32_t>((z * kNy + y) * kNx + x); };
+  for (int z = 0; z < kLayers; ++z)
+    for (int y = 0; y < kNy; ++y)
+      for (int x = 0; x < kNx; ++x) {
+        // Each layer laid row by row over 30 s, the next one 60 s after it started.
+        ThermalCell c = cell_at({(x + 0.5) * kSide, (y + 0.5) * kSide, (z + 0.5) * kHeight},
+                                kSide * kSide * kHeight, z * 60.0 + y, z);
+        c.open_area_mm2 = (x == 0 || x == kNx - 1 ? kSide * kHeight : 0.0) +
+                          (y == 0 || y == kNy - 1 ? kSide * kHeight : 0.0) +
+                          (z == kLayers - 1 ? kSide * kSide : 0.0);
+        if (z == 0) c.table_area_mm2 = kSide * kSide;
+        mesh.cells.push_back(c);
+      }
+  for (int z = 0; z < kLayers; ++z)
+    for (int y = 0; y < kNy; ++y)
+      for (int x = 0; x < kNx; ++x) {
+        if (x + 1 < kNx)
+          mesh.links.push_back(link(index(x, y, z), index(x + 1, y, z), {kSide * kHeight, 0, 0}));
+        if (y + 1 < kNy)
+          mesh.links.push_back(link(index(x, y, z), index(x, y + 1, z), {0, kSide * kHeight, 0}));
+        if (z + 1 < kLayers)
+          mesh.links.push_back(link(index(x, y, z), index(x, y, z + 1), {0, 0, kSide * kSide}, true));
+      }
+  Material material = test_material();
+  material.emissivity = 0.9;
+  Environment env;
+  env.bed_temp_c = 80.0;
+  HeatOptions options;
+  options.cooldown_s = 300.0;
+  const auto run = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return solve_heat(mesh, kLayers, 0.0, material, env, options);
+  };
+  const HeatResult one = run(1);
+  const HeatResult two = run(2);
+  ASSERT_EQ(one.final_temp_c.size(), mesh.cells.size());
+  EXPECT_EQ(one.steps, two.steps);
+  EXPECT_EQ(one.linear_iterations, two.linear_iterations);
+  EXPECT_EQ(one.final_temp_c, two.final_temp_c);
+  EXPECT_EQ(one.energy_lost_J, two.energy_lost_J);
+  ASSERT_EQ(one.interfaces.size(), two.interfaces.size());
+  for (std::size_t k = 0; k < one.interfaces.size(); ++k) {
+    EXPECT_EQ(one.interfaces[k].substrate_c, two.interfaces[k].substrate_c) << k;
+    EXPECT_EQ(one.interfaces[k].healing_integral, two.interfaces[k].healing_integral) << k;
+  }
+  // Not a trivial run: the part heated and cooled, and the top is well below the deposition temperature.
+  EXPECT_LT(one.final_temp_c.back(), material.deposition_temp_c - 50.0);
+  EXPECT_GT(one.steps, 100);
 }
 
 }  // namespace

@@ -424,10 +424,6 @@ constexpr ParamSpec kOutput[] = {
      "memory the deposit may use, GB; above it the run stops with a voxel size that fits (0: three "
      "quarters of the machine's memory)",
      ""},
-    {"image_width", T::kInteger, D::kDimensionless, "1280", 16, 8192, false,
-     "width of rendered images, pixels", ""},
-    {"image_height", T::kInteger, D::kDimensionless, "800", 16, 8192, false,
-     "height of rendered images, pixels", ""},
     {"skin", T::kString, D::kDimensionless, "ply", 0, 0, false,
      "the as-printed outer skin as a triangle mesh in mm (the deposit's surface fill = 0.5): ply, stl "
      "or none",
@@ -450,6 +446,70 @@ constexpr ParamSpec kOutput[] = {
      "thermal.sample_interval; layers the print does not reach are left out; [] for none. The default is "
      "the 1st, 15th and 30th layer",
      "scenarios/report.cpp"},
+};
+
+constexpr ParamSpec kRender[] = {
+    {"width", T::kInteger, D::kDimensionless, "1280", 16, 8192, false, "width of the pictures, pixels", ""},
+    {"height", T::kInteger, D::kDimensionless, "800", 16, 8192, false, "height of the pictures, pixels", ""},
+    {"samples", T::kInteger, D::kDimensionless, "8", 1, 1024, false,
+     "rays per pixel (stratified): smoother edges, shadows and occlusion for more time", "render/render.hpp"},
+    {"ambient_occlusion", T::kBool, D::kDimensionless, "true", 0, 0, false,
+     "darken the grooves between beads and layers by the sky they cannot see, so ridges and layer lines "
+     "read",
+     "render/render.hpp"},
+    {"legend", T::kBool, D::kDimensionless, "true", 0, 0, false,
+     "a title, a legend with the colour scale and its unit, and a scale bar on every picture",
+     "render/annotate.hpp"},
+    {"exr", T::kBool, D::kDimensionless, "false", 0, 0, false,
+     "each picture also as OpenEXR: linear RGB and a channel of the coloured quantity's raw value per pixel "
+     "(NaN off the part), and depth",
+     "render/image.hpp"},
+    {"sheet", T::kBool, D::kDimensionless, "true", 0, 0, false,
+     "a comparison sheet per picture: the variants side by side, same camera, same colour scale", ""},
+    {"images", T::kString, D::kDimensionless, "", 0, 0, false,
+     "the pictures of every variant, a list of maps (keys in the next table); without it: fusion from the "
+     "isometric and top views, sections, substrate temperature and, with a part mesh, the deviation",
+     "", true},
+    {"progress", T::kString, D::kDimensionless, "none", 0, 0, false,
+     "a picture per layer as the part grows, for a video: a map {colour, view, every} (keys as for an image, "
+     "every: 1 takes every layer), or none",
+     ""},
+};
+
+constexpr ParamSpec kImage[] = {
+    {"name", T::kString, D::kDimensionless, "", 0, 0, false,
+     "file name without extension, unique among the pictures; default: the colouring and the view", "", true},
+    {"colour", T::kString, D::kDimensionless, "", 0, 0, false,
+     "what colours the part: fusion (verdict), section, layer, time (of deposition), substrate "
+     "(temperature of what a bead landed on), healing (least degree of healing), deviation (stock over "
+     "the CAD), porosity (local void fraction) or temperature (at `time`)",
+     "docs/physics.md"},
+    {"view", T::kString, D::kDimensionless, "isometric", 0, 0, false,
+     "isometric, top, front (from -y), side (from +x), or user (the camera keys)", ""},
+    {"camera.position", T::kQuantity, D::kLength, "", 0, 0, false,
+     "user view: the eye [x, y, z]; without it the camera looks along camera.direction, framed on the part",
+     "", true},
+    {"camera.target", T::kQuantity, D::kLength, "", 0, 0, false,
+     "user view: the point looked at [x, y, z]; default the part's centre", "", true},
+    {"camera.direction", T::kQuantity, D::kDimensionless, "[-1, 1, -1]", 0, 0, false,
+     "user view without a position: the viewing direction [x, y, z]", ""},
+    {"field_of_view", T::kQuantity, D::kAngle, "30 deg", 0, 120, false,
+     "perspective angle of the isometric and user views across the picture's shorter side; 0 draws them "
+     "orthographic. Top, front and side are always orthographic",
+     ""},
+    {"cut.point", T::kQuantity, D::kLength, "", 0, 0, false,
+     "a cutaway: a point of the cutting plane [x, y, z]; the inside shows where the plane cuts the part", "",
+     true},
+    {"cut.normal", T::kQuantity, D::kDimensionless, "[0, -1, 0]", 0, 0, false,
+     "the cutting plane's normal [x, y, z]: the half it points into is taken away", ""},
+    {"layer", T::kInteger, D::kDimensionless, "", 0, 1e7, false,
+     "the part as it stood when this toolpath layer (from 0) was done; default the finished part", "", true},
+    {"time", T::kQuantity, D::kTime, "", 0, 1e9, false,
+     "colour temperature: the moment, from the start of the print; default its end", "", true},
+    {"range", T::kQuantity, D::kDimensionless, "", 0, 0, false,
+     "the colour scale's ends [low, high], in the colouring's unit (°C, s, mm, fraction, layer); default "
+     "the data's range",
+     "", true},
 };
 
 constexpr ParamSpec kThermal[] = {
@@ -504,6 +564,12 @@ std::span<const ParamSpec> output_params() {
 }
 std::span<const ParamSpec> thermal_params() {
   return kThermal;
+}
+std::span<const ParamSpec> render_params() {
+  return kRender;
+}
+std::span<const ParamSpec> image_params() {
+  return kImage;
 }
 
 }  // namespace beadtwin::scenarios
@@ -570,6 +636,11 @@ std::string params_markdown() {
         "Each entry of the `tools:` map, by name; sections refer to one with `tool: <name>`.", tool_params());
   table(out, "Output", "The `output:` block.", output_params());
   table(out, "Thermal solver", "The `thermal:` block.", thermal_params());
+  table(out, "Pictures", "The `render:` block.", render_params());
+  table(out, "Pictures: each image",
+        "Each entry of `render.images:` (and the `render.progress:` map, which takes `colour`, `view`, the "
+        "camera keys and `every`).",
+        image_params());
   return out;
 }
 

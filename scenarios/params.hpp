@@ -34,6 +34,8 @@ std::span<const ParamSpec> material_params();
 std::span<const ParamSpec> output_params();
 std::span<const ParamSpec> thermal_params();
 std::span<const ParamSpec> tool_params();
+std::span<const ParamSpec> render_params();
+std::span<const ParamSpec> image_params();
 
 }  // namespace beadtwin::scenarios
 

@@ -367,8 +367,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
     });
   stages.run("render", [&] {
     render::RenderOptions o;
-    o.width = v.output.image_width;
-    o.height = v.output.image_height;
+    o.width = v.render.width;
+    o.height = v.render.height;
     // Each bead's piece coloured by its worst interface: where it landed too hot, too cold, or fused.
     const render::LayerColour colour = [&](int cell) {
       return verdict_colour(cell >= 0 && static_cast<std::size_t>(cell) < th.cells.size()

@@ -773,14 +773,14 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
     }
     if (!found) throw InputError(at, path, fmt::format("no section named '{}'", parts[1]));
     first = 2;
-  } else if (head == "part" || head == "output" || head == "thermal" || head == "tools") {
+  } else if (head == "part" || head == "output" || head == "render" || head == "thermal" || head == "tools") {
     if (!tree.root[head]) tree.root[head] = YAML::Node(YAML::NodeType::Map);
     target.reset(tree.root[head]);
   } else {
     throw InputError(
         at, path,
-        "a variant can set program, or keys under machine, material, part, output, thermal, tools or "
-        "sections.<name>");
+        "a variant can set program, or keys under machine, material, part, output, render, thermal, tools "
+        "or sections.<name>");
   }
   if (parts.size() <= first) throw InputError(at, path, "expected a key below the block");
   for (std::size_t i = first; i + 1 < parts.size(); ++i) {
@@ -835,6 +835,204 @@ Gate parse_gate(const YAML::Node& node, const std::string& file) {
   return g;
 }
 
+constexpr std::pair<Colouring, std::string_view> kColourings[] = {
+    {Colouring::kFusion, "fusion"},
+    {Colouring::kSection, "section"},
+    {Colouring::kLayer, "layer"},
+    {Colouring::kTime, "time"},
+    {Colouring::kSubstrate, "substrate"},
+    {Colouring::kHealing, "healing"},
+    {Colouring::kDeviation, "deviation"},
+    {Colouring::kPorosity, "porosity"},
+    {Colouring::kTemperature, "temperature"},
+};
+constexpr std::pair<render::View, std::string_view> kViews[] = {
+    {render::View::kIsometric, "isometric"}, {render::View::kTop, "top"},   {render::View::kFront, "front"},
+    {render::View::kSide, "side"},           {render::View::kUser, "user"},
+};
+
+template <class Enum, std::size_t N>
+Enum named(BlockReader& r, std::string_view key, const std::string& text,
+           const std::pair<Enum, std::string_view> (&names)[N]) {
+  std::string all;
+  for (const auto& [value, name] : names) {
+    if (name == text) return value;
+    all += fmt::format("{}{}", all.empty() ? "" : ", ", name);
+  }
+  r.fail(r.take(key), key, fmt::format("expected one of {} but found '{}'", all, text));
+}
+
+// Three plain numbers [x, y, z], not all zero (a direction); the spec's default when absent.
+Eigen::Vector3d read_direction(BlockReader& r, const ParamSpec& spec) {
+  YAML::Node node = r.take(spec.key);
+  const YAML::Node list = node.IsDefined() ? node : YAML::Load(std::string(spec.default_text));
+  if (!list.IsSequence() || list.size() != 3) r.fail(node, spec.key, "expected three numbers [x, y, z]");
+  Eigen::Vector3d d;
+  for (std::size_t i = 0; i < 3; ++i)
+    d[static_cast<Eigen::Index>(i)] = r.parse(list[i], Dimension::kDimensionless, std::string(spec.key));
+  if (!(d.norm() > 0.0)) r.fail(node, spec.key, "a direction cannot be [0, 0, 0]");
+  return d;
+}
+
+// The view and camera keys of an image or of the progress frames.
+render::CameraSpec read_camera(BlockReader& r) {
+  const auto t = image_params();
+  render::CameraSpec c;
+  c.view = named(r, "view", r.string(spec(t, "view")), kViews);
+  c.field_of_view_deg = r.quantity(spec(t, "field_of_view"));
+  if (c.field_of_view_deg > 0.0 && c.field_of_view_deg < 1.0)
+    r.fail(r.take("field_of_view"), "field_of_view",
+           fmt::format("must be 0 (orthographic) or 1..120 deg, got {:g} deg", c.field_of_view_deg));
+  const bool user_keys = r.has("camera.position") || r.has("camera.target") || r.has("camera.direction");
+  if (user_keys && c.view != render::View::kUser)
+    r.fail(r.take("view"), "view", "the camera keys place a user camera: set view: user");
+  if (r.has("camera.position")) c.position = read_vector(r, "camera.position", true).cast<float>();
+  if (r.has("camera.target")) c.target = read_vector(r, "camera.target", true).cast<float>();
+  c.direction = read_direction(r, spec(t, "camera.direction")).cast<float>();
+  if (c.position && c.target && (*c.position - *c.target).norm() < 1e-3f)
+    r.fail(r.take("camera.target"), "camera.target", "the eye is at the point it looks at: they must differ");
+  return c;
+}
+
+std::string view_name(render::View v) {
+  for (const auto& [value, name] : kViews)
+    if (value == v) return std::string(name);
+  return "?";
+}
+std::string colouring_name(Colouring c) {
+  for (const auto& [value, name] : kColourings)
+    if (value == c) return std::string(name);
+  return "?";
+}
+
+// The unit a colouring's range is written in.
+Dimension colouring_dimension(Colouring c) {
+  switch (c) {
+    case Colouring::kTime:
+      return Dimension::kTime;
+    case Colouring::kSubstrate:
+    case Colouring::kTemperature:
+      return Dimension::kTemperature;
+    case Colouring::kHealing:
+    case Colouring::kPorosity:
+      return Dimension::kFraction;
+    case Colouring::kDeviation:
+      return Dimension::kLength;
+    default:
+      return Dimension::kDimensionless;
+  }
+}
+
+ImageSpec read_image(BlockReader& r) {
+  const auto t = image_params();
+  ImageSpec im;
+  const YAML::Node colour = r.take("colour");
+  if (!colour.IsDefined() || !colour.IsScalar())
+    r.fail(colour, "colour", "required: what colours the part (fusion, section, layer, ...)");
+  im.colour = named(r, "colour", colour.Scalar(), kColourings);
+  im.camera = read_camera(r);
+  if (r.has("cut.point")) {
+    CutSpec cut;
+    cut.point = read_vector(r, "cut.point", true);
+    cut.normal = read_direction(r, spec(t, "cut.normal")).normalized();
+    im.cut = cut;
+  } else if (r.has("cut.normal")) {
+    r.fail(r.take("cut.normal"), "cut.normal", "a cut needs cut.point too");
+  }
+  if (r.has("layer")) im.up_to_layer = r.integer(spec(t, "layer"));
+  if (r.has("time")) {
+    if (im.colour != Colouring::kTemperature)
+      r.fail(r.take("time"), "time", "only a picture coloured by temperature has a time");
+    im.time_s = r.quantity(spec(t, "time"));
+  }
+  if (YAML::Node range = r.take("range"); range.IsDefined()) {
+    if (im.colour == Colouring::kFusion || im.colour == Colouring::kSection)
+      r.fail(range, "range", "fusion and section colour by category: they have no range");
+    if (!range.IsSequence() || range.size() != 2) r.fail(range, "range", "expected [low, high]");
+    const Dimension dim = colouring_dimension(im.colour);
+    const double lo = r.parse(range[0], dim, "range"), hi = r.parse(range[1], dim, "range");
+    if (!(lo < hi)) r.fail(range, "range", fmt::format("low ({:g}) must be below high ({:g})", lo, hi));
+    im.range = std::pair{lo, hi};
+  }
+  const std::string view = view_name(im.camera.view);
+  im.name = r.has("name") ? r.string(spec(t, "name"))
+                          : colouring_name(im.colour) + (view == "isometric" ? "" : "-" + view);
+  if (im.name.empty() || im.name.find_first_of("/\\:*?\"<>|") != std::string::npos || im.name[0] == '.')
+    r.fail(r.take("name"), "name", fmt::format("'{}' cannot be a file name", im.name));
+  r.finish(t);
+  return im;
+}
+
+// The pictures a scenario gets without a render.images list.
+std::vector<ImageSpec> default_images() {
+  std::vector<ImageSpec> out;
+  const auto add = [&](Colouring c, render::View view, std::string name) {
+    ImageSpec im;
+    im.colour = c;
+    im.camera.view = view;
+    im.name = std::move(name);
+    out.push_back(im);
+  };
+  add(Colouring::kFusion, render::View::kIsometric, "fusion");
+  add(Colouring::kFusion, render::View::kTop, "fusion-top");
+  add(Colouring::kSection, render::View::kIsometric, "sections");
+  add(Colouring::kSubstrate, render::View::kIsometric, "substrate");
+  add(Colouring::kDeviation, render::View::kIsometric, "deviation");
+  return out;
+}
+
+RenderSpec read_render(BlockReader& r) {
+  const auto t = render_params();
+  RenderSpec rs;
+  rs.width = r.integer(spec(t, "width"));
+  rs.height = r.integer(spec(t, "height"));
+  rs.samples = r.integer(spec(t, "samples"));
+  rs.ambient_occlusion = r.boolean(spec(t, "ambient_occlusion"));
+  rs.legend = r.boolean(spec(t, "legend"));
+  rs.exr = r.boolean(spec(t, "exr"));
+  rs.sheet = r.boolean(spec(t, "sheet"));
+  if (YAML::Node images = r.take("images"); images.IsDefined()) {
+    rs.images_given = true;
+    if (!images.IsSequence())
+      r.fail(images, "images", "expected a list of pictures such as [{colour: fusion, view: top}]");
+    for (std::size_t i = 0; i < images.size(); ++i) {
+      BlockReader ir(images[i], r.full_key(fmt::format("images[{}]", i)), r.shared_source(), r.overridden());
+      if (!images[i].IsMap()) r.fail(images[i], "images", "each picture is a map {colour: ..., view: ...}");
+      ImageSpec im = read_image(ir);
+      for (const ImageSpec& other : rs.images)
+        if (other.name == im.name)
+          ir.fail(images[i], "name",
+                  fmt::format("two pictures are named '{}': give one a name of its own", im.name));
+      rs.images.push_back(std::move(im));
+    }
+  } else {
+    rs.images = default_images();
+  }
+  if (YAML::Node progress = r.take("progress"); progress.IsDefined() && !progress.IsNull()) {
+    if (progress.IsScalar() && progress.Scalar() == "none") {
+    } else if (!progress.IsMap()) {
+      r.fail(progress, "progress", "expected none or a map {colour: layer, view: isometric, every: 1}");
+    } else {
+      BlockReader pr(progress, r.full_key("progress"), r.shared_source(), r.overridden());
+      ProgressSpec ps;
+      const YAML::Node colour = pr.take("colour");
+      ps.colour = colour.IsDefined() ? named(pr, "colour", colour.Scalar(), kColourings) : Colouring::kLayer;
+      ps.camera = read_camera(pr);
+      if (YAML::Node every = pr.take("every"); every.IsDefined()) {
+        const long n = pr.whole_number(every.IsScalar() ? every.Scalar() : "", every, "every");
+        if (n < 1 || n > 100000) pr.fail(every, "every", fmt::format("must be 1..100000, got {}", n));
+        ps.every = static_cast<int>(n);
+      }
+      static constexpr std::string_view kKeys[] = {
+          "colour", "every", "view", "field_of_view", "camera.position", "camera.target", "camera.direction"};
+      pr.finish({}, kKeys);
+      rs.progress = ps;
+    }
+  }
+  r.finish(t);
+  return rs;
+}
+
 Variant build_variant(const Tree& tree, const std::string& name, const std::filesystem::path& dir,
                       MeshCache& meshes) {
   Variant v;
@@ -855,8 +1053,6 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
   v.output.voxel_size_at = out_r.where(out_r.take("voxel_size"), "voxel_size");
   v.output.memory_budget_gb = out_r.quantity(spec(output_params(), "memory_budget"));
-  v.output.image_width = out_r.integer(spec(output_params(), "image_width"));
-  v.output.image_height = out_r.integer(spec(output_params(), "image_height"));
   const std::string skin = out_r.string(spec(output_params(), "skin"));
   if (skin != "ply" && skin != "stl" && skin != "none")
     out_r.fail(out_r.take("skin"), "skin", fmt::format("expected ply, stl or none but found '{}'", skin));
@@ -869,6 +1065,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.output.write_fields = fields == "vtu";
   v.output.history_layers = read_integer_list(out_r, spec(output_params(), "history_layers"));
   out_r.finish(output_params());
+  BlockReader render_r(tree.root["render"], "render", tree.scenario_src, &tree.overridden);
+  v.render = read_render(render_r);
 
   BlockReader th_r(tree.root["thermal"], "thermal", tree.scenario_src, &tree.overridden);
   v.thermal.cells_across = th_r.integer(spec(thermal_params(), "cells_across"));
@@ -1019,9 +1217,9 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
         "description", ParamType::kString, Dimension::kDimensionless, "-", 0, 0, false, "", ""};
     sc.name = top.string(kName);
     sc.description = top.string(kDesc);
-    static constexpr std::string_view kKeys[] = {"units",    "machine", "material", "part",
-                                                 "output",   "thermal", "tools",    "sections",
-                                                 "variants", "gates",   "program"};
+    static constexpr std::string_view kKeys[] = {"units",    "machine",  "material", "part",
+                                                 "output",   "render",   "thermal",  "tools",
+                                                 "sections", "variants", "gates",    "program"};
     for (const auto k : kKeys) (void)top.take(k);
     static const ParamSpec kTop[] = {kName, kDesc};
     top.finish(kTop, kKeys);
@@ -1125,8 +1323,8 @@ Scenario load_program_check(const ProgramCheck& check) {
   YAML::Node doc(YAML::NodeType::Map);
   std::string file = "<check>";
   if (!check.scenario.empty()) {
-    // Machine, material, units, output, thermal and gates from the scenario; its part and sections are not
-    // used.
+    // Machine, material, units, output, render, thermal and gates from the scenario; its part and sections
+    // are not used.
     file = check.scenario.string();
     const std::string text = read_text_file(check.scenario, {file, 0, 0}, {});
     YAML::Node base;
@@ -1135,7 +1333,7 @@ Scenario load_program_check(const ProgramCheck& check) {
     } catch (const YAML::Exception& e) {
       throw InputError({file, e.mark.line + 1, e.mark.column + 1}, {}, e.msg);
     }
-    for (const char* key : {"units", "machine", "material", "output", "thermal", "gates"})
+    for (const char* key : {"units", "machine", "material", "output", "render", "thermal", "gates"})
       if (base[key]) doc[key] = base[key];
   }
   doc["name"] = "check " + check.program.filename().string();

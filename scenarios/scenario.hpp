@@ -4,15 +4,19 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
 #include "core/flow.hpp"
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
+#include "render/camera.hpp"
 #include "slicer/gcode_writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
@@ -48,12 +52,61 @@ struct PartSpec {
   std::string describe() const;
 };
 
+// What a picture colours the part by (render.images[].colour).
+enum class Colouring {
+  kFusion,       // each bead piece by its worst interface's verdict
+  kSection,      // by section
+  kLayer,        // by toolpath layer
+  kTime,         // by deposition time
+  kSubstrate,    // by the temperature of what each bead piece landed on, as it landed
+  kHealing,      // by each bead piece's least degree of healing
+  kDeviation,    // by the stock over the CAD (needs a part mesh)
+  kPorosity,     // by the local void fraction around the surface
+  kTemperature,  // by the temperature at a moment (render.images[].time)
+};
+
+// A plane through the part: the half the normal points into is cut away, so the inside shows.
+struct CutSpec {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // mm
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();
+};
+
+// One picture of a variant (render.images).
+struct ImageSpec {
+  std::string name;  // file stem, unique among a variant's images
+  Colouring colour = Colouring::kFusion;
+  render::CameraSpec camera;
+  std::optional<CutSpec> cut;
+  int up_to_layer = -1;  // >= 0: the part as it stood when this toolpath layer was done
+  double time_s = std::numeric_limits<double>::infinity();  // kTemperature: when; infinity: end of print
+  std::optional<std::pair<double, double>> range;           // the colour scale's ends; default: the data's
+};
+
+// A frame per layer (or per `every` layers) as the part grows (render.progress).
+struct ProgressSpec {
+  Colouring colour = Colouring::kLayer;
+  render::CameraSpec camera;
+  int every = 1;
+};
+
+// Pictures (the render: block).
+struct RenderSpec {
+  int width = 1280;
+  int height = 800;
+  int samples = 8;  // per pixel
+  bool ambient_occlusion = true;
+  bool exr = false;    // each picture also as EXR with the raw field values
+  bool sheet = true;   // a comparison sheet of the variants' pictures, side by side
+  bool legend = true;  // title, legend and scale bar on each picture
+  std::vector<ImageSpec> images;
+  bool images_given = false;  // images come from the scenario (else the default set)
+  std::optional<ProgressSpec> progress;
+};
+
 struct OutputSpec {
   double voxel_size_mm = 0.0;
-  SourceLocation voxel_size_at;   // where it was set, for messages found when depositing
-  double memory_budget_gb = 0.0;  // 0: automatic
-  int image_width = 1280;
-  int image_height = 800;
+  SourceLocation voxel_size_at;     // where it was set, for messages found when depositing
+  double memory_budget_gb = 0.0;    // 0: automatic
   std::string skin_format = "ply";  // file type of the as-printed skin, ply or stl; empty: not written
   double skin_adaptivity = 0.2;     // 0..1 (sim::extract_skin)
   double skin_tolerance_mm = 0.3;   // simplification tolerance (sim::extract_skin)
@@ -86,6 +139,7 @@ struct Variant {
   PartSpec part;
   std::vector<slicer::SectionParams> sections;
   OutputSpec output;
+  RenderSpec render;
   ThermalSpec thermal;
   // A print program to simulate instead of slicing (`program:`, `beadtwin check`): read with the machine's
   // dialect, untimed until the run times it with the machine's motion.

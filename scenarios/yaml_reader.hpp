@@ -62,6 +62,9 @@ class BlockReader {
   SourceLocation where(const YAML::Node& node, std::string_view key = {}) const;
   [[noreturn]] void fail(const YAML::Node& node, std::string_view key, const std::string& message) const;
   const YamlSource& source() const { return *source_; }
+  // For a reader of a block nested in this one (an entry of a list).
+  std::shared_ptr<const YamlSource> shared_source() const { return source_; }
+  const std::map<std::string, SourceLocation>* overridden() const { return overridden_; }
 
  private:
   YAML::Node find(std::string_view dotted) const;

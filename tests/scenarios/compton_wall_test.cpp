@@ -92,8 +92,8 @@ TEST(ComptonWall, ScenarioHoldsThePapersSetUp) {
 TEST(ComptonWall, ShippedScenarioRuns) {
   Scenario sc = compton_scenario();
   for (Variant& v : sc.variants) {
-    v.output.image_width = 160;
-    v.output.image_height = 100;
+    v.render.width = 160;
+    v.render.height = 100;
   }
   RunOptions o;
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_compton_wall";

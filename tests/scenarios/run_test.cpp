@@ -23,7 +23,8 @@ machine: lsam-ph15
 material: cf-abs-20
 part:
   open_box: {size: [240, 180, 30], wall: 40, floor: 10}
-output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100, fields: vtu}
+output: {voxel_size: 2.5 mm, fields: vtu}
+render: {width: 160, height: 100}
 sections:
   - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
   - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
@@ -189,8 +190,8 @@ TEST(Run, SmallScenarioEndToEnd) {
 TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   Scenario sc = load_default_scenario();
   for (Variant& v : sc.variants) {
-    v.output.image_width = 160;
-    v.output.image_height = 100;
+    v.render.width = 160;
+    v.render.height = 100;
   }
   RunOptions o;
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_default";
@@ -252,7 +253,8 @@ TEST(Run, SingleLayerHasNoHealingToReport) {
 units: {length: mm}
 machine: lsam-ph15
 material: cf-abs-20
-output: {voxel_size: 2.5 mm, image_width: 160, image_height: 100, fields: vtu}
+output: {voxel_size: 2.5 mm, fields: vtu}
+render: {width: 160, height: 100}
 sections:
   - {name: bead, layers: 1, layer_height: 5, bead_width: 20, outline: {points: [[0, 0], [200, 0], [200, 100]], closed: false}}
 gates:

@@ -251,6 +251,82 @@ TEST(Scenario, HistoryLayersAreAListOfLayerIndices) {
   EXPECT_EQ(set.where().line, 23);
 }
 
+TEST(Scenario, RenderBlockListsThePictures) {
+  const Variant plain = load_scenario_text(kGood, "test.yaml").variants[0];
+  EXPECT_EQ(plain.render.width, 1280);
+  EXPECT_FALSE(plain.render.images_given);
+  std::vector<std::string> names;
+  for (const ImageSpec& im : plain.render.images) names.push_back(im.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"fusion", "fusion-top", "sections", "substrate", "deviation"}));
+  EXPECT_FALSE(plain.render.progress);
+
+  const auto with_render = [](const std::string& render) {
+    return replace(kGood, "variants:\n", "render:\n" + render + "variants:\n");
+  };
+  const Scenario sc = load_scenario_text(
+      replace(with_render("  width: 640\n"
+                          "  images:\n"
+                          "    - {colour: healing, view: front, range: [0.5, 1]}\n"
+                          "    - {name: inside, colour: temperature, time: 1 h, cut: {point: [100, 75, 0]},\n"
+                          "       range: [20 C, 240 C]}\n"
+                          "    - {colour: layer, view: user, camera: {position: [500, -400, 300]}, "
+                          "field_of_view: 0, layer: 3}\n"
+                          "  progress: {colour: time, view: top, every: 2}\n"),
+              "bed_temp: 90 C}", "bed_temp: 90 C, render.width: 320}"),
+      "test.yaml");
+  const RenderSpec& r = sc.variants[0].render;
+  EXPECT_EQ(r.width, 640);
+  EXPECT_EQ(sc.variants[1].render.width, 320);
+  ASSERT_EQ(r.images.size(), 3u);
+  EXPECT_EQ(r.images[0].name, "healing-front");
+  EXPECT_EQ(r.images[0].colour, Colouring::kHealing);
+  EXPECT_EQ(r.images[0].camera.view, render::View::kFront);
+  ASSERT_TRUE(r.images[0].range);
+  EXPECT_DOUBLE_EQ(r.images[0].range->second, 1.0);
+  EXPECT_EQ(r.images[1].name, "inside");
+  EXPECT_DOUBLE_EQ(r.images[1].time_s, 3600.0);
+  ASSERT_TRUE(r.images[1].cut);
+  EXPECT_TRUE(r.images[1].cut->normal.isApprox(Eigen::Vector3d(0, -1, 0)));
+  EXPECT_DOUBLE_EQ(r.images[1].range->first, 20.0);
+  EXPECT_EQ(r.images[2].name, "layer-user");
+  EXPECT_EQ(r.images[2].up_to_layer, 3);
+  ASSERT_TRUE(r.images[2].camera.position);
+  EXPECT_FLOAT_EQ(r.images[2].camera.position->y(), -400.0f);
+  EXPECT_EQ(r.images[2].camera.field_of_view_deg, 0.0);
+  ASSERT_TRUE(r.progress);
+  EXPECT_EQ(r.progress->colour, Colouring::kTime);
+  EXPECT_EQ(r.progress->every, 2);
+  EXPECT_EQ(r.progress->camera.view, render::View::kTop);
+
+  // Each mistake names its key and line.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"  images: [{colour: colour}]\n", "render.images[0].colour"},
+      {"  images: [{view: top}]\n", "render.images[0].colour"},
+      {"  images: [{colour: layer}, {colour: layer}]\n", "render.images[1].name"},
+      {"  images: [{colour: layer, camera: {position: [1, 2, 3]}}]\n", "render.images[0].view"},
+      {"  images: [{colour: fusion, range: [0, 1]}]\n", "render.images[0].range"},
+      {"  images: [{colour: layer, range: [3, 1]}]\n", "render.images[0].range"},
+      {"  images: [{colour: layer, time: 5 s}]\n", "render.images[0].time"},
+      {"  images: [{colour: layer, cut: {normal: [0, 0, 1]}}]\n", "render.images[0].cut.normal"},
+      {"  images: [{colour: layer, cut: {point: [0, 0, 1], normal: [0, 0, 0]}}]\n",
+       "render.images[0].cut.normal"},
+      {"  images: [{colour: layer, name: a/b}]\n", "render.images[0].name"},
+      {"  images: [{colour: layer, colur: 1}]\n", "render.images[0].colur"},
+      {"  images: [{colour: layer, field_of_view: 0.5 deg}]\n", "render.images[0].field_of_view"},
+      {"  progress: {every: 0}\n", "render.progress.every"},
+      {"  progress: 3\n", "render.progress"},
+      {"  samples: 0\n", "render.samples"},
+      {"  images: {colour: layer}\n", "render.images"},
+  };
+  for (const auto& [text, key] : bad) {
+    SCOPED_TRACE(text);
+    const InputError e = load_error(with_render(text));
+    EXPECT_EQ(e.key(), key) << e.what();
+    EXPECT_EQ(e.where().file, "test.yaml");
+    EXPECT_GE(e.where().line, 20);
+  }
+}
+
 TEST(Gates, ParseAndEvaluate) {
   const InputError bad = load_error(replace(kGood, "porosity < 0.05", "prosity < 0.05"));
   EXPECT_EQ(bad.where().line, 25);

@@ -78,7 +78,8 @@ TEST(Cli, RunPrintsTheReportAndGatesSetTheExitCode) {
   const std::string base =
       "name: tiny\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
       "part:\n  box: {size: [120, 80, 15]}\n"
-      "output: {voxel_size: 2.5 mm, image_width: 120, image_height: 80}\n"
+      "output: {voxel_size: 2.5 mm}\n"
+      "render: {width: 120, height: 80}\n"
       "sections:\n  - {name: a, z: [0, 15], layer_height: 5, bead_width: 20, boundary: {passes: 1}, fill: "
       "{angle: 0 deg}}\n";
   const auto out = std::filesystem::temp_directory_path() / "bt_cli_run";

@@ -1,7 +1,9 @@
 #include "sim/porosity.hpp"
 
+#include <algorithm>
 #include <vector>
 
+#include <openvdb/tools/Filter.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -106,6 +108,42 @@ Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels, op
       });
   if (gaps_out) gaps_out->tree().merge(enclosed.tree());
   return result;
+}
+
+openvdb::FloatGrid::Ptr local_porosity(const openvdb::FloatGrid& fill, const openvdb::MaskGrid& gaps,
+                                       int radius_voxels) {
+  BT_CHECK(radius_voxels >= 1);
+  // Two fields on the envelope: the void in each voxel and the envelope's amount (material + void). Their
+  // box means over the same cube divide to the local void fraction, whatever the cube's share of outside
+  // air (which counts in neither).
+  auto void_grid = openvdb::FloatGrid::create(0.0f);
+  void_grid->setTransform(fill.transform().copy());
+  void_grid->tree().topologyUnion(fill.tree());
+  void_grid->tree().topologyUnion(gaps.tree());
+  auto envelope = void_grid->deepCopy();
+  {
+    auto fill_at = fill.getConstAccessor();
+    auto gap_at = gaps.getConstAccessor();
+    auto env_at = envelope->getAccessor();
+    for (auto it = void_grid->beginValueOn(); it; ++it) {
+      const openvdb::Coord c = it.getCoord();
+      const float f = std::clamp(fill_at.getValue(c), 0.0f, 1.0f);
+      const float v = gap_at.isValueOn(c) ? 1.0f - f : 0.0f;
+      it.setValue(v);
+      env_at.setValue(c, f + v);
+    }
+  }
+  openvdb::tools::Filter<openvdb::FloatGrid> void_filter(*void_grid);
+  void_filter.mean(radius_voxels);
+  openvdb::tools::Filter<openvdb::FloatGrid> envelope_filter(*envelope);
+  envelope_filter.mean(radius_voxels);
+  auto env_at = envelope->getConstAccessor();
+  for (auto it = void_grid->beginValueOn(); it; ++it) {
+    const float e = env_at.getValue(it.getCoord());
+    it.setValue(e > 0.0f ? *it / e : 0.0f);
+  }
+  void_grid->setName("porosity");
+  return void_grid;
 }
 
 }  // namespace beadtwin::sim

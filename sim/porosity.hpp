@@ -33,4 +33,12 @@ struct Porosity {
 Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels,
                           openvdb::MaskGrid* gaps = nullptr);
 
+// Porosity as a field, for pictures: at every voxel of the envelope (material and enclosed gaps), the void
+// fraction of the cube of (2 radius_voxels + 1)^3 voxels around it, void / (material + void), with the void
+// of the enclosed gaps as above (a gap voxel's empty part). Zero where the envelope is solid; outside air is
+// neither. Same transform as `fill`. Deterministic whatever the number of threads. Precondition:
+// radius_voxels >= 1.
+openvdb::FloatGrid::Ptr local_porosity(const openvdb::FloatGrid& fill, const openvdb::MaskGrid& gaps,
+                                       int radius_voxels);
+
 }  // namespace beadtwin::sim

@@ -184,4 +184,24 @@ std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& he
   return out;
 }
 
+std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat) {
+  std::vector<double> sum(mesh.cells.size(), 0.0), area(mesh.cells.size(), 0.0);
+  for (const InterfaceResult& r : heat.interfaces) {
+    if (!r.on_top) continue;
+    sum[r.younger] += r.area_mm2 * r.substrate_c;
+    area[r.younger] += r.area_mm2;
+  }
+  std::vector<double> out(mesh.cells.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (area[i] > 0.0) out[i] = sum[i] / area[i];
+  return out;
+}
+
+std::vector<double> cell_healing(const ThermalMesh& mesh, const HeatResult& heat) {
+  std::vector<double> out(mesh.cells.size(), std::numeric_limits<double>::quiet_NaN());
+  for (const InterfaceResult& r : heat.interfaces)
+    if (!(out[r.younger] <= r.healing)) out[r.younger] = r.healing;  // NaN compares false: taken
+  return out;
+}
+
 }  // namespace beadtwin::thermal

@@ -73,4 +73,13 @@ std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<co
 // cell that landed on nothing but the table and touches nothing older.
 std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& heat);
 
+// Per cell, the temperature of what it landed on as it was born, °C: the area-weighted mean substrate
+// temperature of its interfaces as the younger cell that face up (HeatResult's on_top); NaN for a cell that
+// landed on nothing older (the first layer on the table, a bead beside older ones only).
+std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat);
+
+// Per cell, the least degree of healing of its interfaces as the younger cell (0..1); NaN for a cell with
+// none, as in cell_verdicts.
+std::vector<double> cell_healing(const ThermalMesh& mesh, const HeatResult& heat);
+
 }  // namespace beadtwin::thermal

@@ -727,4 +727,18 @@ std::string_view to_string(DefectKind kind) {
   return "?";
 }
 
+openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer) {
+  BT_CHECK(deposit.fill != nullptr && deposit.layer != nullptr);
+  openvdb::FloatGrid::Ptr out = openvdb::FloatGrid::create(deposit.fill->background());
+  out->setTransform(deposit.fill->transform().copy());
+  out->setName(deposit.fill->getName());
+  auto layer_at = deposit.layer->getConstAccessor();
+  auto out_at = out->getAccessor();
+  for (auto it = deposit.fill->cbeginValueOn(); it; ++it) {
+    const int layer = layer_at.getValue(it.getCoord());
+    if (layer >= 0 && layer <= last_layer) out_at.setValue(it.getCoord(), *it);
+  }
+  return out;
+}
+
 }  // namespace beadtwin::sim

@@ -153,4 +153,10 @@ openvdb::Coord voxel_containing(const Eigen::Vector3d& point_mm, double voxel_si
 // The centre of voxel `ijk`, mm.
 Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm);
 
+// The fill of the part as it stood when toolpath layer `last_layer` was done: the voxels whose material
+// came from layers 0..last_layer (the layer grid names the last layer to fill a voxel, so a voxel a later
+// layer topped up is left out whole). Same transform as the deposit's fill. Preconditions: the deposit has
+// fill and layer grids.
+openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer);
+
 }  // namespace beadtwin::sim

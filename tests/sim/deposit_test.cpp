@@ -444,6 +444,31 @@ TEST(Deposit, LaterLayersStackOnEarlierOnes) {
   EXPECT_LT(d.time->tree().getValue(lower), d.time->tree().getValue(upper));
 }
 
+// The part as it stood after layer 1 of 3: the first two layers' material, none of the third's.
+TEST(Deposit, FillUpToALayerKeepsThatLayerAndTheOnesBelow) {
+  const double ideal = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
+  const sim::Deposit d = sim::deposit(parallel_beads(4, ideal, 200.0, 3));
+  const openvdb::FloatGrid::Ptr two = sim::fill_up_to_layer(d, 1);
+  double kept = 0.0, expected = 0.0;
+  auto layer_at = d.layer->getConstAccessor();
+  for (auto it = d.fill->cbeginValueOn(); it; ++it) {
+    const int layer = layer_at.getValue(it.getCoord());
+    if (layer >= 0 && layer <= 1) expected += *it;
+  }
+  for (auto it = two->cbeginValueOn(); it; ++it) {
+    kept += *it;
+    EXPECT_LE(layer_at.getValue(it.getCoord()), 1);
+  }
+  EXPECT_DOUBLE_EQ(kept, expected);
+  // About two thirds of the material, and the top of the second layer is the top.
+  double all = 0.0;
+  for (auto it = d.fill->cbeginValueOn(); it; ++it) all += *it;
+  EXPECT_NEAR(kept / all, 2.0 / 3.0, 0.03);
+  const openvdb::Coord top = sim::voxel_containing({100, ideal, 2.5 * kBeadHeight}, d.voxel_size_mm);
+  EXPECT_FALSE(two->tree().isValueOn(top));
+  EXPECT_TRUE(two->transform() == d.fill->transform());
+}
+
 // ---- bad input ----------------------------------------------------------------------------------------
 
 TEST(Deposit, ZeroLayerHeightIsAnInputErrorNamingTheMove) {

@@ -31,6 +31,9 @@ add_library(OpenImageIO::OpenImageIO INTERFACE IMPORTED)
 target_include_directories(OpenImageIO::OpenImageIO INTERFACE ${OIIO_INCLUDE_DIR})
 target_link_libraries(OpenImageIO::OpenImageIO INTERFACE ${OIIO_LIBRARY} ${OIIO_UTIL_LIBRARY})
 
+# FreeType draws the images' text (render/text.hpp says why not through OpenImageIO).
+find_package(Freetype REQUIRED)
+
 # SUNDIALS 6: CVODE with the serial vector and the dense/band/Krylov solvers.
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 

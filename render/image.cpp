@@ -1,8 +1,10 @@
 #include "render/image.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -85,6 +87,78 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   }
   if (!writer->close()) fail("error while writing PNG", path, writer->geterror());
   out.commit();
+}
+
+namespace {
+
+void check_extra_channels(const Image& image, const std::filesystem::path& path,
+                          const std::vector<ExtraChannel>& extra) {
+  const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  std::set<std::string> names{"R", "G", "B"};
+  for (const ExtraChannel& channel : extra) {
+    const std::string where = "cannot write " + path.string() + ": extra channel \"" + channel.name + "\" ";
+    if (channel.name.empty())
+      throw InputError("cannot write " + path.string() + ": an extra channel has no name");
+    if (!names.insert(channel.name).second)
+      throw InputError(where + "repeats the name of another channel (R, G and B are the colours)");
+    if (channel.values.size() != count)
+      throw InputError(where + "has " + std::to_string(channel.values.size()) + " values, the " +
+                       std::to_string(image.width) + " x " + std::to_string(image.height) + " image needs " +
+                       std::to_string(count));
+  }
+}
+
+}  // namespace
+
+void write_exr(const Image& image, const std::filesystem::path& path,
+               const std::vector<ExtraChannel>& extra) {
+  if (image.width <= 0 || image.height <= 0)
+    throw InputError("cannot write " + path.string() + ": the image is empty (" +
+                     std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels)");
+  BT_CHECK_OP(image.pixels.size(), ==, static_cast<std::size_t>(image.width) * image.height * 3);
+  check_extra_channels(image, path, extra);
+
+  const int channels = 3 + static_cast<int>(extra.size());
+  const std::size_t count = static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
+  std::vector<float> interleaved(count * static_cast<std::size_t>(channels));
+  for (std::size_t i = 0; i < count; ++i) {
+    float* dst = &interleaved[i * static_cast<std::size_t>(channels)];
+    for (int c = 0; c < 3; ++c) dst[c] = srgb_to_linear(image.pixels[i * 3 + static_cast<std::size_t>(c)]);
+    for (std::size_t e = 0; e < extra.size(); ++e) dst[3 + e] = extra[e].values[i];
+  }
+
+  OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B"};
+  for (const ExtraChannel& channel : extra) {
+    if (channel.name == "Z") spec.z_channel = static_cast<int>(spec.channelnames.size());
+    spec.channelnames.push_back(channel.name);
+  }
+  spec.alpha_channel = -1;
+  spec.attribute("oiio:ColorSpace", "Linear");
+  spec.attribute("compression", "zip");
+  spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
+
+  AtomicPath out(path);
+  auto writer = OIIO::ImageOutput::create("openexr");
+  if (!writer) fail("cannot write EXR", path, OIIO::geterror());
+  if (!writer->open(out.temp().string(), spec)) fail("cannot write EXR", path, writer->geterror());
+  if (!writer->write_image(OIIO::TypeDesc::FLOAT, interleaved.data())) {
+    const std::string why = writer->geterror();
+    writer->close();
+    fail("error while writing EXR", path, why);
+  }
+  if (!writer->close()) fail("error while writing EXR", path, writer->geterror());
+  out.commit();
+}
+
+void write_image(const Image& image, const std::filesystem::path& path,
+                 const std::vector<ExtraChannel>& extra) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".png") return write_png(image, path);
+  if (extension == ".exr") return write_exr(image, path, extra);
+  throw InputError("cannot write " + path.string() + ": unknown image type \"" + extension +
+                   "\" (beadtwin writes .png and .exr)");
 }
 
 Image read_image(const std::filesystem::path& path) {

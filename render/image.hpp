@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 namespace beadtwin::render {
@@ -40,6 +41,26 @@ float linear_to_srgb(float linear);
 // place when complete. Throws InputError for an empty image and std::runtime_error naming the path when the
 // file cannot be written.
 void write_png(const Image& image, const std::filesystem::path& path);
+
+// A named float channel written beside the colours of an EXR: raw values for other programs, such as the
+// field value under each pixel ("value", NaN where the ray misses the part) or the depth ("Z", mm).
+struct ExtraChannel {
+  std::string name;           // not empty, not R, G or B, unique within one file
+  std::vector<float> values;  // one per pixel, row 0 at the top: width * height values; NaN is kept
+};
+
+// Writes `image` as an OpenEXR file through OpenImageIO: channels R, G, B in linear light (the EXR
+// convention: `image`'s display sRGB decoded by srgb_to_linear) as 32-bit floats, then `extra` channels as
+// given, zip-compressed. Atomic like write_png. Throws InputError for an empty image and for an extra
+// channel of the wrong size or with an empty, reserved or repeated name (naming the channel, the sizes and
+// the path), and std::runtime_error naming the path when the file cannot be written.
+void write_exr(const Image& image, const std::filesystem::path& path,
+               const std::vector<ExtraChannel>& extra = {});
+
+// write_png or write_exr by the extension of `path` (.png or .exr, in any case); `extra` channels go into an
+// EXR only: a PNG holds the colours alone. Throws InputError naming the path for any other extension.
+void write_image(const Image& image, const std::filesystem::path& path,
+                 const std::vector<ExtraChannel>& extra = {});
 
 // Reads any image OpenImageIO knows (PNG, EXR, ...) into display values 0..1: grey is copied to the three
 // channels, alpha and further channels are dropped, 8- and 16-bit values are scaled to 0..1 and nothing is

@@ -13,6 +13,7 @@
 #include "render/render.hpp"
 #include "scenarios/colours.hpp"
 #include "scenarios/report.hpp"
+#include "scenarios/variant_run.hpp"
 #include "sim/cad_compare.hpp"
 #include "sim/deposit.hpp"
 #include "sim/deposit_files.hpp"
@@ -59,14 +60,6 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
   return o;
 }
 
-// The thermal model of a variant's deposit and what its interfaces add up to.
-struct ThermalRun {
-  thermal::ThermalMesh mesh;
-  thermal::HeatResult heat;
-  std::vector<thermal::FusionSummary> layers;  // parallel to Toolpath::layers
-  std::vector<thermal::Verdict> cells;         // per thermal cell, for the fusion map
-};
-
 ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit) {
   ThermalRun out;
   thermal::MeshOptions mo;
@@ -91,13 +84,6 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   out.cells = thermal::cell_verdicts(out.mesh, out.heat);
   return out;
 }
-
-// The part against its CAD: what the comparison needs of the sections, and what it found.
-struct CadCheck {
-  sim::CadComparison comparison;
-  double requested_stock_mm = 0.0;
-  double map_half_range_mm = 0.0;
-};
 
 // Compares the deposit with the CAD the sections print; nullopt when there is none (a program, AM Outline
 // sections). The band reaches the requested stock and a bead width beyond it (stocks beyond that are

@@ -26,6 +26,7 @@
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/MeshToVolume.h>
 
+#include "bench/bench_common.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "scenarios/run.hpp"
@@ -38,9 +39,7 @@ using namespace beadtwin;
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using bench::seconds_since;
 
 // Every depositing move as a closed tube: its stadium section (core half-width a, radius r) in 12 points,
 // swept along the move, with flat end caps.

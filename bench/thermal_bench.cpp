@@ -11,6 +11,7 @@
 
 #include <openvdb/openvdb.h>
 
+#include "bench/bench_common.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
@@ -20,9 +21,7 @@
 using namespace beadtwin;
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+using bench::seconds_since;
 }  // namespace
 
 int main(int argc, char** argv) {

@@ -101,6 +101,22 @@ class Scene {
     rtcOccluded1(scene_, &context, &ray);
     return ray.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
   }
+  // Packets of 16 rays, traced together (fastest for rays that start close together and run alike, such
+  // as one pixel's camera rays). `valid[i]` is -1 for a ray to trace, 0 to leave alone. `coherent` tells
+  // Embree the rays run alike. intersect16 fills the hits as intersect does; occluded16 sets the tfar of
+  // every occluded ray to -inf.
+  void intersect16(const int* valid, RTCRayHit16& rayhits, bool coherent) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid, scene_, &context, &rayhits);
+  }
+  void occluded16(const int* valid, RTCRay16& rays, bool coherent) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(valid, scene_, &context, &rays);
+  }
 
  private:
   RTCScene scene_ = nullptr;

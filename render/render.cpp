@@ -2,13 +2,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include <tbb/blocked_range.h>
+#include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #if defined(__x86_64__) || defined(__SSE2__)
@@ -18,7 +20,7 @@
 
 #include "core/error.hpp"
 #include "render/embree.hpp"
-#include "render/sampling.hpp"
+#include "render/shading.hpp"
 #include "render/surface.hpp"
 
 namespace beadtwin::render {
@@ -28,13 +30,13 @@ namespace {
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxSamples = 1024;
 constexpr double kSurfaceFill = 0.5;  // the part's surface: voxels at least half full are inside
-constexpr long kMaxLayers = 1L << 24;
+constexpr int kMaxOcclusionSamples = 64;
+constexpr double kMaxKeyRadiusDeg = 20.0;
+// The automatic ambient occlusion distance, in voxels (RenderOptions::ambient_occlusion_distance_mm).
+constexpr double kAutoOcclusionVoxels = 4.0;
+constexpr int kTile = 16;  // pixels on a side of the image's tiles, the rendering's unit of work
 
-using Vec3 = Eigen::Vector3f;
-
-Vec3 to_linear(Rgb c) {
-  return {srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b)};
-}
+using namespace shading;  // NOLINT: the renderer is the shading module's one user
 
 // --- Inputs ---
 
@@ -49,66 +51,29 @@ void validate(const RenderOptions& o) {
   in_range("width", o.width, 1, kMaxImageSide);
   in_range("height", o.height, 1, kMaxImageSide);
   in_range("samples_per_pixel", o.samples_per_pixel, 1, kMaxSamples);
+  in_range("key_light_radius_deg", o.key_light_radius_deg, 0.0, kMaxKeyRadiusDeg);
+  in_range("ambient_occlusion_samples", o.ambient_occlusion_samples, 1, kMaxOcclusionSamples);
+  if (!(o.ambient_occlusion_distance_mm >= 0.0 && std::isfinite(o.ambient_occlusion_distance_mm)))
+    add("ambient_occlusion_distance_mm must be >= 0 (0: automatic), got " +
+        std::to_string(o.ambient_occlusion_distance_mm));
   if (o.field_of_view_deg != 0.0)
     in_range("field_of_view_deg (0: orthographic)", o.field_of_view_deg, 1.0, 120.0);
   if (!problems.empty()) throw InputError({}, "render options", problems);
 }
 
-// Colours of the layers present in the deposit, in linear light, looked up by index while rendering.
-class Palette {
- public:
-  Palette(const openvdb::Int32Grid& layers, const LayerColour& colour, Rgb unknown)
-      : unknown_(to_linear(unknown)) {
-    int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
-    for (auto it = layers.cbeginValueOn(); it; ++it) {
-      if (*it < 0) continue;
-      lo = std::min(lo, *it);
-      hi = std::max(hi, *it);
-    }
-    if (lo > hi) return;  // no layer known anywhere: everything is drawn in the unknown colour
-    if (static_cast<long>(hi) - lo + 1 > kMaxLayers)
-      throw InputError({}, "deposit.layer",
-                       "layer indices span " + std::to_string(lo) + ".." + std::to_string(hi) +
-                           ", more than " + std::to_string(kMaxLayers) + " layers");
-    first_ = lo;
-    std::vector<char> present(static_cast<std::size_t>(hi - lo + 1), 0);
-    for (auto it = layers.cbeginValueOn(); it; ++it)
-      if (*it >= 0) present[static_cast<std::size_t>(*it - lo)] = 1;
-    colours_.assign(present.size(), unknown_);
-    for (std::size_t i = 0; i < present.size(); ++i)
-      if (present[i] != 0) colours_[i] = to_linear(colour(first_ + static_cast<int>(i)));
-  }
+}  // namespace
 
-  const Vec3& operator()(int layer) const {
-    const long i = static_cast<long>(layer) - first_;
-    return layer >= 0 && i >= 0 && i < static_cast<long>(colours_.size())
-               ? colours_[static_cast<std::size_t>(i)]
-               : unknown_;
-  }
+// --- The scene ---
 
- private:
-  int first_ = 0;
-  std::vector<Vec3> colours_;
-  Vec3 unknown_;
+struct PreparedScene {
+  embree::Device device;
+  embree::Scene scene;
 };
 
-// The colour of a surface point, in linear light: its layer's from the palette made up front, or the
-// caller's colour of the point itself.
-class Albedo {
- public:
-  explicit Albedo(const Palette& palette) : palette_(&palette) {}
-  explicit Albedo(const SurfaceColour& colour) : colour_(&colour) {}
+namespace {
 
-  Vec3 operator()(const Vec3& point, int layer) const {
-    return colour_ ? to_linear((*colour_)(point.cast<double>(), layer)) : (*palette_)(layer);
-  }
-
- private:
-  const Palette* palette_ = nullptr;
-  const SurfaceColour* colour_ = nullptr;
-};
-
-embree::Scene build_scene(const embree::Device& device, const SurfaceMesh& mesh) {
+PreparedScene build_scene(const SurfaceMesh& mesh) {
+  embree::Device device;
   embree::Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto points = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                           mesh.points.size());
@@ -120,125 +85,54 @@ embree::Scene build_scene(const embree::Device& device, const SurfaceMesh& mesh)
   geometry.commit();
 
   embree::Scene scene(device);
-  // Robust: no cracks along shared edges, where a sparkle of background would show through the part.
+  // Robust: no cracks along shared edges, where a sparkle of background would show through the part. It
+  // costs about 3 % of a frame; the build quality changes frame times by less than that
+  // (docs/PERFORMANCE.md).
   scene.set_flags(RTC_SCENE_FLAG_ROBUST);
   scene.set_build_quality(RTC_BUILD_QUALITY_MEDIUM);
   scene.attach(geometry);
   scene.commit();
-  return scene;
+  return {std::move(device), std::move(scene)};
 }
 
-// --- Shading ---
+// The deposit's surface, after the checks the deposit's overloads share.
+SurfaceMesh checked_surface(const sim::Deposit& deposit) {
+  if (!deposit.fill) throw InputError("nothing was deposited: the deposit has no fill grid");
+  BT_CHECK(deposit.layer != nullptr);
+  return extract_surface(*deposit.fill, kSurfaceFill);
+}
 
-// Light rig, in linear light. Set relative to the camera, so every view is lit alike: the key comes from
-// the upper left, from in front of the part (behind the viewer), so the three faces of a box seen in the
-// isometric view get three distinct tones (top brightest, left, right darkest) and no face is left black.
-struct Lights {
-  Vec3 to_key;                       // unit direction towards the key light
-  Vec3 key{0.80f, 0.78f, 0.74f};     // slightly warm
-  Vec3 sky{0.34f, 0.36f, 0.40f};     // ambient from above, slightly cool...
-  Vec3 ground{0.16f, 0.15f, 0.14f};  // ...and from below
-  float rim = 0.30f;                 // strength of the grazing-angle rim light
-  float specular = 0.08f;            // strength of a soft highlight from the key
-  float shininess = 24.0f;
-  float ground_shadow = 0.30f;  // fraction of the background's light the part's shadow takes
-
-  explicit Lights(const Camera& camera)
-      : to_key((-0.34f * camera.right() + 0.35f * camera.up() - 0.87f * camera.forward()).normalized()) {}
-};
-
-class Shader {
+// Camera rays in float from three of the camera's own: a pinhole or orthographic camera's ray origins and
+// directions (scaled to unit length along the view axis) are affine in the image position, so a ray costs a
+// few multiply-adds and a normalisation. Checked against the camera at the fourth corner.
+class RayGenerator {
  public:
-  Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Albedo& albedo, const Lights& lights,
-         const RenderOptions& options, float shadow_offset_mm)
-      : scene_(scene),
-        mesh_(mesh),
-        albedo_(albedo),
-        lights_(lights),
-        shadows_(options.shadows),
-        ground_shadow_(options.ground_shadow),
-        ground_z_(mesh.bounds.min().z()),
-        offset_(shadow_offset_mm) {}
+  explicit RayGenerator(const Camera& camera) {
+    const auto along_axis = [&](const Ray& r) {
+      return Vec3(r.direction / r.direction.dot(camera.forward()));
+    };
+    const Ray r00 = camera.ray(0.0, 0.0), r10 = camera.ray(1.0, 0.0), r01 = camera.ray(0.0, 1.0);
+    origin_ = r00.origin;
+    origin_u_ = r10.origin - r00.origin;
+    origin_v_ = r01.origin - r00.origin;
+    direction_ = along_axis(r00);
+    direction_u_ = along_axis(r10) - direction_;
+    direction_v_ = along_axis(r01) - direction_;
+    const Ray expected = camera.ray(1.0, 1.0), mine = (*this)(1.0f, 1.0f);
+    const float scale = std::max(1.0f, expected.origin.cwiseAbs().maxCoeff());
+    BT_CHECK_OP((mine.direction - expected.direction).norm(), <, 1e-4f);
+    BT_CHECK_OP((mine.origin - expected.origin).norm(), <, 1e-5f * scale);
+  }
 
-  // Radiance (linear) along `ray`; `background` where it misses the part.
-  Vec3 shade(const Ray& ray, const Vec3& background, LayerProbe& probe) const {
-    RTCRayHit rh = make_ray(ray.origin, ray.direction);
-    scene_.intersect(rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return ground(ray, background);
-
-    const Vec3 point = ray.origin + rh.ray.tfar * ray.direction;
-    Vec3 geometric = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
-    if (geometric.dot(ray.direction) > 0.0f) geometric = -geometric;  // face the viewer
-    const Vec3 normal = shading_normal(rh.hit, geometric);
-    const Vec3 albedo = albedo_(point, probe.layer_at(point, -geometric));
-    const Vec3 to_eye = -ray.direction;
-
-    const float hemisphere = 0.5f + 0.5f * normal.z();  // machine frame: z up
-    Vec3 light = lights_.ground + hemisphere * (lights_.sky - lights_.ground);
-    const float lambert = normal.dot(lights_.to_key);
-    float highlight = 0.0f;
-    if (lambert > 0.0f && geometric.dot(lights_.to_key) > 0.0f && lit(point + offset_ * geometric)) {
-      light += lambert * lights_.key;
-      const Vec3 half = (lights_.to_key + to_eye).normalized();
-      highlight = lights_.specular * std::pow(std::max(0.0f, normal.dot(half)), lights_.shininess);
-    }
-    const float rim = lights_.rim * std::pow(1.0f - std::clamp(normal.dot(to_eye), 0.0f, 1.0f), 4.0f);
-    return albedo.cwiseProduct(light) + Vec3::Constant(highlight) +
-           rim * (0.6f * albedo + Vec3::Constant(0.4f));
+  // The ray through image position (u, v), as Camera::ray.
+  Ray operator()(float u, float v) const {
+    return {origin_ + u * origin_u_ + v * origin_v_,
+            (direction_ + u * direction_u_ + v * direction_v_).normalized()};
   }
 
  private:
-  static RTCRayHit make_ray(const Vec3& origin, const Vec3& direction) {
-    RTCRayHit rh{};
-    rh.ray.org_x = origin.x();
-    rh.ray.org_y = origin.y();
-    rh.ray.org_z = origin.z();
-    rh.ray.dir_x = direction.x();
-    rh.ray.dir_y = direction.y();
-    rh.ray.dir_z = direction.z();
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-  }
-
-  // Interpolated vertex normal, on the viewer's side like the face: smooth light across the facets of the
-  // voxel isosurface, which are an artefact of the grid, not the part.
-  Vec3 shading_normal(const RTCHit& hit, const Vec3& geometric) const {
-    const auto& t = mesh_.triangles[hit.primID];
-    Vec3 n = (1.0f - hit.u - hit.v) * mesh_.normals[t[0]] + hit.u * mesh_.normals[t[1]] +
-             hit.v * mesh_.normals[t[2]];
-    if (n.dot(geometric) < 0.0f) n = -n;
-    const float length = n.norm();
-    return length > 1e-6f ? Vec3(n / length) : geometric;
-  }
-
-  bool lit(const Vec3& origin) const {
-    if (!shadows_) return true;
-    RTCRayHit rh = make_ray(origin, lights_.to_key);
-    return !scene_.occluded(rh.ray);
-  }
-
-  // The background, with the part's shadow on the bed it stands on (the plane through its lowest point)
-  // where the ray meets the bed: it grounds the part, and in the top view it shows the walls' height.
-  Vec3 ground(const Ray& ray, const Vec3& background) const {
-    if (!ground_shadow_ || ray.direction.z() > -1e-4f) return background;
-    const float t = (ground_z_ - ray.origin.z()) / ray.direction.z();
-    if (t <= 0.0f) return background;
-    RTCRayHit rh = make_ray(ray.origin + t * ray.direction + offset_ * Vec3::UnitZ(), lights_.to_key);
-    return scene_.occluded(rh.ray) ? Vec3((1.0f - lights_.ground_shadow) * background) : background;
-  }
-
-  const embree::Scene& scene_;
-  const SurfaceMesh& mesh_;
-  const Albedo& albedo_;
-  const Lights& lights_;
-  bool shadows_;
-  bool ground_shadow_;
-  float ground_z_;
-  float offset_;
+  Vec3 origin_, origin_u_, origin_v_;
+  Vec3 direction_, direction_u_, direction_v_;
 };
 
 // Embree runs fastest with denormals flushed to zero (FTZ and DAZ bits of MXCSR); set for the duration of
@@ -264,19 +158,153 @@ class FlushDenormals {
 #endif
 };
 
-// `bounds` grown by the shadow they cast on the bed (the plane of their bottom) along `to_light`.
-Eigen::AlignedBox3f with_ground_shadow(const Eigen::AlignedBox3f& bounds, const Vec3& to_light) {
+// The pixels of one tile, on one thread: a pixel's camera rays are traced sixteen at a time (they start
+// together and run alike, what packets are fastest for), then its samples' shadow rays together, then its
+// occlusion rays.
+class PixelSampler {
+ public:
+  // `reach`: the pixels (x right, y down, from the image's top left corner) whose rays may meet the part
+  // or land in its shadow; the others are the background.
+  PixelSampler(const Shader& shader, const RayGenerator& rays, const Patterns& patterns,
+               const Eigen::AlignedBox2f& reach, const openvdb::Int32Grid& labels,
+               const RenderOptions& options)
+      : shader_(shader),
+        rays_(rays),
+        patterns_(patterns),
+        reach_(reach),
+        probe_(labels),
+        width_(options.width),
+        height_(options.height),
+        spp_(static_cast<std::uint32_t>(options.samples_per_pixel)) {
+    samples_.reserve(spp_);
+  }
+
+  // The radiance (linear) of pixel (x, y), `background` where its rays miss the part.
+  Vec3 pixel(int x, int y, const Vec3& background) {
+    const auto fx = static_cast<float>(x), fy = static_cast<float>(y);
+    if (!reach_.intersects(
+            Eigen::AlignedBox2f(Eigen::Vector2f(fx, fy), Eigen::Vector2f(fx + 1.0f, fy + 1.0f)))) {
+      camera_rays_outside_ += spp_;
+      return background;
+    }
+    samples_.clear();
+    shadow_.clear();
+    occlusion_.clear();
+    const PixelShifts shifts(x, y);
+    const float inverse_width = 1.0f / static_cast<float>(width_),
+                inverse_height = 1.0f / static_cast<float>(height_);
+    for (std::uint32_t first = 0; first < spp_; first += OcclusionBatch::kLanes) {
+      const std::uint32_t n = std::min<std::uint32_t>(OcclusionBatch::kLanes, spp_ - first);
+      std::array<Ray, OcclusionBatch::kLanes> rays;
+      alignas(64) int valid[OcclusionBatch::kLanes];
+      for (std::uint32_t i = 0; i < OcclusionBatch::kLanes; ++i) {
+        valid[i] = i < n ? -1 : 0;
+        if (i >= n) continue;
+        const Eigen::Vector2f jitter =
+            spp_ == 1 ? Eigen::Vector2f(0.5f, 0.5f) : patterns_.pixel.at(first + i, shifts.pixel);
+        rays[i] = rays_((fx + jitter.x()) * inverse_width, (fy + jitter.y()) * inverse_height);
+        set_lane(camera_rays_.ray, static_cast<int>(i), rays[i].origin, rays[i].direction,
+                 std::numeric_limits<float>::infinity());
+        camera_rays_.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        camera_rays_.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+      }
+      shader_.scene().intersect16(valid, camera_rays_, /*coherent=*/true);
+      for (std::uint32_t i = 0; i < n; ++i)
+        samples_.push_back(shader_.begin(rays[i], hit(static_cast<int>(i)), {patterns_, shifts, first + i},
+                                         probe_, shadow_, occlusion_));
+    }
+    shadow_.trace(shader_.scene(), /*coherent=*/true);
+    occlusion_.trace(shader_.scene(), /*coherent=*/false);
+    shadow_rays_ += shadow_.size();
+    occlusion_rays_ += occlusion_.size();
+
+    // The background's share is summed apart, so a pixel of background alone is exactly `background`, as
+    // outside the reach.
+    Vec3 part = Vec3::Zero();
+    float share = 0.0f;
+    for (const Sample& s : samples_) {
+      if (s.on_part)
+        part += shader_.finish(s, shadow_, occlusion_);
+      else
+        share += shader_.background_share(s, shadow_);
+    }
+    const auto n = static_cast<float>(spp_);
+    return part / n + (share / n) * background;
+  }
+
+  std::uint64_t camera_rays_outside() const { return camera_rays_outside_; }
+  std::uint64_t shadow_rays() const { return shadow_rays_; }
+  std::uint64_t occlusion_rays() const { return occlusion_rays_; }
+
+ private:
+  CameraHit hit(int lane) const {
+    CameraHit h;
+    h.hit = camera_rays_.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
+    if (!h.hit) return h;
+    h.t = camera_rays_.ray.tfar[lane];
+    h.face_normal =
+        Vec3(camera_rays_.hit.Ng_x[lane], camera_rays_.hit.Ng_y[lane], camera_rays_.hit.Ng_z[lane]);
+    h.triangle = camera_rays_.hit.primID[lane];
+    h.u = camera_rays_.hit.u[lane];
+    h.v = camera_rays_.hit.v[lane];
+    return h;
+  }
+
+  const Shader& shader_;
+  const RayGenerator& rays_;
+  const Patterns& patterns_;
+  Eigen::AlignedBox2f reach_;
+  LayerProbe probe_;
+  int width_, height_;
+  std::uint32_t spp_;
+  RTCRayHit16 camera_rays_{};
+  std::vector<Sample> samples_;
+  OcclusionBatch shadow_, occlusion_;
+  std::uint64_t camera_rays_outside_ = 0, shadow_rays_ = 0, occlusion_rays_ = 0;
+};
+
+// `bounds` grown by the shadow they cast on the bed (the plane of their bottom) towards the key light of
+// `lights`, penumbra included; nothing when the light grazes the bed and the shadow runs off to the horizon.
+std::optional<Eigen::AlignedBox3f> with_ground_shadow(const Eigen::AlignedBox3f& bounds,
+                                                      const Lights& lights) {
+  const Vec3& to_light = lights.to_key;
+  if (to_light.z() < 0.05f) return std::nullopt;
   Eigen::AlignedBox3f grown = bounds;
-  if (to_light.z() < 0.05f) return grown;  // grazing light: the shadow runs off to the horizon
   const float height = bounds.sizes().z();
+  // Tilting the light by its radius moves the shadow of the top by about this much; doubled to be safe.
+  const float penumbra = 2.0f * height * lights.spread / (to_light.z() * to_light.z());
+  const Vec3 blur(penumbra, penumbra, 0.0f);
   for (const auto corner : {Eigen::AlignedBox3f::TopLeftCeil, Eigen::AlignedBox3f::TopRightCeil,
-                            Eigen::AlignedBox3f::BottomLeftCeil, Eigen::AlignedBox3f::BottomRightCeil})
-    grown.extend(Vec3(bounds.corner(corner) - (height / to_light.z()) * to_light));
+                            Eigen::AlignedBox3f::BottomLeftCeil, Eigen::AlignedBox3f::BottomRightCeil}) {
+    const Vec3 shadow = bounds.corner(corner) - (height / to_light.z()) * to_light;
+    grown.extend(Vec3(shadow - blur));
+    grown.extend(Vec3(shadow + blur));
+  }
   return grown;
 }
 
-// Shadow rays start this far off the surface, so a surface does not shadow itself (acne): a small part of
-// a voxel, but well above float resolution at the part's distance from the origin.
+Eigen::AlignedBox2f whole_image(int width, int height) {
+  return {Eigen::Vector2f::Zero(), Eigen::Vector2f(static_cast<float>(width), static_cast<float>(height))};
+}
+
+// The pixels of an image from `camera` (x right, y down, from its top left corner) whose rays may meet
+// `box`: its corners' outline, a pixel wider on every side, or the whole image when a corner is behind the
+// eye.
+Eigen::AlignedBox2f screen_reach(const Camera& camera, const Eigen::AlignedBox3f& box, int width,
+                                 int height) {
+  Eigen::AlignedBox2f reach;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 corner = box.corner(static_cast<Eigen::AlignedBox3f::CornerType>(i));
+    if (!camera.orthographic() && (corner - camera.eye()).dot(camera.forward()) <= 0.0f)
+      return whole_image(width, height);
+    const Eigen::Vector2d uv = camera.project(corner);
+    reach.extend(Eigen::Vector2f(static_cast<float>(uv.x() * width), static_cast<float>(uv.y() * height)));
+  }
+  return Eigen::AlignedBox2f(reach.min() - Eigen::Vector2f::Ones(), reach.max() + Eigen::Vector2f::Ones());
+}
+
+// Shadow and occlusion rays start this far off the surface, so a surface does not shadow itself (acne): a
+// small part of a voxel, but well above float resolution at the part's distance from the origin.
 float shadow_offset_mm(const SurfaceMesh& mesh, double voxel_mm) {
   const float extent =
       std::max(mesh.bounds.min().cwiseAbs().maxCoeff(), mesh.bounds.max().cwiseAbs().maxCoeff());
@@ -284,81 +312,127 @@ float shadow_offset_mm(const SurfaceMesh& mesh, double voxel_mm) {
                   16.0f * std::numeric_limits<float>::epsilon() * extent);
 }
 
-// The image of `mesh` (the deposit's surface) coloured by `albedo`.
-Image render_surface(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const SurfaceMesh& mesh,
-                     const Albedo& albedo, const RenderOptions& options) {
-  const embree::Device device;
-  const embree::Scene scene = build_scene(device, mesh);
+// The image of `deposit`'s surface coloured by `albedo`, the material under each point found in `labels`.
+Image render_surface(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels, const Albedo& albedo,
+                     const RenderOptions& options, RenderStats* stats) {
+  const SurfaceMesh& mesh = deposit.surface();
   const auto frame = [&](const Eigen::AlignedBox3f& bounds) {
     return Camera::framed(options.view, bounds, options.width, options.height, options.field_of_view_deg);
   };
   Camera camera = frame(mesh.bounds);
-  const Lights lights(camera);  // set by the view's orientation, which framing does not change
+  // Set by the view's orientation, which framing does not change.
+  const Lights lights(camera, options.key_light_radius_deg);
   // Looking down at the bed, the part's shadow lies beside it and is framed too; in oblique views it falls
   // mostly behind the part, and framing it would only push the part off centre.
-  if (options.ground_shadow && camera.forward().z() < -0.9f)
-    camera = frame(with_ground_shadow(mesh.bounds, lights.to_key));
-  const Shader shader(scene, mesh, albedo, lights, options,
-                      shadow_offset_mm(mesh, deposit.fill->voxelSize()[0]));
+  const std::optional<Eigen::AlignedBox3f> shadow_box = with_ground_shadow(mesh.bounds, lights);
+  if (options.ground_shadow && camera.forward().z() < -0.9f) camera = frame(shadow_box.value_or(mesh.bounds));
+  // Pixels outside the outline of the part's box and its shadow's are the background: no ray can change
+  // them (a grazing light's shadow can reach anywhere).
+  const Eigen::AlignedBox2f reach =
+      !options.ground_shadow ? screen_reach(camera, mesh.bounds, options.width, options.height)
+      : shadow_box           ? screen_reach(camera, *shadow_box, options.width, options.height)
+                             : whole_image(options.width, options.height);
+  const double voxel_mm = deposit.voxel_size_mm();
+  const double occlusion_mm = options.ambient_occlusion_distance_mm > 0.0
+                                  ? options.ambient_occlusion_distance_mm
+                                  : kAutoOcclusionVoxels * voxel_mm;
+  const Shader shader(deposit.scene().scene, mesh, albedo, lights, options, shadow_offset_mm(mesh, voxel_mm),
+                      static_cast<float>(occlusion_mm));
 
+  const RayGenerator rays(camera);
+  const Patterns patterns(static_cast<std::uint32_t>(options.samples_per_pixel),
+                          static_cast<std::uint32_t>(options.ambient_occlusion_samples));
   const int width = options.width, height = options.height;
-  const auto spp = static_cast<std::uint32_t>(options.samples_per_pixel);
   const Vec3 top = to_linear(options.background), bottom = to_linear(options.background_bottom);
   Image image(width, height);
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-    const FlushDenormals flush;
-    LayerProbe probe(labels);
-    for (int y = rows.begin(); y < rows.end(); ++y) {
-      const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
-      const Vec3 background = top + t * (bottom - top);
-      for (int x = 0; x < width; ++x) {
-        Vec3 sum = Vec3::Zero();
-        const std::uint32_t seed = pixel_seed(x, y);
-        for (std::uint32_t s = 0; s < spp; ++s) {
-          const Eigen::Vector2f jitter = spp == 1 ? Eigen::Vector2f(0.5f, 0.5f) : cmj_sample(s, spp, seed);
-          const Ray ray = camera.ray((x + static_cast<double>(jitter.x())) / width,
-                                     (y + static_cast<double>(jitter.y())) / height);
-          sum += shader.shade(ray, background, probe);
+  std::atomic<std::uint64_t> outside{0}, shadow_rays{0}, occlusion_rays{0};
+  // Square tiles keep a task's rays close together (in the BVH's cache); every pixel is a pure function of
+  // its position, so how TBB splits the image does not change it.
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(0, height, kTile, 0, width, kTile),
+      [&](const tbb::blocked_range2d<int>& tile) {
+        const FlushDenormals flush;
+        PixelSampler sampler(shader, rays, patterns, reach, labels, options);
+        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+          const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+          const Vec3 background = top + t * (bottom - top);
+          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+            const Vec3 c = sampler.pixel(x, y, background);
+            image.set(x, y, {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())});
+          }
         }
-        sum /= static_cast<float>(spp);
-        image.set(x, y, {linear_to_srgb(sum.x()), linear_to_srgb(sum.y()), linear_to_srgb(sum.z())});
-      }
-    }
-  });
+        outside += sampler.camera_rays_outside();
+        shadow_rays += sampler.shadow_rays();
+        occlusion_rays += sampler.occlusion_rays();
+      });
+  if (stats != nullptr) {
+    stats->primary_rays = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                          static_cast<std::uint64_t>(options.samples_per_pixel);
+    stats->primary_rays_outside = outside;
+    stats->shadow_rays = shadow_rays;
+    stats->occlusion_rays = occlusion_rays;
+  }
   return image;
-}
-
-// The deposit's surface, after the checks both colourings share.
-SurfaceMesh checked_surface(const sim::Deposit& deposit) {
-  if (!deposit.fill) throw InputError("nothing was deposited: the deposit has no fill grid");
-  BT_CHECK(deposit.layer != nullptr);
-  return extract_surface(*deposit.fill, kSurfaceFill);
 }
 
 }  // namespace
 
+// --- PreparedDeposit ---
+
+PreparedDeposit::PreparedDeposit(const sim::Deposit& deposit)
+    : PreparedDeposit(deposit, checked_surface(deposit)) {}
+
+PreparedDeposit::PreparedDeposit(const sim::Deposit& deposit, SurfaceMesh surface)
+    : surface_(std::move(surface)), layers_(deposit.layer) {
+  BT_CHECK(layers_ != nullptr);
+  BT_CHECK(!surface_.triangles.empty());
+  voxel_size_mm_ = layers_->voxelSize()[0];
+  scene_ = std::make_unique<PreparedScene>(build_scene(surface_));
+}
+
+PreparedDeposit::~PreparedDeposit() = default;
+PreparedDeposit::PreparedDeposit(PreparedDeposit&&) noexcept = default;
+PreparedDeposit& PreparedDeposit::operator=(PreparedDeposit&&) noexcept = default;
+
+// --- Rendering ---
+
+Image render_deposit(const PreparedDeposit& deposit, const LayerColour& colour, const RenderOptions& options,
+                     RenderStats* stats) {
+  return render_deposit(deposit, deposit.layers(), colour, options, stats);
+}
+
+Image render_deposit(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels,
+                     const LayerColour& colour, const RenderOptions& options, RenderStats* stats) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(colour));
+  const Palette palette(labels, colour, options.unknown_layer);
+  return render_surface(deposit, labels, Albedo(palette), options, stats);
+}
+
+Image render_deposit(const PreparedDeposit& deposit, const SurfaceColour& colour,
+                     const RenderOptions& options, RenderStats* stats) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(colour));
+  return render_surface(deposit, deposit.layers(), Albedo(colour), options, stats);
+}
+
 Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, const RenderOptions& options) {
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
-  const SurfaceMesh mesh = checked_surface(deposit);
-  const Palette palette(*deposit.layer, colour, options.unknown_layer);
-  return render_surface(deposit, *deposit.layer, mesh, Albedo(palette), options);
+  return render_deposit(PreparedDeposit(deposit), colour, options);
 }
 
 Image render_deposit(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const LayerColour& colour,
                      const RenderOptions& options) {
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
-  const SurfaceMesh mesh = checked_surface(deposit);
-  const Palette palette(labels, colour, options.unknown_layer);
-  return render_surface(deposit, labels, mesh, Albedo(palette), options);
+  return render_deposit(PreparedDeposit(deposit), labels, colour, options);
 }
 
 Image render_deposit(const sim::Deposit& deposit, const SurfaceColour& colour, const RenderOptions& options) {
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
-  const SurfaceMesh mesh = checked_surface(deposit);
-  return render_surface(deposit, *deposit.layer, mesh, Albedo(colour), options);
+  return render_deposit(PreparedDeposit(deposit), colour, options);
 }
 
 }  // namespace beadtwin::render

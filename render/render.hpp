@@ -1,19 +1,28 @@
 // The render stage: headless images of the deposited part.
 //
-// render_deposit() takes the deposit's fill-fraction isosurface (the part as printed, with the ridges the
-// beads leave), ray traces it with Embree from one of the standard views (camera.hpp) and colours every
-// surface point by the toolpath layer of the material under it, through a function the caller supplies —
-// so a per-layer verdict (fine, too hot, too cold) is drawn on the part's own shape — or by the surface
-// point itself (a quantity mapped over the surface, such as the deviation from the CAD). Shading: a key light
-// from the upper left behind the viewer with hard shadows, a sky/ground ambient term and a rim light, on a
-// vertical background gradient that also catches the part's shadow on the bed. Supersampled with
-// deterministic stratified jitter and parallel over rows: the image is the same for any number of threads.
+// A PreparedDeposit holds the deposit's fill-fraction isosurface (the part as printed, with the ridges the
+// beads leave) and Embree's acceleration structure over it, built once; render_deposit() ray traces it from
+// one of the standard views (camera.hpp) as often as asked, and colours every surface point by the toolpath
+// layer of the material under it, through a function the caller supplies — so a per-layer verdict (fine, too
+// hot, too cold) is drawn on the part's own shape — or by the surface point itself (a quantity mapped over
+// the surface, such as the deviation from the CAD). The overloads taking a sim::Deposit prepare it for one
+// picture.
+//
+// Shading: a key light from the upper left behind the viewer, a small disc whose soft shadows fall on the
+// part and on the bed it stands on; a sky/ground ambient term darkened by ambient occlusion, which brings
+// out the grooves between beads and layers; a rim light; on a vertical background gradient. Supersampled
+// with deterministic stratified (correlated multi-jittered) samples for the pixel, the light and the
+// occlusion, all a pure function of the pixel and the sample's index, and parallel over tiles: the image is
+// the same for any number of threads.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 
 #include "render/camera.hpp"
 #include "render/image.hpp"
+#include "render/surface.hpp"
 #include "sim/deposit.hpp"
 
 namespace beadtwin::render {
@@ -37,10 +46,24 @@ struct RenderOptions {
   // Background: display sRGB at the top of the image and at the bottom, a vertical gradient in between.
   Rgb background{0.95f, 0.96f, 0.97f};
   Rgb background_bottom{0.78f, 0.80f, 0.83f};
-  bool shadows = true;        // hard shadows of the key light on the part
+  bool shadows = true;        // shadows of the key light on the part
   bool ground_shadow = true;  // the part's shadow on the bed under it, darkening the background
-  // Stratified jittered samples per pixel, 1..1024; 1 takes the pixel centre.
-  int samples_per_pixel = 4;
+  // Angular radius of the key light seen from the part, degrees, 0..20: a disc, sampled with one shadow ray
+  // per sample, so shadows (on the part and on the bed) have a penumbra that widens with the distance from
+  // the edge casting them. 0: a point light, hard shadows.
+  double key_light_radius_deg = 2.0;
+  // Ambient occlusion: the sky/ground light reaching a point is scaled by the fraction of cosine-weighted
+  // rays around its normal that meet no part of the surface within ambient_occlusion_distance_mm, which
+  // darkens the grooves between beads and layers and the inside corners, not open faces.
+  bool ambient_occlusion = true;
+  // How far an occluder still darkens, mm (>= 0). 0: automatic, 4 voxels of the deposit — two layer heights
+  // at the deposit's default voxel size (half a layer height): a groove between beads is dark, a face that
+  // sees the part only farther away (across a box) is not.
+  double ambient_occlusion_distance_mm = 0.0;
+  int ambient_occlusion_samples = 1;  // rays per sample, 1..64; samples_per_pixel of them average per pixel
+  // Stratified samples per pixel, 1..1024; 1 takes the pixel centre. Each traces one camera ray and, where
+  // it meets the part, one shadow ray and ambient_occlusion_samples occlusion rays.
+  int samples_per_pixel = 8;
   // Isometric view: 1..120 degrees of perspective, or 0 for orthographic. The top and front views are
   // always orthographic, as drawings are.
   double field_of_view_deg = 30.0;
@@ -48,18 +71,70 @@ struct RenderOptions {
   Rgb unknown_layer{0.55f, 0.55f, 0.55f};
 };
 
-// Renders `deposit` (fill, layer grids; their transforms give the machine frame in mm) coloured by
-// `colour`. Throws InputError("nothing was deposited: ...") when the fill grid is missing, empty or has no
-// surface at fill fraction 0.5 — never an empty picture — and InputError naming the options that are out
-// of range. A deposit without a layer grid, or an empty `colour`, is a bug (InternalError).
-Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour,
-                     const RenderOptions& options = {});
+// The rays one rendering cast.
+struct RenderStats {
+  std::uint64_t primary_rays = 0;  // camera rays: width * height * samples_per_pixel
+  // Of those, the rays of pixels outside the outline of the part's bounding box and its shadow's on the
+  // image: they cannot meet either, and are answered as background without being traced.
+  std::uint64_t primary_rays_outside = 0;
+  std::uint64_t shadow_rays = 0;     // towards the key light, from the part and from the bed in the part's
+                                     // shadow's reach
+  std::uint64_t occlusion_rays = 0;  // ambient occlusion
+  std::uint64_t rays() const { return primary_rays + shadow_rays + occlusion_rays; }
+  std::uint64_t rays_traced() const { return rays() - primary_rays_outside; }
+};
+
+// Embree's device and scene over a PreparedDeposit's surface (render.cpp).
+struct PreparedScene;
+
+// A deposit ready to be rendered many times: its surface extracted and the ray tracing structure built.
+// Keeps a reference to the deposit's layer grid (shared, so the deposit itself may go); not copyable.
+class PreparedDeposit {
+ public:
+  // Extracts the surface at fill fraction 0.5 (extract_surface) and builds the scene. Throws
+  // InputError("nothing was deposited: ...") when the fill grid is missing, empty or has no surface — never
+  // an empty picture. A deposit without a layer grid is a bug (InternalError).
+  explicit PreparedDeposit(const sim::Deposit& deposit);
+  // The same with a surface already extracted from `deposit` (or made from it: cut, say).
+  PreparedDeposit(const sim::Deposit& deposit, SurfaceMesh surface);
+  ~PreparedDeposit();
+  PreparedDeposit(PreparedDeposit&&) noexcept;
+  PreparedDeposit& operator=(PreparedDeposit&&) noexcept;
+  PreparedDeposit(const PreparedDeposit&) = delete;
+  PreparedDeposit& operator=(const PreparedDeposit&) = delete;
+
+  const SurfaceMesh& surface() const { return surface_; }
+  const openvdb::Int32Grid& layers() const { return *layers_; }
+  double voxel_size_mm() const { return voxel_size_mm_; }
+  const PreparedScene& scene() const { return *scene_; }
+
+ private:
+  SurfaceMesh surface_;
+  openvdb::Int32Grid::ConstPtr layers_;
+  double voxel_size_mm_ = 0.0;
+  std::unique_ptr<PreparedScene> scene_;
+};
+
+// Renders `deposit` coloured by `colour` through its layer grid. Throws InputError naming the options that
+// are out of range; an empty `colour` is a bug (InternalError). `stats`, when given, receives the rays
+// traced.
+Image render_deposit(const PreparedDeposit& deposit, const LayerColour& colour,
+                     const RenderOptions& options = {}, RenderStats* stats = nullptr);
 // The same, coloured by `labels` instead of the layer grid: any grid of non-negative integers on the
 // deposit's material voxels (the thermal cells, say); `colour` is called once per label present.
+Image render_deposit(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels,
+                     const LayerColour& colour, const RenderOptions& options = {},
+                     RenderStats* stats = nullptr);
+// The same, coloured point by point by `colour` (RenderOptions::unknown_layer is not used: `colour` sees
+// layer -1 and decides).
+Image render_deposit(const PreparedDeposit& deposit, const SurfaceColour& colour,
+                     const RenderOptions& options = {}, RenderStats* stats = nullptr);
+
+// The same for a deposit prepared for this one picture (the options are checked first, then the surface).
+Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour,
+                     const RenderOptions& options = {});
 Image render_deposit(const sim::Deposit& deposit, const openvdb::Int32Grid& labels, const LayerColour& colour,
                      const RenderOptions& options = {});
-// The same, coloured point by point by `colour` (RenderOptions::unknown_layer is not used: `colour` sees
-// layer -1 and decides). An empty `colour` is a bug (InternalError).
 Image render_deposit(const sim::Deposit& deposit, const SurfaceColour& colour,
                      const RenderOptions& options = {});
 

@@ -55,6 +55,44 @@ TEST(Embree, IntersectsAndOccludes) {
   EXPECT_FALSE(scene.occluded(open.ray));
 }
 
+TEST(Embree, PacketsAgreeWithSingleRays) {
+  const Device device;
+  const Scene scene = triangle_scene(device);
+  alignas(64) int valid[16];
+  RTCRayHit16 hits{};
+  RTCRay16 shadows{};
+  for (int i = 0; i < 16; ++i) {
+    valid[i] = i < 12 ? -1 : 0;  // the last four lanes are left alone; x >= 9 misses the triangle
+    const RTCRayHit single = down_from(static_cast<float>(i), 1.5f);
+    for (RTCRay16* rays : {&hits.ray, &shadows}) {
+      rays->org_x[i] = single.ray.org_x;
+      rays->org_y[i] = single.ray.org_y;
+      rays->org_z[i] = single.ray.org_z;
+      rays->dir_z[i] = single.ray.dir_z;
+      rays->tfar[i] = single.ray.tfar;
+      rays->mask[i] = single.ray.mask;
+    }
+    hits.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  }
+  scene.intersect16(valid, hits, /*coherent=*/true);
+  scene.occluded16(valid, shadows, /*coherent=*/false);
+  for (int i = 0; i < 16; ++i) {
+    RTCRayHit single = down_from(static_cast<float>(i), 1.5f);
+    scene.intersect(single);
+    const bool hit = single.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (i >= 12) {
+      EXPECT_EQ(hits.hit.geomID[i], RTC_INVALID_GEOMETRY_ID) << i;
+      EXPECT_EQ(shadows.tfar[i], std::numeric_limits<float>::infinity()) << i;
+      continue;
+    }
+    EXPECT_EQ(hits.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID, hit) << i;
+    EXPECT_EQ(shadows.tfar[i] < 0.0f, hit) << i;
+    if (hit) {
+      EXPECT_NEAR(hits.ray.tfar[i], single.ray.tfar, 1e-5f) << i;
+    }
+  }
+}
+
 TEST(Embree, ErrorsBecomeExceptionsNamingTheCall) {
   const Device device;
   Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);

@@ -256,6 +256,223 @@ TEST(RenderDeposit, SameImageForAnyNumberOfThreads) {
   EXPECT_EQ(differing, 0u);
 }
 
+TEST(RenderDeposit, SameImageForAnyNumberOfThreadsWithSoftShadowsAndOcclusion) {
+  RenderOptions o = small_options();
+  o.samples_per_pixel = 6;
+  o.ground_shadow = true;
+  o.key_light_radius_deg = 8.0;
+  o.ambient_occlusion = true;
+  o.ambient_occlusion_samples = 3;
+  const sim::Deposit deposit = tower_on_slab(150.0);
+  const PreparedDeposit prepared(deposit);
+  const auto colour = [](int layer) { return layer % 2 == 0 ? kRed : kBlue; };
+  Image one, two;
+  RenderStats stats_one, stats_two;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = render_deposit(prepared, colour, o, &stats_one);
+  }
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+    two = render_deposit(prepared, colour, o, &stats_two);
+  }
+  ASSERT_EQ(one.pixels.size(), two.pixels.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) differing += one.pixels[i] != two.pixels[i] ? 1 : 0;
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(stats_one.shadow_rays, stats_two.shadow_rays);
+  EXPECT_EQ(stats_one.occlusion_rays, stats_two.occlusion_rays);
+  EXPECT_GT(stats_one.occlusion_rays, 0u);
+}
+
+// Where pixel (x, y) of a top view of `prepared` (no ground shadow) shows the bed-level point (x_mm, y_mm,
+// z_mm).
+std::pair<int, int> top_view_pixel(const PreparedDeposit& prepared, const RenderOptions& o, float x_mm,
+                                   float y_mm, float z_mm) {
+  const Camera camera =
+      Camera::framed(View::kTop, prepared.surface().bounds, o.width, o.height, o.field_of_view_deg);
+  const Eigen::Vector2d uv = camera.project(Eigen::Vector3f(x_mm, y_mm, z_mm));
+  return {static_cast<int>(uv.x() * o.width), static_cast<int>(uv.y() * o.height)};
+}
+
+float mean_green(const Image& image, int cx, int cy, int half) {
+  float sum = 0.0f;
+  int n = 0;
+  for (int y = cy - half; y <= cy + half; ++y)
+    for (int x = cx - half; x <= cx + half; ++x) {
+      sum += image.at(x, y).g;
+      ++n;
+    }
+  return sum / static_cast<float>(n);
+}
+
+TEST(RenderDeposit, AmbientOcclusionDarkensTheInsideCornerNotTheOpenFace) {
+  // From above: the slab's top at the tower's foot (an inside corner) and far from it (open to the sky).
+  const sim::Deposit deposit = tower_on_slab();
+  const PreparedDeposit prepared(deposit);
+  RenderOptions o = small_options(View::kTop);
+  o.shadows = false;  // only the ambient light changes
+  o.samples_per_pixel = 16;
+  const auto green = [](int) { return kGreen; };
+  const Image with = render_deposit(prepared, green, o);
+  o.ambient_occlusion = false;
+  const Image without = render_deposit(prepared, green, o);
+
+  // The slab's top is at z = 10 mm; the tower spans x, y in 80..120 mm. A pixel here is about 1.1 mm.
+  const auto [corner_x, corner_y] = top_view_pixel(prepared, o, 78.0f, 100.0f, 10.0f);
+  const auto [open_x, open_y] = top_view_pixel(prepared, o, 30.0f, 100.0f, 10.0f);
+  const float corner_drop =
+      mean_green(without, corner_x, corner_y, 1) - mean_green(with, corner_x, corner_y, 1);
+  const float open_drop = mean_green(without, open_x, open_y, 1) - mean_green(with, open_x, open_y, 1);
+  EXPECT_GT(corner_drop, 0.02f) << "the inside corner should darken";
+  EXPECT_NEAR(open_drop, 0.0f, 1e-6f) << "an open face sees nothing within the occlusion distance";
+  EXPECT_EQ(count_changes(with, without, +1.0f), 0) << "occlusion can only take light away";
+
+  // A longer reach darkens the corner further out.
+  o.ambient_occlusion = true;
+  o.ambient_occlusion_distance_mm = 40.0;
+  const Image far = render_deposit(prepared, green, o);
+  const auto [near_x, near_y] = top_view_pixel(prepared, o, 65.0f, 100.0f, 10.0f);  // 15 mm off the tower
+  EXPECT_NEAR(mean_green(with, near_x, near_y, 1), mean_green(without, near_x, near_y, 1), 1e-6f);
+  EXPECT_GT(mean_green(without, near_x, near_y, 1) - mean_green(far, near_x, near_y, 1), 0.01f);
+}
+
+TEST(RenderDeposit, AmbientOcclusionDarkensTheGrooveBetweenTwoBeads) {
+  // Two round beads 10 mm across, side by side along x, seen from above: with occlusion the groove where
+  // they touch (y = 0) is darker than without, their crowns (y = +-5 mm) are not.
+  const auto two_beads = [](double x, double y, double z) {
+    if (x < 0.0 || x > 60.0) return -1;
+    const double a = std::hypot(y + 5.0, z - 5.0), b = std::hypot(y - 5.0, z - 5.0);
+    return a <= 5.0 || b <= 5.0 ? 0 : -1;
+  };
+  const PreparedDeposit prepared(testing::voxelise(two_beads, {-2, -12, -2}, {62, 12, 12}, 1.0));
+  RenderOptions o = small_options(View::kTop);
+  o.samples_per_pixel = 8;
+  o.ambient_occlusion_samples = 4;
+  o.shadows = false;
+  const auto green = [](int) { return kGreen; };
+  const Image with = render_deposit(prepared, green, o);
+  o.ambient_occlusion = false;
+  const Image without = render_deposit(prepared, green, o);
+  const auto darkening = [&](float y_mm) {
+    const auto [x, y] = top_view_pixel(prepared, o, 30.0f, y_mm, 10.0f);
+    return mean_green(without, x, y, 1) - mean_green(with, x, y, 1);
+  };
+  EXPECT_GT(darkening(0.0f), 0.03f) << "the groove";
+  EXPECT_LT(darkening(5.0f), 0.01f) << "a crown";
+  EXPECT_LT(darkening(-5.0f), 0.01f) << "a crown";
+}
+
+// The top view of the tower's shadow on the slab: pixels of the slab's open top lit, in full shadow and in
+// between. `lit` is the picture without shadows, where all of the slab's top has one tone.
+struct ShadowCensus {
+  int lit = 0, dark = 0, between = 0;
+};
+ShadowCensus shadow_census(const Image& shadowed, const Image& lit, float slab_tone) {
+  const auto on_slab = [&](int x, int y) { return std::abs(lit.at(x, y).g - slab_tone) < 0.002f; };
+  float darkest = 1.0f;
+  for (int y = 0; y < shadowed.height; ++y)
+    for (int x = 0; x < shadowed.width; ++x)
+      if (on_slab(x, y)) darkest = std::min(darkest, shadowed.at(x, y).g);
+  ShadowCensus c;
+  for (int y = 0; y < shadowed.height; ++y)
+    for (int x = 0; x < shadowed.width; ++x) {
+      if (!on_slab(x, y)) continue;
+      const float s = shadowed.at(x, y).g;
+      if (s > slab_tone - 0.01f)
+        ++c.lit;
+      else if (s < darkest + 0.01f)
+        ++c.dark;
+      else
+        ++c.between;
+    }
+  return c;
+}
+
+TEST(RenderDeposit, ASoftKeyLightCastsAPenumbra) {
+  const sim::Deposit deposit = tower_on_slab();
+  const PreparedDeposit prepared(deposit);
+  RenderOptions o = small_options(View::kTop);
+  o.ambient_occlusion = false;  // only the key light changes
+  o.samples_per_pixel = 16;
+  const auto green = [](int) { return kGreen; };
+  o.shadows = false;
+  const Image unshadowed = render_deposit(prepared, green, o);
+  o.shadows = true;
+  o.key_light_radius_deg = 0.0;
+  const auto [open_x, open_y] = top_view_pixel(prepared, o, 30.0f, 100.0f, 10.0f);
+  const float slab = unshadowed.at(open_x, open_y).g;
+  const ShadowCensus hard = shadow_census(render_deposit(prepared, green, o), unshadowed, slab);
+  o.key_light_radius_deg = 5.0;
+  const Image soft_image = render_deposit(prepared, green, o);
+  const ShadowCensus soft = shadow_census(soft_image, unshadowed, slab);
+  // Hard: only the pixels the shadow's outline crosses are in between. Soft: a band several pixels wide
+  // (the tower's top edge is about 100 mm from its shadow: a 5 degree light blurs it over about 17 mm,
+  // 15 pixels), with a full shadow still inside it.
+  EXPECT_GT(hard.lit, 10000);
+  EXPECT_GT(hard.dark, 300);
+  EXPECT_GT(soft.dark, 100);
+  EXPECT_GT(soft.between, 4 * hard.between) << soft.between << " against " << hard.between;
+  EXPECT_EQ(count_changes(soft_image, unshadowed, +1.0f), 0) << "a shadow can only take light away";
+}
+
+TEST(RenderDeposit, CountsTheRaysItTraces) {
+  const sim::Deposit deposit = tower_on_slab();
+  const PreparedDeposit prepared(deposit);
+  const auto green = [](int) { return kGreen; };
+  RenderOptions o = small_options();
+  o.samples_per_pixel = 3;
+  o.shadows = false;
+  o.ambient_occlusion = false;
+  RenderStats plain;
+  const Image image = render_deposit(prepared, green, o, &plain);
+  EXPECT_EQ(plain.primary_rays, 320u * 200u * 3u);
+  EXPECT_EQ(plain.shadow_rays, 0u);
+  EXPECT_EQ(plain.occlusion_rays, 0u);
+  EXPECT_EQ(plain.rays(), plain.primary_rays);
+  // Pixels outside the outline of the part's box on the image are not traced; the part is inside it.
+  EXPECT_GT(plain.primary_rays_outside, 0u);
+  EXPECT_EQ(plain.rays_traced(), plain.rays() - plain.primary_rays_outside);
+
+  o.ambient_occlusion = true;
+  o.ambient_occlusion_samples = 1;
+  RenderStats one;
+  render_deposit(prepared, green, o, &one);
+  o.ambient_occlusion_samples = 4;
+  RenderStats four;
+  render_deposit(prepared, green, o, &four);
+  // One occlusion ray per sample that meets the part: about as many as the part's share of the pixels.
+  int part = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) part += difference(image.at(x, y), kMagenta) > 0.3f ? 1 : 0;
+  EXPECT_NEAR(static_cast<double>(one.occlusion_rays) / static_cast<double>(one.primary_rays),
+              static_cast<double>(part) / (image.width * image.height), 0.02);
+  EXPECT_LE(static_cast<std::uint64_t>(part) * 3u, plain.rays_traced()) << "part pixels were not traced";
+  EXPECT_EQ(four.occlusion_rays, 4u * one.occlusion_rays);
+  EXPECT_EQ(four.primary_rays, one.primary_rays);
+
+  // Shadow rays: at most one per sample on the part, plus the bed's where the part may shadow it.
+  o.shadows = true;
+  RenderStats shadows;
+  render_deposit(prepared, green, o, &shadows);
+  EXPECT_GT(shadows.shadow_rays, 0u);
+  EXPECT_LE(shadows.shadow_rays, one.occlusion_rays);
+  o.ground_shadow = true;
+  RenderStats ground;
+  render_deposit(prepared, green, o, &ground);
+  EXPECT_GT(ground.shadow_rays, shadows.shadow_rays);
+  EXPECT_LE(ground.shadow_rays, ground.primary_rays);
+}
+
+TEST(RenderDeposit, APreparedDepositRendersLikeTheDeposit) {
+  const auto colour = [](int layer) { return layer % 2 == 0 ? kRed : kBlue; };
+  const PreparedDeposit prepared(box());
+  for (const View view : {View::kIsometric, View::kTop}) {
+    const RenderOptions o = small_options(view);
+    EXPECT_TRUE(render_deposit(prepared, colour, o) == render_deposit(box(), colour, o));
+  }
+}
+
 // Coloured point by point: red above the box's mid-height, blue below. The top view sees only the tops of
 // the walls (red); the isometric view sees the sides' lower halves too (blue), and the same picture for
 // any number of threads, although the colour function runs on the rendering's worker threads.
@@ -335,6 +552,8 @@ TEST(RenderDeposit, EmptyDepositThrows) {
   }
   sim::Deposit no_grids;
   EXPECT_THROW(render_deposit(no_grids, green), InputError);
+  EXPECT_THROW(PreparedDeposit{empty}, InputError);
+  EXPECT_THROW(PreparedDeposit{no_grids}, InputError);
 }
 
 TEST(RenderDeposit, DepositWithNoSurfaceThrows) {
@@ -357,14 +576,18 @@ TEST(RenderDeposit, RejectsBadOptionsNamingThem) {
   RenderOptions o;
   o.width = 0;
   o.samples_per_pixel = 0;
+  o.key_light_radius_deg = -1.0;
+  o.ambient_occlusion_samples = 0;
+  o.ambient_occlusion_distance_mm = -2.0;
   try {
     render_deposit(
         box(), [](int) { return kGreen; }, o);
     FAIL() << "bad options accepted";
   } catch (const InputError& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("width"), std::string::npos) << what;
-    EXPECT_NE(what.find("samples_per_pixel"), std::string::npos) << what;
+    for (const char* name : {"width", "samples_per_pixel", "key_light_radius_deg",
+                             "ambient_occlusion_samples", "ambient_occlusion_distance_mm"})
+      EXPECT_NE(what.find(name), std::string::npos) << name << ": " << what;
   }
 }
 

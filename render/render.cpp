@@ -56,8 +56,8 @@ void validate(const RenderOptions& o) {
   if (!(o.ambient_occlusion_distance_mm >= 0.0 && std::isfinite(o.ambient_occlusion_distance_mm)))
     add("ambient_occlusion_distance_mm must be >= 0 (0: automatic), got " +
         std::to_string(o.ambient_occlusion_distance_mm));
-  if (o.field_of_view_deg != 0.0)
-    in_range("field_of_view_deg (0: orthographic)", o.field_of_view_deg, 1.0, 120.0);
+  if (o.cut && !(o.cut->normal.norm() > 0.0f && o.cut->normal.allFinite() && o.cut->point.allFinite()))
+    add("a cutaway needs a finite point and a non-zero normal");
   if (!problems.empty()) throw InputError({}, "render options", problems);
 }
 
@@ -167,20 +167,23 @@ class PixelSampler {
   // or land in its shadow; the others are the background.
   PixelSampler(const Shader& shader, const RayGenerator& rays, const Patterns& patterns,
                const Eigen::AlignedBox2f& reach, const openvdb::Int32Grid& labels,
-               const RenderOptions& options)
+               const openvdb::FloatGrid* field, const openvdb::FloatGrid& fill, const RenderOptions& options)
       : shader_(shader),
         rays_(rays),
         patterns_(patterns),
         reach_(reach),
-        probe_(labels),
+        probes_(labels, field),
+        fill_(fill.getConstAccessor()),
         width_(options.width),
         height_(options.height),
         spp_(static_cast<std::uint32_t>(options.samples_per_pixel)) {
     samples_.reserve(spp_);
   }
 
-  // The radiance (linear) of pixel (x, y), `background` where its rays miss the part.
-  Vec3 pixel(int x, int y, const Vec3& background) {
+  // The radiance (linear) of pixel (x, y), `background` where its rays miss the part; in `value` and
+  // `depth` what the first of its samples on the part shows and how far it is (NaN when none is).
+  Vec3 pixel(int x, int y, const Vec3& background, float& value, float& depth) {
+    value = depth = std::numeric_limits<float>::quiet_NaN();
     const auto fx = static_cast<float>(x), fy = static_cast<float>(y);
     if (!reach_.intersects(
             Eigen::AlignedBox2f(Eigen::Vector2f(fx, fy), Eigen::Vector2f(fx + 1.0f, fy + 1.0f)))) {
@@ -207,11 +210,13 @@ class PixelSampler {
                  std::numeric_limits<float>::infinity());
         camera_rays_.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         camera_rays_.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        caps_[i] = false;
+        if (const CutPlane* cut = shader_.cut()) clip(*cut, rays[i], static_cast<int>(i), valid[i]);
       }
       shader_.scene().intersect16(valid, camera_rays_, /*coherent=*/true);
       for (std::uint32_t i = 0; i < n; ++i)
         samples_.push_back(shader_.begin(rays[i], hit(static_cast<int>(i)), {patterns_, shifts, first + i},
-                                         probe_, shadow_, occlusion_));
+                                         probes_, shadow_, occlusion_));
     }
     shadow_.trace(shader_.scene(), /*coherent=*/true);
     occlusion_.trace(shader_.scene(), /*coherent=*/false);
@@ -223,10 +228,12 @@ class PixelSampler {
     Vec3 part = Vec3::Zero();
     float share = 0.0f;
     for (const Sample& s : samples_) {
-      if (s.on_part)
+      if (s.on_part) {
         part += shader_.finish(s, shadow_, occlusion_);
-      else
+        if (std::isnan(depth)) value = s.value, depth = s.t;
+      } else {
         share += shader_.background_share(s, shadow_);
+      }
     }
     const auto n = static_cast<float>(spp_);
     return part / n + (share / n) * background;
@@ -237,8 +244,33 @@ class PixelSampler {
   std::uint64_t occlusion_rays() const { return occlusion_rays_; }
 
  private:
+  // A cutaway: the ray traced only through the kept half; a ray that enters it through the cut face where
+  // the face is material meets the face there (a cap, not traced).
+  void clip(const CutPlane& cut, const Ray& ray, int lane, int& valid) {
+    const auto [near, far] = cut.kept(ray.origin, ray.direction, std::numeric_limits<float>::infinity());
+    if (near > far) {
+      valid = 0;  // wholly in the half taken away: the background
+      return;
+    }
+    if (near > 0.0f && cut.fill_at(ray.origin + near * ray.direction, fill_) >= 0.5f) {
+      caps_[lane] = true;
+      cap_t_[lane] = near;
+      valid = 0;
+      return;
+    }
+    camera_rays_.ray.tnear[lane] = near;
+    camera_rays_.ray.tfar[lane] = far;
+  }
+
   CameraHit hit(int lane) const {
     CameraHit h;
+    if (caps_[lane]) {
+      h.hit = true;
+      h.cap = true;
+      h.t = cap_t_[lane];
+      h.face_normal = shader_.cut()->normal();
+      return h;
+    }
     h.hit = camera_rays_.hit.geomID[lane] != RTC_INVALID_GEOMETRY_ID;
     if (!h.hit) return h;
     h.t = camera_rays_.ray.tfar[lane];
@@ -254,7 +286,10 @@ class PixelSampler {
   const RayGenerator& rays_;
   const Patterns& patterns_;
   Eigen::AlignedBox2f reach_;
-  LayerProbe probe_;
+  Probes probes_;
+  openvdb::FloatGrid::ConstAccessor fill_;
+  std::array<bool, OcclusionBatch::kLanes> caps_{};
+  std::array<float, OcclusionBatch::kLanes> cap_t_{};
   int width_, height_;
   std::uint32_t spp_;
   RTCRayHit16 camera_rays_{};
@@ -312,20 +347,28 @@ float shadow_offset_mm(const SurfaceMesh& mesh, double voxel_mm) {
                   16.0f * std::numeric_limits<float>::epsilon() * extent);
 }
 
-// The image of `deposit`'s surface coloured by `albedo`, the material under each point found in `labels`.
-Image render_surface(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels, const Albedo& albedo,
-                     const RenderOptions& options, RenderStats* stats) {
+// The box a picture frames: the caller's, or the part's surface.
+Eigen::AlignedBox3f framed_box(const RenderOptions& options, const SurfaceMesh& mesh) {
+  return options.frame.isEmpty() ? mesh.bounds : options.frame;
+}
+
+// The picture of `deposit`'s surface coloured by `albedo`, the material under each point found in `labels`;
+// with `values`, also each pixel's value and depth.
+FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels,
+                            const Albedo& albedo, const RenderOptions& options, bool values) {
   const SurfaceMesh& mesh = deposit.surface();
+  const Eigen::AlignedBox3f box = framed_box(options, mesh);
   const auto frame = [&](const Eigen::AlignedBox3f& bounds) {
-    return Camera::framed(options.view, bounds, options.width, options.height, options.field_of_view_deg);
+    return Camera::make(options.camera, bounds, options.width, options.height, options.margins);
   };
-  Camera camera = frame(mesh.bounds);
+  Camera camera = frame(box);
   // Set by the view's orientation, which framing does not change.
   const Lights lights(camera, options.key_light_radius_deg);
   // Looking down at the bed, the part's shadow lies beside it and is framed too; in oblique views it falls
   // mostly behind the part, and framing it would only push the part off centre.
   const std::optional<Eigen::AlignedBox3f> shadow_box = with_ground_shadow(mesh.bounds, lights);
-  if (options.ground_shadow && camera.forward().z() < -0.9f) camera = frame(shadow_box.value_or(mesh.bounds));
+  if (options.ground_shadow && camera.forward().z() < -0.9f && options.camera.view != View::kUser)
+    camera = frame(with_ground_shadow(box, lights).value_or(box));
   // Pixels outside the outline of the part's box and its shadow's are the background: no ray can change
   // them (a grazing light's shadow can reach anywhere).
   const Eigen::AlignedBox2f reach =
@@ -336,15 +379,23 @@ Image render_surface(const PreparedDeposit& deposit, const openvdb::Int32Grid& l
   const double occlusion_mm = options.ambient_occlusion_distance_mm > 0.0
                                   ? options.ambient_occlusion_distance_mm
                                   : kAutoOcclusionVoxels * voxel_mm;
+  std::optional<CutPlane> cut;
+  if (options.cut) cut.emplace(*options.cut, deposit.fill());
   const Shader shader(deposit.scene().scene, mesh, albedo, lights, options, shadow_offset_mm(mesh, voxel_mm),
-                      static_cast<float>(occlusion_mm));
+                      static_cast<float>(occlusion_mm), cut ? &*cut : nullptr);
 
   const RayGenerator rays(camera);
   const Patterns patterns(static_cast<std::uint32_t>(options.samples_per_pixel),
                           static_cast<std::uint32_t>(options.ambient_occlusion_samples));
   const int width = options.width, height = options.height;
   const Vec3 top = to_linear(options.background), bottom = to_linear(options.background_bottom);
-  Image image(width, height);
+  FieldPicture picture;
+  picture.image = Image(width, height);
+  const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  if (values) {
+    picture.values.resize(pixels);
+    picture.depth.resize(pixels);
+  }
   std::atomic<std::uint64_t> outside{0}, shadow_rays{0}, occlusion_rays{0};
   // Square tiles keep a task's rays close together (in the BVH's cache); every pixel is a pure function of
   // its position, so how TBB splits the image does not change it.
@@ -352,27 +403,44 @@ Image render_surface(const PreparedDeposit& deposit, const openvdb::Int32Grid& l
       tbb::blocked_range2d<int>(0, height, kTile, 0, width, kTile),
       [&](const tbb::blocked_range2d<int>& tile) {
         const FlushDenormals flush;
-        PixelSampler sampler(shader, rays, patterns, reach, labels, options);
+        PixelSampler sampler(shader, rays, patterns, reach, labels, albedo.field_grid(), deposit.fill(),
+                             options);
         for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
           const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
           const Vec3 background = top + t * (bottom - top);
           for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            const Vec3 c = sampler.pixel(x, y, background);
-            image.set(x, y, {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())});
+            float value = 0.0f, depth = 0.0f;
+            const Vec3 c = sampler.pixel(x, y, background, value, depth);
+            picture.image.set(x, y, {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())});
+            if (values) {
+              const std::size_t i =
+                  static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+              picture.values[i] = value;
+              picture.depth[i] = depth;
+            }
           }
         }
         outside += sampler.camera_rays_outside();
         shadow_rays += sampler.shadow_rays();
         occlusion_rays += sampler.occlusion_rays();
       });
-  if (stats != nullptr) {
-    stats->primary_rays = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
-                          static_cast<std::uint64_t>(options.samples_per_pixel);
-    stats->primary_rays_outside = outside;
-    stats->shadow_rays = shadow_rays;
-    stats->occlusion_rays = occlusion_rays;
-  }
-  return image;
+  picture.stats.primary_rays = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                               static_cast<std::uint64_t>(options.samples_per_pixel);
+  picture.stats.primary_rays_outside = outside;
+  picture.stats.shadow_rays = shadow_rays;
+  picture.stats.occlusion_rays = occlusion_rays;
+  const Vec3 centre = box.center();
+  picture.mm_per_pixel = camera.orthographic() || (centre - camera.eye()).dot(camera.forward()) > 0.0f
+                             ? camera.mm_per_pixel_at(centre, width)
+                             : 0.0;
+  return picture;
+}
+
+Image render_image(const PreparedDeposit& deposit, const openvdb::Int32Grid& labels, const Albedo& albedo,
+                   const RenderOptions& options, RenderStats* stats) {
+  FieldPicture picture = render_surface(deposit, labels, albedo, options, false);
+  if (stats != nullptr) *stats = picture.stats;
+  return std::move(picture.image);
 }
 
 }  // namespace
@@ -383,8 +451,9 @@ PreparedDeposit::PreparedDeposit(const sim::Deposit& deposit)
     : PreparedDeposit(deposit, checked_surface(deposit)) {}
 
 PreparedDeposit::PreparedDeposit(const sim::Deposit& deposit, SurfaceMesh surface)
-    : surface_(std::move(surface)), layers_(deposit.layer) {
+    : surface_(std::move(surface)), layers_(deposit.layer), fill_(deposit.fill) {
   BT_CHECK(layers_ != nullptr);
+  BT_CHECK(fill_ != nullptr);
   BT_CHECK(!surface_.triangles.empty());
   voxel_size_mm_ = layers_->voxelSize()[0];
   scene_ = std::make_unique<PreparedScene>(build_scene(surface_));
@@ -406,14 +475,22 @@ Image render_deposit(const PreparedDeposit& deposit, const openvdb::Int32Grid& l
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
   const Palette palette(labels, colour, options.unknown_layer);
-  return render_surface(deposit, labels, Albedo(palette), options, stats);
+  return render_image(deposit, labels, Albedo(palette), options, stats);
 }
 
 Image render_deposit(const PreparedDeposit& deposit, const SurfaceColour& colour,
                      const RenderOptions& options, RenderStats* stats) {
   validate(options);
   BT_CHECK(static_cast<bool>(colour));
-  return render_surface(deposit, deposit.layers(), Albedo(colour), options, stats);
+  return render_image(deposit, deposit.layers(), Albedo(colour), options, stats);
+}
+
+FieldPicture render_field(const PreparedDeposit& deposit, const SurfaceField& field,
+                          const RenderOptions& options) {
+  validate(options);
+  BT_CHECK(static_cast<bool>(field.colour));
+  BT_CHECK(field.voxels != nullptr || static_cast<bool>(field.at_point));
+  return render_surface(deposit, deposit.layers(), Albedo(field), options, true);
 }
 
 Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour, const RenderOptions& options) {

@@ -19,6 +19,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "render/camera.hpp"
 #include "render/image.hpp"
@@ -39,10 +41,24 @@ using LayerColour = std::function<Rgb(int layer)>;
 // same for any number of threads.
 using SurfaceColour = std::function<Rgb(const Eigen::Vector3d& point_mm, int layer)>;
 
+// A cutaway: the plane through `point` (mm) with unit `normal`; the half the normal points into is taken
+// away, and where the plane passes through material the cut face shows the inside (its voids, its beads'
+// interfaces, the field coloured on it).
+struct Cutaway {
+  Eigen::Vector3f point = Eigen::Vector3f::Zero();
+  Eigen::Vector3f normal = -Eigen::Vector3f::UnitY();
+};
+
 struct RenderOptions {
   int width = 1280;  // pixels, 1..16384
   int height = 800;  // pixels, 1..16384
-  View view = View::kIsometric;
+  // The camera: a standard view or the user's (camera.hpp), framed on `frame` within `margins`.
+  CameraSpec camera;
+  // The box the camera frames, mm; empty: the part's surface. Pictures that compare (variants side by side,
+  // the frames of a growing part) share one.
+  Eigen::AlignedBox3f frame;
+  Margins margins;
+  std::optional<Cutaway> cut;
   // Background: display sRGB at the top of the image and at the bottom, a vertical gradient in between.
   Rgb background{0.95f, 0.96f, 0.97f};
   Rgb background_bottom{0.78f, 0.80f, 0.83f};
@@ -64,9 +80,6 @@ struct RenderOptions {
   // Stratified samples per pixel, 1..1024; 1 takes the pixel centre. Each traces one camera ray and, where
   // it meets the part, one shadow ray and ambient_occlusion_samples occlusion rays.
   int samples_per_pixel = 8;
-  // Isometric view: 1..120 degrees of perspective, or 0 for orthographic. The top and front views are
-  // always orthographic, as drawings are.
-  double field_of_view_deg = 30.0;
   // Colour (display sRGB) where no layer is found under the surface (a hole in the layer grid).
   Rgb unknown_layer{0.55f, 0.55f, 0.55f};
 };
@@ -88,7 +101,7 @@ struct RenderStats {
 struct PreparedScene;
 
 // A deposit ready to be rendered many times: its surface extracted and the ray tracing structure built.
-// Keeps a reference to the deposit's layer grid (shared, so the deposit itself may go); not copyable.
+// Keeps the deposit's fill and layer grids (shared, so the deposit itself may go); not copyable.
 class PreparedDeposit {
  public:
   // Extracts the surface at fill fraction 0.5 (extract_surface) and builds the scene. Throws
@@ -105,12 +118,14 @@ class PreparedDeposit {
 
   const SurfaceMesh& surface() const { return surface_; }
   const openvdb::Int32Grid& layers() const { return *layers_; }
+  const openvdb::FloatGrid& fill() const { return *fill_; }
   double voxel_size_mm() const { return voxel_size_mm_; }
   const PreparedScene& scene() const { return *scene_; }
 
  private:
   SurfaceMesh surface_;
   openvdb::Int32Grid::ConstPtr layers_;
+  openvdb::FloatGrid::ConstPtr fill_;
   double voxel_size_mm_ = 0.0;
   std::unique_ptr<PreparedScene> scene_;
 };
@@ -129,6 +144,33 @@ Image render_deposit(const PreparedDeposit& deposit, const openvdb::Int32Grid& l
 // layer -1 and decides).
 Image render_deposit(const PreparedDeposit& deposit, const SurfaceColour& colour,
                      const RenderOptions& options = {}, RenderStats* stats = nullptr);
+
+// What colours the part in render_field: a value at every surface point and the colour of a value. The
+// value is that of the material voxel under the point (found as for the layer grid: half a voxel inside,
+// else the nearest voxel of the grid around it) in `voxels`, or `at_point`'s; NaN where there is none.
+// Both functions are called from the rendering's threads at once: they must be safe to call concurrently
+// and give the same answer for the same arguments.
+struct SurfaceField {
+  const openvdb::FloatGrid* voxels = nullptr;  // active on the material voxels
+  std::function<double(const Eigen::Vector3d& point_mm)> at_point;
+  std::function<Rgb(double value)> colour;  // display sRGB; NaN must have a colour too
+};
+
+// A picture of a field, with what it shows pixel by pixel for those who post-process (EXR).
+struct FieldPicture {
+  Image image;
+  // Per pixel, row by row from the top: the field's value and the distance from the eye along the ray, mm,
+  // of the first sample of the pixel that met the part; NaN where none did.
+  std::vector<float> values;
+  std::vector<float> depth;
+  double mm_per_pixel = 0.0;  // the image's scale at the centre of the framed box (a scale bar's)
+  RenderStats stats;
+};
+
+// Renders `deposit` coloured by `field`. Throws InputError naming options out of range (and a cutaway whose
+// normal is zero); a field without a colour or without a value (neither voxels nor at_point) is a bug.
+FieldPicture render_field(const PreparedDeposit& deposit, const SurfaceField& field,
+                          const RenderOptions& options = {});
 
 // The same for a deposit prepared for this one picture (the options are checked first, then the surface).
 Image render_deposit(const sim::Deposit& deposit, const LayerColour& colour,

@@ -12,9 +12,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <openvdb/tools/Interpolation.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -87,20 +90,79 @@ class Palette {
   Vec3 unknown_;
 };
 
-// The colour of a surface point, in linear light: its layer's from the palette made up front, or the
-// caller's colour of the point itself.
+// What lies under surface points, for one thread: the label (layer or cell) and the field's value.
+struct Probes {
+  LayerProbe labels;
+  std::optional<FieldProbe> field;
+
+  Probes(const openvdb::Int32Grid& label_grid, const openvdb::FloatGrid* field_grid) : labels(label_grid) {
+    if (field_grid != nullptr) field.emplace(*field_grid);
+  }
+};
+
+// The colour of a surface point, in linear light, and the value it shows: its label's colour from the
+// palette made up front (the value is the label), the caller's colour of the point (no value), or a field's
+// value and its colour.
 class Albedo {
  public:
   explicit Albedo(const Palette& palette) : palette_(&palette) {}
   explicit Albedo(const SurfaceColour& colour) : colour_(&colour) {}
+  explicit Albedo(const SurfaceField& field) : field_(&field) {}
 
-  Vec3 operator()(const Vec3& point, int layer) const {
-    return colour_ ? to_linear((*colour_)(point.cast<double>(), layer)) : (*palette_)(layer);
+  const openvdb::FloatGrid* field_grid() const { return field_ ? field_->voxels : nullptr; }
+
+  // `inward`: the unit direction into the material at `point`.
+  Vec3 operator()(const Vec3& point, const Vec3& inward, Probes& probes, float& value) const {
+    if (field_) {
+      const double v = field_->voxels ? static_cast<double>(probes.field->value_at(point, inward))
+                                      : field_->at_point(point.cast<double>());
+      value = static_cast<float>(v);
+      return to_linear(field_->colour(v));
+    }
+    const int label = probes.labels.layer_at(point, inward);
+    if (colour_) {
+      value = std::numeric_limits<float>::quiet_NaN();
+      return to_linear((*colour_)(point.cast<double>(), label));
+    }
+    value = label >= 0 ? static_cast<float>(label) : std::numeric_limits<float>::quiet_NaN();
+    return (*palette_)(label);
   }
 
  private:
   const Palette* palette_ = nullptr;
   const SurfaceColour* colour_ = nullptr;
+  const SurfaceField* field_ = nullptr;
+};
+
+// The kept half of a cutaway (RenderOptions::cut): where a ray runs in it, and whether the cut face is
+// material at a point (the fill there at least half).
+class CutPlane {
+ public:
+  CutPlane(const Cutaway& cut, const openvdb::FloatGrid& fill)
+      : point_(cut.point), normal_(cut.normal.normalized()), fill_(fill) {}
+
+  const Vec3& normal() const { return normal_; }  // into the half taken away
+
+  // The part of the ray from `origin` along unit `direction` (t in [0, length]) in the kept half, as
+  // [near, far]; near > far when none of it is.
+  std::pair<float, float> kept(const Vec3& origin, const Vec3& direction, float length) const {
+    const float s0 = normal_.dot(origin - point_), rate = normal_.dot(direction);
+    if (rate == 0.0f) return s0 <= 0.0f ? std::pair{0.0f, length} : std::pair{1.0f, 0.0f};
+    const float t = -s0 / rate;
+    if (rate > 0.0f) return {0.0f, std::min(length, t)};  // leaving the kept half at t
+    return {std::max(0.0f, t), length};                   // entering it at t
+  }
+
+  // The fill at `point` (world, mm), trilinear between voxel centres.
+  float fill_at(const Vec3& point, openvdb::FloatGrid::ConstAccessor& accessor) const {
+    const openvdb::Vec3d index =
+        fill_.transform().worldToIndex(openvdb::Vec3d(point.x(), point.y(), point.z()));
+    return openvdb::tools::BoxSampler::sample(accessor, index);
+  }
+
+ private:
+  Vec3 point_, normal_;
+  const openvdb::FloatGrid& fill_;
 };
 
 // --- Sample patterns ---
@@ -246,6 +308,7 @@ struct CameraHit {
   Vec3 face_normal;  // geometric, not normalised
   std::uint32_t triangle = 0;
   float u = 0.0f, v = 0.0f;  // barycentric
+  bool cap = false;          // the cut face of a cutaway (face_normal is the plane's), not a triangle
 };
 
 // --- Shading ---
@@ -288,6 +351,8 @@ struct Sample {
   // On the part:
   Vec3 point, geometric, normal, albedo;  // the normals face the viewer; geometric is the facet's
   Vec3 to_eye;
+  float value = std::numeric_limits<float>::quiet_NaN();  // what the colour shows (Albedo)
+  float t = 0.0f;                                         // along the camera ray, mm
   float key_lit = 0.0f;                             // the key's visibility when no shadow ray decides it
   int shadow_ray = -1;                              // in the shadow batch (on the part or on the bed), or -1
   int first_occlusion_ray = 0, occlusion_rays = 0;  // in the occlusion batch
@@ -301,8 +366,10 @@ class Shader {
   // `offset_mm`: shadow and occlusion rays start this far off the surface, against self-intersection;
   // `occlusion_distance_mm`: how far an occluder darkens (RenderOptions::ambient_occlusion_distance_mm).
   Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Albedo& albedo, const Lights& lights,
-         const RenderOptions& options, float offset_mm, float occlusion_distance_mm)
-      : scene_(scene),
+         const RenderOptions& options, float offset_mm, float occlusion_distance_mm,
+         const CutPlane* cut = nullptr)
+      : cut_(cut),
+        scene_(scene),
         mesh_(mesh),
         albedo_(albedo),
         lights_(lights),
@@ -317,10 +384,11 @@ class Shader {
         caster_radius_(0.5f * caster_.diagonal().norm()) {}
 
   const embree::Scene& scene() const { return scene_; }
+  const CutPlane* cut() const { return cut_; }
 
   // The sample of a camera `ray` and its `hit`: the surface point and its colour, or the background, with
   // the shadow and occlusion rays it needs queued in `shadow` and `occlusion`.
-  Sample begin(const Ray& ray, const CameraHit& hit, const SampleIndex& index, LayerProbe& probe,
+  Sample begin(const Ray& ray, const CameraHit& hit, const SampleIndex& index, Probes& probes,
                OcclusionBatch& shadow, OcclusionBatch& occlusion) const {
     Sample s;
     if (!hit.hit) {
@@ -331,8 +399,9 @@ class Shader {
     s.point = ray.origin + hit.t * ray.direction;
     s.geometric = hit.face_normal.normalized();
     if (s.geometric.dot(ray.direction) > 0.0f) s.geometric = -s.geometric;  // face the viewer
-    s.normal = shading_normal(hit, s.geometric);
-    s.albedo = albedo_(s.point, probe.layer_at(s.point, -s.geometric));
+    s.normal = hit.cap ? s.geometric : shading_normal(hit, s.geometric);
+    s.albedo = albedo_(s.point, -s.geometric, probes, s.value);
+    s.t = hit.t;
     s.to_eye = -ray.direction;
     const Vec3 origin = s.point + offset_ * s.geometric;
 
@@ -341,8 +410,9 @@ class Shader {
       // point is sampled with shadows off, so shadows can only take light away.
       const Vec3 to_light = lights_.towards_key(index.light());
       if (s.geometric.dot(to_light) > 0.0f) {
-        if (shadows_)
-          s.shadow_ray = shadow.add(origin, to_light, std::numeric_limits<float>::infinity());
+        const float length = clip_length(origin, to_light, std::numeric_limits<float>::infinity());
+        if (shadows_ && length > 0.0f)
+          s.shadow_ray = shadow.add(origin, to_light, length);
         else
           s.key_lit = 1.0f;
       }
@@ -360,7 +430,7 @@ class Shader {
         Vec3 direction = d.x() * t + d.y() * b + z * s.normal;
         const float below = direction.dot(s.geometric);
         if (below < 0.0f) direction -= 2.0f * below * s.geometric;
-        occlusion.add(origin, direction, occlusion_distance_);
+        occlusion.add(origin, direction, std::max(0.0f, clip_length(origin, direction, occlusion_distance_)));
       }
     }
     return s;
@@ -431,8 +501,16 @@ class Shader {
     const float reach = (bed - caster_.center()).norm() + caster_radius_;
     if (!meets_box(bed, lights_.to_key, reach * lights_.spread)) return;
     const Vec3 to_light = lights_.towards_key(index.light());
-    if (meets_box(bed, to_light, 0.0f))
-      s.shadow_ray = shadow.add(bed, to_light, std::numeric_limits<float>::infinity());
+    const float length = clip_length(bed, to_light, std::numeric_limits<float>::infinity());
+    if (length > 0.0f && meets_box(bed, to_light, 0.0f)) s.shadow_ray = shadow.add(bed, to_light, length);
+  }
+
+  // How far a ray from `origin` along `direction` may look for what hides it, at most `length`: with a
+  // cutaway, only as far as the cutting plane (what lies beyond is taken away); <= 0 when it starts there.
+  float clip_length(const Vec3& origin, const Vec3& direction, float length) const {
+    if (!cut_) return length;
+    const auto [near, far] = cut_->kept(origin, direction, length);
+    return near > 0.0f || near > far ? 0.0f : far;
   }
 
   // Whether the ray from `origin` along `direction` meets the part's bounding box grown by `margin` mm
@@ -450,6 +528,7 @@ class Shader {
     return near <= far;
   }
 
+  const CutPlane* cut_;
   const embree::Scene& scene_;
   const SurfaceMesh& mesh_;
   const Albedo& albedo_;

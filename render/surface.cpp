@@ -100,4 +100,31 @@ int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& in
   return best;
 }
 
+FieldProbe::FieldProbe(const openvdb::FloatGrid& field)
+    : accessor_(field.getConstAccessor()),
+      transform_(field.transform()),
+      half_voxel_mm_(0.5 * field.voxelSize()[0]) {}
+
+float FieldProbe::value_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
+  const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm_ * inward.cast<double>();
+  const openvdb::Vec3d index = transform_.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
+  const openvdb::Coord centre = openvdb::Coord::round(index);
+  float value = 0.0f;
+  if (accessor_.probeValue(centre, value)) return value;
+  float best = std::numeric_limits<float>::quiet_NaN();
+  double best_distance = std::numeric_limits<double>::max();
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const openvdb::Coord c = centre.offsetBy(dx, dy, dz);
+        if (!accessor_.probeValue(c, value)) continue;
+        const double distance = (c.asVec3d() - index).lengthSqr();
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = value;
+        }
+      }
+  return best;
+}
+
 }  // namespace beadtwin::render

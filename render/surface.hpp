@@ -40,4 +40,20 @@ class LayerProbe {
   double half_voxel_mm_;
 };
 
+// Finds the value of a field (a float grid active on the material voxels) just inside a surface point, as
+// LayerProbe finds the layer. One per thread.
+class FieldProbe {
+ public:
+  explicit FieldProbe(const openvdb::FloatGrid& field);
+
+  // The value of the active voxel half a voxel inside `point` along `inward`, else of the nearest active
+  // voxel in its 3x3x3 neighbourhood, else NaN. An active voxel's value is taken as it is (NaN included).
+  float value_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
+
+ private:
+  openvdb::FloatGrid::ConstAccessor accessor_;
+  const openvdb::math::Transform& transform_;
+  double half_voxel_mm_;
+};
+
 }  // namespace beadtwin::render

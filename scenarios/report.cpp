@@ -333,6 +333,8 @@ json variant_json(const VariantResult& r) {
       {"temperature_history", history_json(r.temperature_history)},
       {"defects", defects},
       {"images", r.images},
+      {"images_exr", r.exr_images},
+      {"progress_frames", r.progress_frames},
       {"program", r.program},
       {"deposit", r.deposit_file},
       {"files", files_json(r)},
@@ -711,6 +713,7 @@ std::string report_json(const RunResult& result) {
   j["warnings"] = result.scenario ? result.scenario->warnings : std::vector<std::string>{};
   j["variants"] = json::array();
   for (const auto& v : result.variants) j["variants"].push_back(variant_json(v));
+  j["sheets"] = result.sheets;
   return j.dump(2) + "\n";
 }
 
@@ -749,6 +752,12 @@ details{margin:1em 0} .muted{color:#777}
         m.layer_time_s.min, m.layer_time_s.mean, m.layer_time_s.max);
   }
   h += "</table>";
+  if (!result.sheets.empty()) {
+    h += "<h2>The variants side by side</h2><p class=legend>Each picture of every variant, from one camera "
+         "on one colour scale.</p>";
+    for (const auto& sheet : result.sheets)
+      h += fmt::format("<p><img src=\"{}\" alt=\"{}\"></p>", esc(sheet), esc(sheet));
+  }
   for (const auto& v : result.variants) {
     h += fmt::format("<h2>Variant {}</h2>", esc(v.name));
     h += "<h3>Gates</h3><table><tr><th class=l>gate</th><th>value</th><th>result</th></tr>";

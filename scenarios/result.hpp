@@ -158,7 +158,9 @@ struct VariantResult {
   std::vector<SectionRow> sections;
   TemperatureHistory temperature_history;
   std::vector<GateResult> gates;
-  std::vector<std::string> images;  // relative to the output directory
+  std::vector<std::string> images;  // PNG pictures, relative to the output directory
+  std::vector<std::string> exr_images;       // the same as EXR with raw values (render.exr)
+  std::vector<std::string> progress_frames;  // one per layer (or per render.progress.every layers)
   std::string program;              // relative path of the print program
   std::string deposit_file;         // relative path of the .vdb
   ExportedFiles exported;
@@ -172,6 +174,7 @@ struct VariantResult {
 struct RunResult {
   const Scenario* scenario = nullptr;
   std::vector<VariantResult> variants;
+  std::vector<std::string> sheets;  // comparison sheets of the variants' pictures, relative paths
   bool passed = true;
   double wall_time_s = 0;
 };

@@ -12,6 +12,7 @@
 #include "render/image.hpp"
 #include "render/render.hpp"
 #include "scenarios/colours.hpp"
+#include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"
 #include "sim/cad_compare.hpp"
@@ -75,6 +76,8 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.sample_interval_s = v.thermal.sample_interval_s;
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
+  // The moments the pictures colour by temperature.
+  for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
                                  v.machine.environment, ho);
   std::vector<double> durations;
@@ -89,6 +92,17 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
 // sections). The band reaches the requested stock and a bead width beyond it (stocks beyond that are
 // reported as "at least"), within 4..32 voxels; the colour map's half range is a layer height (a bead's
 // scallop spans half of it).
+// Whether the snapshot at `t_s` is one of the scenario's thermal.snapshots (written as files), not one
+// taken for a picture alone. The thermal run clamps the times it was asked for into its span.
+bool asked_for_file(const Variant& v, const Toolpath& tp, const thermal::HeatResult& heat, double t_s) {
+  for (const double asked : v.thermal.snapshot_times_s) {
+    const double t =
+        std::clamp(std::isinf(asked) ? tp.total_time_s() : asked, heat.start_time_s, heat.end_time_s);
+    if (std::abs(t - t_s) <= 1e-9 * std::max(1.0, std::abs(t))) return true;
+  }
+  return false;
+}
+
 std::optional<CadCheck> check_against_cad(const Variant& v, const sim::Deposit& deposit) {
   if (v.program || !v.part.loaded) return std::nullopt;
   const std::optional<slicer::TriangleMesh> cad = slicer::printed_cad(*v.part.loaded, v.sections);
@@ -310,7 +324,15 @@ void write_fields(const Variant& v, const sim::Deposit& deposit, const std::file
   files.fields_bytes = std::filesystem::file_size(dir / "fields.vtu");
 }
 
-VariantResult run_variant(const Scenario& sc, const Variant& v, const std::filesystem::path& out_dir,
+// A variant sliced before the run (so that its pictures can share a frame with the others').
+struct Sliced {
+  Toolpath toolpath;
+  slicer::PlanStats stats;
+  double seconds = 0.0;
+};
+
+VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sliced,
+                          const PictureFrame& frame, const std::filesystem::path& out_dir,
                           const std::function<void(const std::string&)>& log) {
   VariantResult res;
   res.name = v.name;
@@ -321,8 +343,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
                           [&](const std::string& line) { log(fmt::format("[{}] {}", v.name, line)); })
                     : std::function<void(const std::string&)>());
 
-  slicer::PlanStats plan_stats;
-  const Toolpath tp = stages.run("slice", [&] { return slice_variant(v, &plan_stats); });
+  stages.record("slice", sliced.seconds);
+  const Toolpath& tp = sliced.toolpath;
+  const slicer::PlanStats& plan_stats = sliced.stats;
   stages.run("program", [&] {
     slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
     write_file_atomic(dir / "program.nc",
@@ -343,6 +366,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
   if (!th.heat.snapshots.empty())
     stages.run("snapshots", [&] {
       for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {
+        if (!asked_for_file(v, tp, th.heat, s.time_s)) continue;  // taken for a picture only
         const std::string stem = fmt::format("temperature-{:.0f}s", s.time_s);
         thermal::write_temperature_vdb(th.mesh, s, dir / (stem + ".vdb"));
         thermal::write_temperature_vtp(th.mesh, s, dir / (stem + ".vtp"));
@@ -352,39 +376,18 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const std::files
       }
     });
   stages.run("render", [&] {
-    render::RenderOptions o;
-    o.width = v.render.width;
-    o.height = v.render.height;
-    // Each bead's piece coloured by its worst interface: where it landed too hot, too cold, or fused.
-    const render::LayerColour colour = [&](int cell) {
-      return verdict_colour(cell >= 0 && static_cast<std::size_t>(cell) < th.cells.size()
-                                ? th.cells[static_cast<std::size_t>(cell)]
-                                : thermal::Verdict::kNoInterface);
-    };
-    for (const auto& [view, file] : {std::pair{render::View::kIsometric, "fusion.png"},
-                                     std::pair{render::View::kTop, "fusion-top.png"}}) {
-      o.view = view;
-      render::write_png(render::render_deposit(deposit, *th.mesh.cell_grid, colour, o), dir / file);
-      res.images.push_back((std::filesystem::path(v.name) / file).string());
-    }
-    // The sections, each in its own colour, so a person sees where each parameter set applies.
-    const auto by_section = [&](int layer) {
-      if (layer < 0 || static_cast<std::size_t>(layer) >= tp.layers.size())
-        return render::Rgb{0.5f, 0.5f, 0.5f};
-      return section_colour(tp.layers[static_cast<std::size_t>(layer)].section);
-    };
-    o.view = render::View::kIsometric;
-    render::write_png(render::render_deposit(deposit, by_section, o), dir / "sections.png");
-    res.images.push_back((std::filesystem::path(v.name) / "sections.png").string());
-    if (cad) {
-      // The stock the skin leaves at each point, against what was asked for: blue short, red over.
-      const auto by_stock = [&](const Eigen::Vector3d& point_mm, int) {
-        return deviation_colour(sim::cad_distance_at(*cad->comparison.cad_distance, point_mm),
-                                cad->requested_stock_mm, cad->map_half_range_mm);
-      };
-      render::write_png(render::render_deposit(deposit, by_stock, o), dir / "deviation.png");
-      res.images.push_back((std::filesystem::path(v.name) / "deviation.png").string());
-    }
+    PictureInputs in;
+    in.scenario = &sc;
+    in.variant = &v;
+    in.toolpath = &tp;
+    in.deposit = &deposit;
+    in.thermal = &th;
+    in.cad = cad ? &*cad : nullptr;
+    in.frame = &frame;
+    PictureFiles files = write_pictures(in, dir, res.notes);
+    res.images = std::move(files.images);
+    res.exr_images = std::move(files.exr);
+    res.progress_frames = std::move(files.progress);
   });
   stages.run("vdb", [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
@@ -475,13 +478,28 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   std::filesystem::create_directories(options.out_dir);
   RunResult result;
   result.scenario = &sc;
+  // Every variant sliced first: the pictures of all of them share one frame (camera box, colour scales).
+  std::vector<const Variant*> chosen;
+  std::vector<Sliced> sliced;
   for (const Variant& v : sc.variants) {
     if (!options.variants.empty() &&
         std::find(options.variants.begin(), options.variants.end(), v.name) == options.variants.end())
       continue;
-    result.variants.push_back(run_variant(sc, v, options.out_dir, options.log));
+    const auto t_slice = std::chrono::steady_clock::now();
+    Sliced s;
+    s.toolpath = slice_variant(v, &s.stats);
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_slice).count();
+    chosen.push_back(&v);
+    sliced.push_back(std::move(s));
+  }
+  std::vector<const Toolpath*> toolpaths;
+  for (const Sliced& s : sliced) toolpaths.push_back(&s.toolpath);
+  const PictureFrame frame = picture_frame(chosen, toolpaths, sc.inches);
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, options.out_dir, options.log));
     result.passed = result.passed && result.variants.back().passed;
   }
+  result.sheets = write_sheets(result, options.out_dir);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_reports(result, options.out_dir);
   return result;

@@ -1209,6 +1209,9 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
 
   Scenario sc;
   sc.file = file;
+  if (const auto unit = base.scenario_src->default_units.find(Dimension::kLength);
+      unit != base.scenario_src->default_units.end())
+    sc.inches = unit->second == "in" || unit->second == "inch" || unit->second == "inches";
   {
     BlockReader top(root, "", base.scenario_src);
     static const ParamSpec kName{

@@ -727,18 +727,35 @@ std::string_view to_string(DefectKind kind) {
   return "?";
 }
 
-openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer) {
-  BT_CHECK(deposit.fill != nullptr && deposit.layer != nullptr);
+namespace {
+
+// The deposit's fill on the voxels where `keep(ijk)` holds.
+template <class Keep>
+openvdb::FloatGrid::Ptr fill_where(const Deposit& deposit, const Keep& keep) {
   openvdb::FloatGrid::Ptr out = openvdb::FloatGrid::create(deposit.fill->background());
   out->setTransform(deposit.fill->transform().copy());
   out->setName(deposit.fill->getName());
-  auto layer_at = deposit.layer->getConstAccessor();
   auto out_at = out->getAccessor();
-  for (auto it = deposit.fill->cbeginValueOn(); it; ++it) {
-    const int layer = layer_at.getValue(it.getCoord());
-    if (layer >= 0 && layer <= last_layer) out_at.setValue(it.getCoord(), *it);
-  }
+  for (auto it = deposit.fill->cbeginValueOn(); it; ++it)
+    if (keep(it.getCoord())) out_at.setValue(it.getCoord(), *it);
   return out;
+}
+
+}  // namespace
+
+openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer) {
+  BT_CHECK(deposit.fill != nullptr && deposit.layer != nullptr);
+  auto layer_at = deposit.layer->getConstAccessor();
+  return fill_where(deposit, [&](const openvdb::Coord& ijk) {
+    const int layer = layer_at.getValue(ijk);
+    return layer >= 0 && layer <= last_layer;
+  });
+}
+
+openvdb::FloatGrid::Ptr fill_up_to_time(const Deposit& deposit, double time_s) {
+  BT_CHECK(deposit.fill != nullptr && deposit.time != nullptr);
+  auto time_at = deposit.time->getConstAccessor();
+  return fill_where(deposit, [&](const openvdb::Coord& ijk) { return time_at.getValue(ijk) <= time_s; });
 }
 
 }  // namespace beadtwin::sim

@@ -158,5 +158,9 @@ Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm)
 // layer topped up is left out whole). Same transform as the deposit's fill. Preconditions: the deposit has
 // fill and layer grids.
 openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer);
+// The fill of the part as it stood at `time_s` (s from the start of the print): the voxels whose material
+// had landed by then (the time grid names when a voxel last received material). Preconditions: the
+// deposit has fill and time grids.
+openvdb::FloatGrid::Ptr fill_up_to_time(const Deposit& deposit, double time_s);
 
 }  // namespace beadtwin::sim

@@ -58,7 +58,7 @@ TEST(RenderPipeline, DepositedBoxShowsItsLayers) {
   RenderOptions o;
   o.width = 320;
   o.height = 200;
-  o.view = View::kFront;
+  o.camera.view = View::kFront;
   o.background = o.background_bottom = kMagenta;
   o.ground_shadow = false;
   const Image image = render_deposit(

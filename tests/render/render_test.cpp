@@ -56,7 +56,7 @@ RenderOptions small_options(View view = View::kIsometric) {
   RenderOptions o;
   o.width = 320;
   o.height = 200;
-  o.view = view;
+  o.camera.view = view;
   o.background = o.background_bottom = kMagenta;
   o.ground_shadow = false;  // keep the background one colour: every other pixel is the part
   return o;
@@ -290,7 +290,7 @@ TEST(RenderDeposit, SameImageForAnyNumberOfThreadsWithSoftShadowsAndOcclusion) {
 std::pair<int, int> top_view_pixel(const PreparedDeposit& prepared, const RenderOptions& o, float x_mm,
                                    float y_mm, float z_mm) {
   const Camera camera =
-      Camera::framed(View::kTop, prepared.surface().bounds, o.width, o.height, o.field_of_view_deg);
+      Camera::framed(View::kTop, prepared.surface().bounds, o.width, o.height, o.camera.field_of_view_deg);
   const Eigen::Vector2d uv = camera.project(Eigen::Vector3f(x_mm, y_mm, z_mm));
   return {static_cast<int>(uv.x() * o.width), static_cast<int>(uv.y() * o.height)};
 }
@@ -607,7 +607,7 @@ TEST(RenderDeposit, LsamBoxPictures) {
   };
   for (const View view : {View::kIsometric, View::kTop, View::kFront}) {
     RenderOptions o;
-    o.view = view;
+    o.camera.view = view;
     if (out == nullptr) {
       o.width = 160;
       o.height = 100;

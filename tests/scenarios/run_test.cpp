@@ -80,8 +80,9 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_EQ(v["layers"][0]["section"], "floor");
     EXPECT_EQ(v["layers"][5]["section"], "walls");
     EXPECT_EQ(v["gates"].size(), 2u);
-    // Isometric and top views by fusion verdict, isometric by section, isometric by stock against the CAD.
-    ASSERT_EQ(v["images"].size(), 4u);
+    // The default pictures: isometric and top views by fusion verdict, isometric by section, by substrate
+    // temperature and by stock against the CAD.
+    ASSERT_EQ(v["images"].size(), 5u);
     for (const auto& img : v["images"])
       EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
     EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
@@ -228,9 +229,9 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   EXPECT_EQ(m["cad"]["deviation_map"]["white_at_mm"].get<double>(), 0.0);
   EXPECT_NEAR(m["cad"]["deviation_map"]["red_at_mm"].get<double>(), 0.2 * kIn, 1e-9);  // a layer height
   const auto& images = j["variants"][0]["images"];
-  ASSERT_EQ(images.size(), 4u);
-  EXPECT_EQ(images[3], "baseline/deviation.png");
-  EXPECT_GT(std::filesystem::file_size(o.out_dir / images[3].get<std::string>()), 1000u);
+  ASSERT_EQ(images.size(), 5u);
+  EXPECT_EQ(images[4], "baseline/deviation.png");
+  EXPECT_GT(std::filesystem::file_size(o.out_dir / images[4].get<std::string>()), 1000u);
   const std::string html = read_file(o.out_dir / "report.html");
   EXPECT_NE(html.find("The part against its CAD"), std::string::npos);
   EXPECT_NE(html.find("<img src=\"baseline/deviation.png\""), std::string::npos);
@@ -276,7 +277,7 @@ gates:
   EXPECT_TRUE(j["variants"][0]["metrics"]["min_stock_mm"].is_null());
   EXPECT_TRUE(j["variants"][0]["metrics"]["undercut_fraction"].is_null());
   EXPECT_TRUE(j["variants"][0]["metrics"]["cad"].is_null());
-  EXPECT_EQ(j["variants"][0]["images"].size(), 3u);
+  EXPECT_EQ(j["variants"][0]["images"].size(), 4u);
   EXPECT_NE(read_file(o.out_dir / "summary.md").find("| —"), std::string::npos);
 }
 

@@ -467,6 +467,13 @@ TEST(Deposit, FillUpToALayerKeepsThatLayerAndTheOnesBelow) {
   const openvdb::Coord top = sim::voxel_containing({100, ideal, 2.5 * kBeadHeight}, d.voxel_size_mm);
   EXPECT_FALSE(two->tree().isValueOn(top));
   EXPECT_TRUE(two->transform() == d.fill->transform());
+  // By time: at the start of the third layer, the same material as after the second.
+  const openvdb::FloatGrid::Ptr at = sim::fill_up_to_time(d, d.time->tree().getValue(top) - 1e-3);
+  double at_kept = 0.0;
+  for (auto it = at->cbeginValueOn(); it; ++it) at_kept += *it;
+  EXPECT_GE(at_kept, kept - 1e-9);
+  EXPECT_LT(at_kept, all);
+  EXPECT_FALSE(at->tree().isValueOn(top));
 }
 
 // ---- bad input ----------------------------------------------------------------------------------------

@@ -1,0 +1,480 @@
+#include "scenarios/pictures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "render/colormap.hpp"
+#include "render/image.hpp"
+#include "render/render.hpp"
+#include "render/sheet.hpp"
+#include "scenarios/colours.hpp"
+#include "sim/cad_compare.hpp"
+#include "sim/porosity.hpp"
+#include "thermal/summary.hpp"
+
+namespace beadtwin::scenarios {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// What a picture colours the part by: a value per material voxel (or per surface point), the colours of those
+// values, and the legend that explains them.
+struct Field {
+  std::string heading;  // the picture's title
+  std::string title;    // what the value is, with its unit: the legend's title
+  // The value of every material voxel, in display units; NaN (or no voxel) where there is none.
+  openvdb::FloatGrid::Ptr voxels;
+  // Or a function of the surface point (in display units), for quantities that live on a surface of their
+  // own (the CAD's distance).
+  std::function<double(const Eigen::Vector3d&)> at_point;
+  // Categories (the value is the index) or a scale.
+  std::vector<render::LegendEntry> categories;
+  render::ScalarScale scale;
+  std::vector<double> ticks;  // empty: round ticks over the scale
+  std::string note;
+
+  render::Rgb colour(double value) const {
+    if (!categories.empty()) {
+      if (!std::isfinite(value)) return render::kNoValueGrey;
+      const long i = std::lround(value);
+      return i >= 0 && i < static_cast<long>(categories.size())
+                 ? categories[static_cast<std::size_t>(i)].colour
+                 : render::kNoValueGrey;
+    }
+    return scale.colour(value);
+  }
+  render::Legend legend() const {
+    render::Legend l;
+    l.title = title;
+    if (categories.empty()) {
+      l.scale = scale;
+      l.ticks = ticks;
+    } else {
+      l.entries = categories;
+    }
+    l.note = note;
+    return l;
+  }
+};
+
+// A value per material voxel from a value per label of `labels` (cells, layers): NaN where the label is
+// outside the table.
+openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
+                                        const std::vector<double>& by_label) {
+  auto out = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
+  out->setTransform(fill.transform().copy());
+  auto label_at = labels.getConstAccessor();
+  auto out_at = out->getAccessor();
+  for (auto it = fill.cbeginValueOn(); it; ++it) {
+    const int label = label_at.getValue(it.getCoord());
+    const double v = label >= 0 && static_cast<std::size_t>(label) < by_label.size()
+                         ? by_label[static_cast<std::size_t>(label)]
+                         : kNaN;
+    out_at.setValue(it.getCoord(), static_cast<float>(v));
+  }
+  return out;
+}
+
+// `grid`'s values on the material voxels of `fill`, scaled by `factor`.
+openvdb::FloatGrid::Ptr values_of(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& grid,
+                                  double factor) {
+  auto out = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
+  out->setTransform(fill.transform().copy());
+  auto grid_at = grid.getConstAccessor();
+  auto out_at = out->getAccessor();
+  for (auto it = fill.cbeginValueOn(); it; ++it)
+    out_at.setValue(it.getCoord(), static_cast<float>(grid_at.getValue(it.getCoord()) * factor));
+  return out;
+}
+
+// A duration in the unit that reads best for `longest_s`.
+struct TimeUnit {
+  double seconds;
+  const char* name;
+};
+TimeUnit time_unit(double longest_s) {
+  if (longest_s > 3 * 3600.0) return {3600.0, "h"};
+  if (longest_s > 3 * 60.0) return {60.0, "min"};
+  return {1.0, "s"};
+}
+
+std::string when(double t_s) {
+  const auto total = static_cast<long>(std::lround(t_s));
+  if (total < 60) return fmt::format("{} s", total);
+  if (total < 3600) return fmt::format("{} min {:02} s", total / 60, total % 60);
+  return fmt::format("{} h {:02} min", total / 3600, (total % 3600) / 60);
+}
+
+// The snapshot of the thermal run nearest `t_s` (the pictures asked for it, so it is there).
+const thermal::TemperatureSnapshot* snapshot_at(const thermal::HeatResult& heat, double t_s) {
+  const thermal::TemperatureSnapshot* best = nullptr;
+  for (const thermal::TemperatureSnapshot& s : heat.snapshots)
+    if (!best || std::abs(s.time_s - t_s) < std::abs(best->time_s - t_s)) best = &s;
+  return best;
+}
+
+// The end of toolpath layer `layer` (or of the print for -1), s.
+double layer_end_s(const Toolpath& tp, int layer) {
+  if (layer < 0 || static_cast<std::size_t>(layer) >= tp.layers.size()) return tp.total_time_s();
+  const ToolpathLayer& l = tp.layers[static_cast<std::size_t>(layer)];
+  return l.start_s + l.duration_s();
+}
+
+// The moment a temperature picture shows: its own time, or the end of its layer, or of the print.
+double picture_time_s(const Toolpath& tp, double time_s, int up_to_layer) {
+  return std::isfinite(time_s) ? time_s : layer_end_s(tp, up_to_layer);
+}
+
+// The field of `colouring` for the variant of `in`, over the material voxels of `fill` (the part as the
+// picture shows it). `time_s`: the moment of a temperature picture.
+Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::FloatGrid& fill, double time_s,
+                 const std::optional<std::pair<double, double>>& range) {
+  const PictureFrame& frame = *in.frame;
+  const ThermalRun& th = *in.thermal;
+  const Material& material = in.variant->material;
+  Field f;
+  const auto scale = [&](double lo, double hi, render::ColourMap map) {
+    f.scale.lo = range ? range->first : lo;
+    f.scale.hi = range ? range->second : hi;
+    f.scale.map = std::move(map);
+  };
+  switch (colouring) {
+    case Colouring::kFusion: {
+      using thermal::Verdict;
+      f.heading = "Fusion";
+      f.title = "each piece of bead by its worst interface";
+      for (const Verdict v : {Verdict::kOk, Verdict::kTooHot, Verdict::kTooCold, Verdict::kNoInterface})
+        f.categories.push_back({verdict_colour(v), v == Verdict::kOk ? "fuses"
+                                                   : v == Verdict::kTooHot
+                                                       ? "too hot: landed on soft material"
+                                                   : v == Verdict::kTooCold ? "too cold: does not heal"
+                                                                            : "no interface (on the table)"});
+      std::vector<double> by_cell(th.cells.size());
+      for (std::size_t i = 0; i < by_cell.size(); ++i) {
+        switch (th.cells[i]) {
+          case Verdict::kOk:
+            by_cell[i] = 0;
+            break;
+          case Verdict::kTooHot:
+            by_cell[i] = 1;
+            break;
+          case Verdict::kTooCold:
+            by_cell[i] = 2;
+            break;
+          case Verdict::kNoInterface:
+            by_cell[i] = 3;
+            break;
+        }
+      }
+      f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
+      break;
+    }
+    case Colouring::kSection: {
+      f.heading = "Sections";
+      f.title = "section";
+      const Toolpath& tp = *in.toolpath;
+      for (std::size_t s = 0; s < tp.sections.size(); ++s)
+        f.categories.push_back({section_colour(static_cast<int>(s)), tp.sections[s]});
+      std::vector<double> by_layer;
+      for (const ToolpathLayer& l : tp.layers) by_layer.push_back(l.section >= 0 ? l.section : kNaN);
+      f.voxels = values_by_label(fill, *in.deposit->layer, by_layer);
+      break;
+    }
+    case Colouring::kLayer: {
+      f.heading = "Layers";
+      f.title = "toolpath layer (from 0 at the table)";
+      std::vector<double> by_layer(in.toolpath->layers.size());
+      for (std::size_t i = 0; i < by_layer.size(); ++i) by_layer[i] = static_cast<double>(i);
+      f.voxels = values_by_label(fill, *in.deposit->layer, by_layer);
+      scale(0.0, std::max(1, frame.layers - 1), render::ColourMap::viridis());
+      break;
+    }
+    case Colouring::kTime: {
+      const TimeUnit unit = time_unit(frame.print_time_s);
+      f.heading = "Deposition time";
+      f.title = fmt::format("deposition time ({})", unit.name);
+      f.voxels = values_of(fill, *in.deposit->time, 1.0 / unit.seconds);
+      scale(0.0, frame.print_time_s / unit.seconds, render::ColourMap::viridis());
+      if (range) f.scale.lo = range->first / unit.seconds, f.scale.hi = range->second / unit.seconds;
+      break;
+    }
+    case Colouring::kSubstrate: {
+      f.heading = "Substrate temperature at deposition";
+      f.title = "temperature of what the bead landed on (°C)";
+      f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_substrate_c(th.mesh, th.heat));
+      scale(frame.cold_c, frame.hot_c, render::ColourMap::inferno());
+      f.note = fmt::format("support limit {:.0f} °C; grey: on the table", material.support_limit_c);
+      break;
+    }
+    case Colouring::kHealing: {
+      f.heading = "Degree of healing";
+      f.title = "least degree of healing of each piece of bead";
+      f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_healing(th.mesh, th.heat));
+      scale(0.0, 1.0, render::ColourMap::viridis());
+      f.note = fmt::format("needs {:.2f}; grey: no interface", material.required_healing);
+      break;
+    }
+    case Colouring::kDeviation: {
+      BT_CHECK(in.cad != nullptr);
+      f.heading = "Stock over the CAD";
+      f.title = "stock over the CAD (mm)";
+      const openvdb::FloatGrid::ConstPtr distance = in.cad->comparison.cad_distance;
+      f.at_point = [distance](const Eigen::Vector3d& p) { return sim::cad_distance_at(*distance, p); };
+      scale(frame.stock_centre_mm - frame.stock_half_range_mm,
+            frame.stock_centre_mm + frame.stock_half_range_mm, render::ColourMap::diverging());
+      f.note = fmt::format("white: the requested {:.1f} mm; blue: less (undercut below 0)",
+                           in.cad->requested_stock_mm);
+      break;
+    }
+    case Colouring::kPorosity: {
+      f.heading = "Porosity";
+      f.title = "local porosity (void fraction)";
+      const openvdb::MaskGrid::Ptr none = openvdb::MaskGrid::create();
+      const double bead = in.variant->sections.empty() ? 4.0 * in.deposit->voxel_size_mm
+                                                       : in.variant->sections.front().bead_width_mm;
+      const int radius = std::max(1, static_cast<int>(std::lround(0.5 * bead / in.deposit->voxel_size_mm)));
+      const openvdb::FloatGrid::Ptr porosity =
+          sim::local_porosity(*in.deposit->fill, in.deposit->gaps ? *in.deposit->gaps : *none, radius);
+      f.voxels = values_of(fill, *porosity, 1.0);
+      scale(0.0, 0.3, render::ColourMap::viridis());
+      f.note =
+          fmt::format("void over envelope within {:.0f} mm", (2 * radius + 1) * in.deposit->voxel_size_mm);
+      break;
+    }
+    case Colouring::kTemperature: {
+      f.heading = fmt::format("Temperature at {}", when(time_s));
+      f.title = "temperature (°C)";
+      const thermal::TemperatureSnapshot* s = snapshot_at(th.heat, time_s);
+      BT_CHECK(s != nullptr);
+      const std::vector<double> by_cell(s->temp_c.begin(), s->temp_c.end());
+      f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
+      scale(frame.cold_c, frame.hot_c, render::ColourMap::inferno());
+      break;
+    }
+  }
+  return f;
+}
+
+render::RenderOptions render_options(const RenderSpec& r) {
+  render::RenderOptions o;
+  o.width = r.width;
+  o.height = r.height;
+  o.samples_per_pixel = r.samples;
+  o.ambient_occlusion = r.ambient_occlusion;
+  return o;
+}
+
+std::string view_title(const render::CameraSpec& c) {
+  switch (c.view) {
+    case render::View::kIsometric:
+      return "isometric view";
+    case render::View::kTop:
+      return "top view";
+    case render::View::kFront:
+      return "front view";
+    case render::View::kSide:
+      return "side view";
+    case render::View::kUser:
+      return "user camera";
+  }
+  return "";
+}
+
+// One picture: the field drawn on the part from the camera, annotated, with its raw values.
+render::FieldPicture draw(const render::PreparedDeposit& prepared, const Field& field,
+                          const render::CameraSpec& camera, const std::optional<CutSpec>& cut,
+                          const PictureInputs& in, const std::string& title, const std::string& subtitle) {
+  const RenderSpec& spec = in.variant->render;
+  render::Annotation note;
+  note.title = title;
+  note.subtitle = subtitle;
+  note.legend = field.legend();
+  note.length_unit = in.frame->length_unit;
+  note.mm_per_pixel = 1.0;  // a placeholder for the layout: the real scale is known once framed
+  const render::AnnotationLayout layout =
+      spec.legend ? render::layout_for(spec.width, spec.height, note) : render::AnnotationLayout{};
+  render::RenderOptions o = render_options(spec);
+  o.camera = camera;
+  o.frame = in.frame->bounds;
+  o.margins = {0.03 + static_cast<double>(layout.margin_px) / spec.width,
+               0.03 + static_cast<double>(layout.legend_panel_px) / spec.width,
+               0.03 + static_cast<double>(layout.title_band_px) / spec.height,
+               0.03 + static_cast<double>(layout.scale_band_px) / spec.height};
+  if (cut) o.cut = render::Cutaway{cut->point.cast<float>(), cut->normal.cast<float>()};
+  render::SurfaceField sf;
+  sf.voxels = field.voxels.get();
+  sf.at_point = field.at_point;
+  sf.colour = [&field](double v) { return field.colour(v); };
+  render::FieldPicture picture = render::render_field(prepared, sf, o);
+  if (spec.legend) {
+    note.mm_per_pixel = picture.mm_per_pixel;
+    render::annotate(picture.image, note);
+  }
+  return picture;
+}
+
+void write_picture(const render::FieldPicture& picture, const std::filesystem::path& dir,
+                   const std::string& stem, bool exr, const std::string& rel_dir, PictureFiles& files) {
+  render::write_png(picture.image, dir / (stem + ".png"));
+  files.images.push_back(rel_dir + "/" + stem + ".png");
+  if (!exr) return;
+  render::write_exr(picture.image, dir / (stem + ".exr"), {{"value", picture.values}, {"Z", picture.depth}});
+  files.exr.push_back(rel_dir + "/" + stem + ".exr");
+}
+
+}  // namespace
+
+PictureFrame picture_frame(const std::vector<const Variant*>& variants,
+                           const std::vector<const Toolpath*>& toolpaths, bool inches) {
+  BT_CHECK(variants.size() == toolpaths.size());
+  PictureFrame f;
+  f.length_unit = inches ? render::LengthUnit::kInch : render::LengthUnit::kMetric;
+  bool first = true;
+  for (std::size_t k = 0; k < variants.size(); ++k) {
+    const Variant& v = *variants[k];
+    const Toolpath& tp = *toolpaths[k];
+    f.print_time_s = std::max(f.print_time_s, tp.total_time_s());
+    f.layers = std::max(f.layers, static_cast<int>(tp.layers.size()));
+    const double cold = v.machine.environment.ambient_c, hot = v.material.deposition_temp_c;
+    f.cold_c = first ? cold : std::min(f.cold_c, cold);
+    f.hot_c = first ? hot : std::max(f.hot_c, hot);
+    double stock = std::numeric_limits<double>::infinity(), layer = 0.0;
+    for (const slicer::SectionParams& s : v.sections) {
+      if (!s.outline_path.empty()) continue;
+      stock = std::min(stock, s.outer_stock_mm);
+      layer = std::max(layer, s.layer_height_mm);
+    }
+    if (std::isfinite(stock)) {
+      f.stock_centre_mm = first ? stock : std::min(f.stock_centre_mm, stock);
+      f.stock_half_range_mm = first ? layer : std::max(f.stock_half_range_mm, layer);
+    }
+    // The beads: every depositing move's ends, grown by half its bead across and by its height below.
+    for (const Move& m : tp.moves) {
+      if (!m.deposits()) continue;
+      const float half = static_cast<float>(0.5 * std::max(m.bead_width_mm, m.layer_height_mm));
+      for (const Eigen::Vector3d& p : {m.start, m.end}) {
+        const Eigen::Vector3f q = p.cast<float>();
+        f.bounds.extend(
+            Eigen::Vector3f(q.x() - half, q.y() - half, q.z() - static_cast<float>(m.layer_height_mm)));
+        f.bounds.extend(Eigen::Vector3f(q.x() + half, q.y() + half, q.z()));
+      }
+    }
+    first = false;
+  }
+  if (!(f.hot_c > f.cold_c)) f.hot_c = f.cold_c + 1.0;
+  if (!(f.stock_half_range_mm > 0.0)) f.stock_half_range_mm = 1.0;
+  return f;
+}
+
+std::vector<double> picture_snapshot_times(const RenderSpec& spec, const Toolpath& tp) {
+  std::vector<double> out;
+  for (const ImageSpec& im : spec.images)
+    if (im.colour == Colouring::kTemperature) out.push_back(picture_time_s(tp, im.time_s, im.up_to_layer));
+  if (spec.progress && spec.progress->colour == Colouring::kTemperature)
+    for (std::size_t i = 0; i < tp.layers.size(); ++i)
+      if ((i + 1) % static_cast<std::size_t>(spec.progress->every) == 0 || i + 1 == tp.layers.size())
+        out.push_back(layer_end_s(tp, static_cast<int>(i)));
+  return out;
+}
+
+PictureFiles write_pictures(const PictureInputs& in, const std::filesystem::path& dir,
+                            std::vector<std::string>& notes) {
+  const Variant& v = *in.variant;
+  const Toolpath& tp = *in.toolpath;
+  const sim::Deposit& d = *in.deposit;
+  PictureFiles files;
+  // The part as a picture shows it, prepared once per shape: whole, as it stood when a layer was done, or
+  // as it stood at a moment (the material landed by then).
+  struct Shown {
+    openvdb::FloatGrid::Ptr fill;
+    render::PreparedDeposit prepared;
+  };
+  std::map<std::pair<int, double>, Shown> shapes;
+  const auto shape = [&](int last_layer, double until_s) -> const Shown& {
+    const std::pair key{last_layer, until_s};
+    if (auto it = shapes.find(key); it != shapes.end()) return it->second;
+    sim::Deposit shown = d;
+    if (last_layer >= 0)
+      shown.fill = sim::fill_up_to_layer(d, last_layer);
+    else if (std::isfinite(until_s))
+      shown.fill = sim::fill_up_to_time(d, until_s);
+    openvdb::FloatGrid::Ptr fill = shown.fill;
+    return shapes.emplace(key, Shown{fill, render::PreparedDeposit(shown)}).first->second;
+  };
+  const std::string scenario_line = fmt::format("{} — variant {}", in.scenario->name, v.name);
+  for (const ImageSpec& im : v.render.images) {
+    if (im.colour == Colouring::kDeviation && !in.cad) {
+      if (v.render.images_given)
+        notes.push_back(fmt::format("picture '{}' left out: there is no CAD to compare with ({})", im.name,
+                                    v.program ? "a program is simulated" : "the sections print outlines"));
+      continue;
+    }
+    const double t = picture_time_s(tp, im.time_s, im.up_to_layer);
+    // A temperature picture at a moment inside the print shows the part as it stood then.
+    const bool at_moment =
+        im.up_to_layer < 0 && im.colour == Colouring::kTemperature && t < tp.total_time_s();
+    const Shown& shown = shape(im.up_to_layer, at_moment ? t : std::numeric_limits<double>::infinity());
+    const Field field = make_field(im.colour, in, *shown.fill, t, im.range);
+    std::string subtitle = scenario_line + ", " + view_title(im.camera);
+    if (im.up_to_layer >= 0) subtitle += fmt::format(", after layer {}", im.up_to_layer);
+    if (at_moment) subtitle += ", as it stood then";
+    if (im.cut) subtitle += ", cut away";
+    const render::FieldPicture picture =
+        draw(shown.prepared, field, im.camera, im.cut, in, field.heading, subtitle);
+    write_picture(picture, dir, im.name, v.render.exr, v.name, files);
+  }
+  if (v.render.progress) {
+    const ProgressSpec& p = *v.render.progress;
+    const std::filesystem::path frames = dir / "progress";
+    std::filesystem::create_directories(frames);
+    int frame_index = 0;
+    for (std::size_t i = 0; i < tp.layers.size(); ++i) {
+      if ((i + 1) % static_cast<std::size_t>(p.every) != 0 && i + 1 != tp.layers.size()) continue;
+      const int layer = static_cast<int>(i);
+      const Shown& shown = shape(layer, std::numeric_limits<double>::infinity());
+      const Field field = make_field(p.colour, in, *shown.fill, layer_end_s(tp, layer), std::nullopt);
+      const render::FieldPicture picture =
+          draw(shown.prepared, field, p.camera, std::nullopt, in, field.heading,
+               fmt::format("{}, layer {} of {}, {}", scenario_line, layer, tp.layers.size(),
+                           when(layer_end_s(tp, layer))));
+      const std::string stem = fmt::format("frame-{:04}", frame_index++);
+      render::write_png(picture.image, frames / (stem + ".png"));
+      files.progress.push_back(v.name + "/progress/" + stem + ".png");
+      shapes.erase({layer, std::numeric_limits<double>::infinity()});  // each frame's shape is used once
+    }
+  }
+  return files;
+}
+
+std::vector<std::string> write_sheets(const RunResult& result, const std::filesystem::path& out_dir) {
+  std::vector<std::string> out;
+  if (result.variants.size() < 2 || !result.scenario) return out;
+  const Variant& first = *result.variants.front().variant;
+  if (!first.render.sheet) return out;
+  // The pictures every variant has, by file name, in the first variant's order.
+  for (const std::string& image : result.variants.front().images) {
+    const std::string file = std::filesystem::path(image).filename().string();
+    std::vector<render::Image> tiles;
+    std::vector<std::string> captions;
+    for (const VariantResult& v : result.variants) {
+      const auto it = std::find_if(v.images.begin(), v.images.end(), [&](const std::string& p) {
+        return std::filesystem::path(p).filename().string() == file;
+      });
+      if (it == v.images.end()) continue;
+      tiles.push_back(render::read_image(out_dir / *it));
+      captions.push_back(v.name);
+    }
+    if (tiles.size() < 2) continue;
+    const std::string name = "comparison-" + file;
+    render::write_png(render::compose_sheet(tiles, captions), out_dir / name);
+    out.push_back(name);
+  }
+  return out;
+}
+
+}  // namespace beadtwin::scenarios

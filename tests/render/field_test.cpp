@@ -1,0 +1,228 @@
+// Tests of pictures of a field (render_field): the value and depth it reports pixel by pixel, the cutaway's
+// cut face, framing on a given box, and golden images compared with a tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "render/annotate.hpp"
+#include "render/colormap.hpp"
+#include "render/image.hpp"
+#include "render/render.hpp"
+#include "tests/render/box_deposit.hpp"
+
+namespace beadtwin::render {
+namespace {
+
+using testing::make_box_deposit;
+
+constexpr Rgb kMagenta{1.0f, 0.0f, 1.0f};
+
+const sim::Deposit& box() {
+  static const sim::Deposit deposit = make_box_deposit();
+  return deposit;
+}
+const PreparedDeposit& prepared_box() {
+  static const PreparedDeposit prepared(box());
+  return prepared;
+}
+
+// The box's layer index as a float field on its material voxels.
+const openvdb::FloatGrid& layer_field() {
+  static const openvdb::FloatGrid::Ptr grid = [] {
+    auto g = openvdb::FloatGrid::create(std::nanf(""));
+    g->setTransform(box().layer->transform().copy());
+    auto at = g->getAccessor();
+    for (auto it = box().layer->cbeginValueOn(); it; ++it)
+      if (*it >= 0) at.setValue(it.getCoord(), static_cast<float>(*it));
+    return g;
+  }();
+  return *grid;
+}
+
+RenderOptions small(View view) {
+  RenderOptions o;
+  o.width = 240;
+  o.height = 160;
+  o.samples_per_pixel = 4;
+  o.camera.view = view;
+  o.background = o.background_bottom = kMagenta;
+  o.ground_shadow = false;
+  return o;
+}
+
+SurfaceField by_layer() {
+  SurfaceField f;
+  f.voxels = &layer_field();
+  const ScalarScale scale{0.0, 11.0, ColourMap::viridis()};
+  f.colour = [scale](double v) { return scale.colour(v); };
+  return f;
+}
+
+// Every pixel on the part reports the layer of the material it shows, and how far it is; the rest NaN.
+TEST(RenderField, ValuesAndDepthFollowThePart) {
+  const FieldPicture p = render_field(prepared_box(), by_layer(), small(View::kFront));
+  ASSERT_EQ(p.values.size(), 240u * 160u);
+  std::size_t on = 0;
+  float lowest = 1e9f, highest = -1e9f;
+  for (std::size_t i = 0; i < p.values.size(); ++i) {
+    const Rgb c = p.image.at(static_cast<int>(i % 240), static_cast<int>(i / 240));
+    if (c == kMagenta) {
+      EXPECT_TRUE(std::isnan(p.values[i])) << i;
+      EXPECT_TRUE(std::isnan(p.depth[i])) << i;
+      continue;
+    }
+    if (std::isnan(p.values[i])) continue;  // an edge pixel whose first samples missed
+    ++on;
+    EXPECT_EQ(p.values[i], std::round(p.values[i]));
+    EXPECT_GT(p.depth[i], 0.0f);
+    lowest = std::min(lowest, p.values[i]);
+    highest = std::max(highest, p.values[i]);
+  }
+  EXPECT_GT(on, 2000u);
+  EXPECT_EQ(lowest, 0.0f);
+  EXPECT_EQ(highest, 11.0f);  // 60 mm of 5 mm layers
+  // The front view is orthographic: the scale is the window's width over the image's.
+  EXPECT_GT(p.mm_per_pixel, 0.0);
+  EXPECT_LT(p.mm_per_pixel * 240, 400.0);
+}
+
+// A point function colours the part too, and the colour is the function's.
+TEST(RenderField, PointFieldColoursThePart) {
+  SurfaceField f;
+  f.at_point = [](const Eigen::Vector3d& p) { return p.x() < 100.0 ? 0.0 : 1.0; };
+  f.colour = [](double v) { return v < 0.5 ? Rgb{0.9f, 0.2f, 0.2f} : Rgb{0.2f, 0.3f, 0.9f}; };
+  const FieldPicture p = render_field(prepared_box(), f, small(View::kFront));
+  // Left half of the front face red, right half blue (hue, whatever the light).
+  const Rgb left = p.image.at(70, 80), right = p.image.at(170, 80);
+  EXPECT_GT(left.r, left.b);
+  EXPECT_GT(right.b, right.r);
+  EXPECT_EQ(p.values[80 * 240 + 70], 0.0f);
+  EXPECT_EQ(p.values[80 * 240 + 170], 1.0f);
+}
+
+// Cut through the middle of the box's front wall (its bead runs along y = 0, 21 mm wide) and seen from the
+// front: the cut face, at the plane, stands 10.5 mm behind the wall's outer face and shows the layers there.
+// Cut behind the front wall instead (y = 30), the hollow inside shows the back wall's inner face (its bead
+// along y = 200), 200 mm behind the front wall's outer face.
+TEST(RenderField, CutawayShowsTheCutFace) {
+  const FieldPicture whole = render_field(prepared_box(), by_layer(), small(View::kFront));
+  RenderOptions o = small(View::kFront);
+  o.cut = Cutaway{Eigen::Vector3f(0, 0, 0), -Eigen::Vector3f::UnitY()};
+  const FieldPicture through = render_field(prepared_box(), by_layer(), o);
+  o.cut = Cutaway{Eigen::Vector3f(0, 30, 0), -Eigen::Vector3f::UnitY()};
+  const FieldPicture behind = render_field(prepared_box(), by_layer(), o);
+  const std::size_t centre = 80 * 240 + 120;
+  ASSERT_FALSE(std::isnan(whole.depth[centre]));
+  ASSERT_FALSE(std::isnan(through.depth[centre]));
+  ASSERT_FALSE(std::isnan(behind.depth[centre]));
+  EXPECT_NEAR(through.depth[centre] - whole.depth[centre], 10.5f, 2.0f);
+  EXPECT_EQ(through.values[centre], whole.values[centre]);  // the same layer, inside
+  EXPECT_NEAR(behind.depth[centre] - whole.depth[centre], 200.0f, 3.0f);  // outer face -10.5, inner 189.5
+  EXPECT_NE(through.image, whole.image);
+  // Every pixel of the cut face at the centre row is nearer than the back wall: the face is solid (the
+  // wall's beads overlap), with no hole to look through.
+  for (int x = 100; x < 140; ++x) {
+    const std::size_t i = 80 * 240 + static_cast<std::size_t>(x);
+    EXPECT_LT(through.depth[i] - whole.depth[i], 15.0f) << x;
+  }
+}
+
+TEST(RenderField, BadCutawayAndFieldAreCaught) {
+  RenderOptions o = small(View::kFront);
+  o.cut = Cutaway{Eigen::Vector3f::Zero(), Eigen::Vector3f::Zero()};
+  EXPECT_THROW(render_field(prepared_box(), by_layer(), o), InputError);
+  SurfaceField none;
+  none.colour = [](double) { return Rgb{}; };
+  EXPECT_THROW(render_field(prepared_box(), none, small(View::kFront)), InternalError);
+}
+
+// A frame box larger than the part (another variant's, say) makes the part smaller in the picture, in the
+// same place for every picture that shares it.
+TEST(RenderField, FramingOnAGivenBox) {
+  RenderOptions o = small(View::kTop);
+  const FieldPicture own = render_field(prepared_box(), by_layer(), o);
+  o.frame = Eigen::AlignedBox3f(Eigen::Vector3f(-200, -200, 0), Eigen::Vector3f(400, 400, 60));
+  const FieldPicture larger = render_field(prepared_box(), by_layer(), o);
+  EXPECT_GT(larger.mm_per_pixel, 1.5 * own.mm_per_pixel);
+}
+
+// --- golden images ---
+
+// The largest share of pixels whose colour may differ from the reference by more than `kPixelTolerance`
+// (any channel), and the mean difference allowed: rounding, another Embree build or CPU change edges a
+// little, a real change (a colour, the light, the framing) moves far more.
+constexpr float kPixelTolerance = 0.08f;
+constexpr double kMaxDifferentShare = 0.01;
+constexpr double kMaxMeanDifference = 0.01;
+
+// Compares `image` with tests/render/golden/<name>.png; with BEADTWIN_UPDATE_GOLDEN=1 in the environment,
+// writes it there instead (and the test passes): look at it before committing it.
+void expect_matches_golden(const Image& image, const std::string& name) {
+  const std::filesystem::path path =
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "tests" / "render" / "golden" / (name + ".png");
+  if (const char* update = std::getenv("BEADTWIN_UPDATE_GOLDEN"); update && std::string(update) == "1") {
+    std::filesystem::create_directories(path.parent_path());
+    write_png(image, path);
+    return;
+  }
+  ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing: run with BEADTWIN_UPDATE_GOLDEN=1";
+  const Image golden = read_image(path);
+  ASSERT_EQ(golden.width, image.width);
+  ASSERT_EQ(golden.height, image.height);
+  std::size_t different = 0;
+  double sum = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb a = image.at(x, y), b = golden.at(x, y);
+      const float d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      sum += d;
+      different += d > kPixelTolerance;
+    }
+  const double pixels = static_cast<double>(image.width) * image.height;
+  EXPECT_LE(static_cast<double>(different) / pixels, kMaxDifferentShare) << name;
+  EXPECT_LE(sum / pixels, kMaxMeanDifference) << name;
+}
+
+Annotation legend_for(const std::string& title) {
+  Annotation a;
+  a.title = title;
+  a.subtitle = "box of 12 layers";
+  Legend l;
+  l.title = "layer";
+  l.scale = ScalarScale{0.0, 11.0, ColourMap::viridis()};
+  a.legend = l;
+  return a;
+}
+
+TEST(RenderGolden, IsometricByLayerWithLegend) {
+  RenderOptions o;
+  o.width = 320;
+  o.height = 200;
+  const Annotation a = legend_for("Layers");
+  const AnnotationLayout layout = layout_for(o.width, o.height, a);
+  o.margins = {0.03, 0.03 + static_cast<double>(layout.legend_panel_px) / o.width,
+               0.03 + static_cast<double>(layout.title_band_px) / o.height,
+               0.03 + static_cast<double>(layout.scale_band_px) / o.height};
+  FieldPicture p = render_field(prepared_box(), by_layer(), o);
+  Annotation scaled = a;
+  scaled.mm_per_pixel = p.mm_per_pixel;
+  annotate(p.image, scaled);
+  expect_matches_golden(p.image, "box-isometric-layers");
+}
+
+TEST(RenderGolden, CutawayFromTheFront) {
+  RenderOptions o;
+  o.width = 320;
+  o.height = 200;
+  o.camera.view = View::kUser;
+  o.camera.direction = Eigen::Vector3f(0.4f, 1.0f, -0.5f);
+  o.cut = Cutaway{Eigen::Vector3f(100, 100, 0), -Eigen::Vector3f::UnitY()};
+  const FieldPicture p = render_field(prepared_box(), by_layer(), o);
+  expect_matches_golden(p.image, "box-cutaway-layers");
+}
+
+}  // namespace
+}  // namespace beadtwin::render

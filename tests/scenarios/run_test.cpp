@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "render/image.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/read_file.hpp"
 
@@ -235,6 +236,56 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   const std::string html = read_file(o.out_dir / "report.html");
   EXPECT_NE(html.find("The part against its CAD"), std::string::npos);
   EXPECT_NE(html.find("<img src=\"baseline/deviation.png\""), std::string::npos);
+}
+
+// The render block: pictures of each variant with their own cameras, colourings, cutaway, earlier stage
+// and EXR, progress frames, and the variants' comparison sheets.
+TEST(Run, PicturesOfTheRenderBlock) {
+  std::string text = kSmall;
+  const std::string render = R"(render:
+  width: 160
+  height: 100
+  samples: 2
+  exr: true
+  images:
+    - {colour: fusion}
+    - {name: inside, colour: temperature, time: 5 min, view: front, cut: {point: [120, 90, 0], normal: [0, -1, 0]}}
+    - {colour: layer, layer: 2, view: top}
+  progress: {colour: layer, every: 2}
+)";
+  text.replace(text.find("render: {width: 160, height: 100}\n"),
+               std::string("render: {width: 160, height: 100}\n").size(), render);
+  const Scenario sc = load_scenario_text(text, "pictures.yaml");
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_pictures";
+  std::filesystem::remove_all(o.out_dir);
+  run_scenario(sc, o);
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
+  for (const auto& v : j["variants"]) {
+    const std::string name = v["name"];
+    EXPECT_EQ(v["images"],
+              nlohmann::json({name + "/fusion.png", name + "/inside.png", name + "/layer-top.png"}));
+    ASSERT_EQ(v["images_exr"].size(), 3u);
+    for (const auto& f : v["images_exr"])
+      EXPECT_GT(std::filesystem::file_size(o.out_dir / f.get<std::string>()), 1000u);
+    // Six layers, every second one: after layers 1, 3 and 5.
+    ASSERT_EQ(v["progress_frames"].size(), 3u);
+    EXPECT_EQ(v["progress_frames"][0], name + "/progress/frame-0000.png");
+    for (const auto& f : v["progress_frames"])
+      EXPECT_TRUE(std::filesystem::exists(o.out_dir / f.get<std::string>()));
+  }
+  // One sheet per picture, the two variants side by side: twice as wide as a picture.
+  EXPECT_EQ(j["sheets"],
+            nlohmann::json({"comparison-fusion.png", "comparison-inside.png", "comparison-layer-top.png"}));
+  const render::Image sheet = render::read_image(o.out_dir / "comparison-fusion.png");
+  EXPECT_EQ(sheet.width, 320);
+  // The variants print differently: their fusion pictures differ; the part after layer 2 is not the
+  // whole part.
+  EXPECT_NE(render::read_image(o.out_dir / "fast" / "fusion.png"),
+            render::read_image(o.out_dir / "slow" / "fusion.png"));
+  EXPECT_NE(render::read_image(o.out_dir / "fast" / "progress" / "frame-0000.png"),
+            render::read_image(o.out_dir / "fast" / "progress" / "frame-0002.png"));
+  EXPECT_NE(read_file(o.out_dir / "report.html").find("comparison-inside.png"), std::string::npos);
 }
 
 TEST(Run, UnknownVariantIsAnInputError) {

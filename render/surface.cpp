@@ -70,27 +70,26 @@ SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue) {
   return mesh;
 }
 
-LayerProbe::LayerProbe(const openvdb::Int32Grid& layer)
-    : accessor_(layer.getConstAccessor()),
-      transform_(layer.transform()),
-      half_voxel_mm_(0.5 * layer.voxelSize()[0]) {}
+namespace {
 
-int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
-  const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm_ * inward.cast<double>();
-  const openvdb::Vec3d index = transform_.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
+// The value of the voxel half a voxel inside `point` along `inward` if `holds` accepts it (an active voxel
+// and its value), else of the nearest accepted voxel in its 3x3x3 neighbourhood (the step landed in a void
+// or outside: thin features, corners), else `none`.
+template <class Accessor, class Value, class Holds>
+Value probe(Accessor& accessor, const openvdb::math::Transform& transform, double half_voxel_mm,
+            const Eigen::Vector3f& point, const Eigen::Vector3f& inward, Value none, const Holds& holds) {
+  const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm * inward.cast<double>();
+  const openvdb::Vec3d index = transform.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
   const openvdb::Coord centre = openvdb::Coord::round(index);
-
-  int value = -1;
-  if (accessor_.probeValue(centre, value) && value >= 0) return value;
-
-  // The step landed in a void or outside (thin features, corners): take the nearest voxel with material.
-  int best = -1;
+  Value value = none;
+  if (accessor.probeValue(centre, value) && holds(value)) return value;
+  Value best = none;
   double best_distance = std::numeric_limits<double>::max();
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const openvdb::Coord c = centre.offsetBy(dx, dy, dz);
-        if (!accessor_.probeValue(c, value) || value < 0) continue;
+        if (!accessor.probeValue(c, value) || !holds(value)) continue;
         const double distance = (c.asVec3d() - index).lengthSqr();
         if (distance < best_distance) {
           best_distance = distance;
@@ -100,31 +99,27 @@ int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& in
   return best;
 }
 
+}  // namespace
+
+LayerProbe::LayerProbe(const openvdb::Int32Grid& layer)
+    : accessor_(layer.getConstAccessor()),
+      transform_(layer.transform()),
+      half_voxel_mm_(0.5 * layer.voxelSize()[0]) {}
+
+int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
+  // Material is an active voxel with a layer (>= 0).
+  return probe(accessor_, transform_, half_voxel_mm_, point, inward, -1, [](int v) { return v >= 0; });
+}
+
 FieldProbe::FieldProbe(const openvdb::FloatGrid& field)
     : accessor_(field.getConstAccessor()),
       transform_(field.transform()),
       half_voxel_mm_(0.5 * field.voxelSize()[0]) {}
 
 float FieldProbe::value_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
-  const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm_ * inward.cast<double>();
-  const openvdb::Vec3d index = transform_.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
-  const openvdb::Coord centre = openvdb::Coord::round(index);
-  float value = 0.0f;
-  if (accessor_.probeValue(centre, value)) return value;
-  float best = std::numeric_limits<float>::quiet_NaN();
-  double best_distance = std::numeric_limits<double>::max();
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const openvdb::Coord c = centre.offsetBy(dx, dy, dz);
-        if (!accessor_.probeValue(c, value)) continue;
-        const double distance = (c.asVec3d() - index).lengthSqr();
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = value;
-        }
-      }
-  return best;
+  // Material is an active voxel, whatever its value (NaN: material without a value).
+  return probe(accessor_, transform_, half_voxel_mm_, point, inward, std::numeric_limits<float>::quiet_NaN(),
+               [](float) { return true; });
 }
 
 }  // namespace beadtwin::render

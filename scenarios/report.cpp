@@ -236,12 +236,15 @@ json fusion_json(const FusionRow& f) {
 json variant_json(const VariantResult& r) {
   const Metrics& m = r.metrics;
   json gates = json::array();
-  for (const auto& g : r.gates)
-    gates.push_back({{"name", g.name},
-                     {"expr", g.expr},
-                     {"value", optional_json(g.value)},
-                     {"passed", g.passed},
-                     {"message", g.message}});
+  for (const auto& g : r.gates) {
+    json gate = {{"name", g.name},
+                 {"expr", g.expr},
+                 {"value", optional_json(g.value)},
+                 {"passed", g.passed},
+                 {"message", g.message}};
+    if (g.threshold) gate["threshold"] = *g.threshold;  // a relative gate's, from the baseline
+    gates.push_back(gate);
+  }
   json layers = json::array();
   for (const auto& l : r.layers) {
     json row = fusion_json(l);

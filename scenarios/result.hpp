@@ -125,6 +125,7 @@ struct GateResult {
   std::string name;  // the expression as written
   std::string expr;
   std::optional<double> value;
+  std::optional<double> threshold;  // a relative gate's, from the baseline
   bool passed = false;
   std::string message;  // why it failed, when it did
 };
@@ -158,11 +159,11 @@ struct VariantResult {
   std::vector<SectionRow> sections;
   TemperatureHistory temperature_history;
   std::vector<GateResult> gates;
-  std::vector<std::string> images;  // PNG pictures, relative to the output directory
+  std::vector<std::string> images;           // PNG pictures, relative to the output directory
   std::vector<std::string> exr_images;       // the same as EXR with raw values (render.exr)
   std::vector<std::string> progress_frames;  // one per layer (or per render.progress.every layers)
-  std::string program;              // relative path of the print program
-  std::string deposit_file;         // relative path of the .vdb
+  std::string program;                       // relative path of the print program
+  std::string deposit_file;                  // relative path of the .vdb
   ExportedFiles exported;
   std::vector<StageTime> stage_times;
   std::vector<sim::Defect> defects;

@@ -407,8 +407,6 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.notes = deposit.notes;
   if (log)
     for (const std::string& n : res.notes) log(fmt::format("[{}] note: {}", v.name, n));
-  res.gates = evaluate_gates(sc.gates, res.metrics);
-  res.passed = std::all_of(res.gates.begin(), res.gates.end(), [](const GateResult& g) { return g.passed; });
   res.stage_times = stages.times();
   return res;
 }
@@ -433,23 +431,43 @@ Toolpath variant_toolpath(const Variant& v) {
   return slice_variant(v);
 }
 
-std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics) {
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics,
+                                       const Metrics* baseline) {
   std::vector<GateResult> out;
   for (const Gate& g : gates) {
     GateResult r;
     r.name = g.expr;
     r.expr = g.expr;
     r.value = metrics.get(g.metric);
+    std::optional<double> threshold = g.threshold;
+    if (g.relative) {
+      const std::optional<double> base = baseline ? baseline->get(g.metric) : std::nullopt;
+      threshold = base ? std::optional<double>(*base * g.factor + g.offset) : std::nullopt;
+      r.threshold = threshold;
+    }
     if (!r.value) {
       r.passed = false;
       r.message = fmt::format("{} is not measured for this run", g.metric);
+    } else if (!threshold) {
+      r.passed = false;
+      r.message = baseline ? fmt::format("{} is not measured for the baseline", g.metric)
+                           : std::string("there is no baseline variant to compare with");
     } else {
-      r.passed = compare(*r.value, g.op, g.threshold);
-      if (!r.passed) r.message = fmt::format("{} = {:.6g}, required {}", g.metric, *r.value, g.expr);
+      r.passed = compare(*r.value, g.op, *threshold);
+      if (!r.passed)
+        r.message = g.relative ? fmt::format("{} = {:.6g}, required {} (baseline's: {:.6g}, so {:.6g})",
+                                             g.metric, *r.value, g.expr, *baseline->get(g.metric), *threshold)
+                               : fmt::format("{} = {:.6g}, required {}", g.metric, *r.value, g.expr);
     }
     out.push_back(r);
   }
   return out;
+}
+
+std::size_t baseline_index(const std::vector<VariantResult>& variants) {
+  for (std::size_t i = 0; i < variants.size(); ++i)
+    if (variants[i].name == "baseline") return i;
+  return 0;
 }
 
 std::string slice_program(const Scenario& sc, const std::string& variant_name) {
@@ -497,7 +515,15 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   const PictureFrame frame = picture_frame(chosen, toolpaths, sc.inches);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
     result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, options.out_dir, options.log));
-    result.passed = result.passed && result.variants.back().passed;
+  }
+  // The gates, once every variant has run: some compare with the baseline variant.
+  if (!result.variants.empty()) {
+    const Metrics baseline = result.variants[baseline_index(result.variants)].metrics;
+    for (VariantResult& v : result.variants) {
+      v.gates = evaluate_gates(sc.gates, v.metrics, &baseline);
+      v.passed = std::all_of(v.gates.begin(), v.gates.end(), [](const GateResult& g) { return g.passed; });
+      result.passed = result.passed && v.passed;
+    }
   }
   result.sheets = write_sheets(result, options.out_dir);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

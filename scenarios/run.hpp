@@ -32,6 +32,12 @@ Toolpath variant_toolpath(const Variant& variant);
 // machine's kind), roller and nozzle, ooze, memory budget.
 sim::DepositOptions deposit_options(const Variant& variant);
 
-std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics);
+// `baseline`: the baseline variant's metrics, for the gates relative to it (null: such a gate fails, saying
+// there is no baseline).
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics,
+                                       const Metrics* baseline = nullptr);
+
+// The variant the relative gates compare with: the one named "baseline", else the first.
+std::size_t baseline_index(const std::vector<VariantResult>& variants);
 
 }  // namespace beadtwin::scenarios

@@ -826,11 +826,36 @@ Gate parse_gate(const YAML::Node& node, const std::string& file) {
     for (const auto& n : gate_metrics()) names += (names.empty() ? "" : ", ") + n;
     throw InputError(at, "gates", fmt::format("unknown metric '{}'; expected one of: {}", g.metric, names));
   }
-  try {
-    g.threshold = parse_quantity(rhs, Dimension::kFraction);
-  } catch (const QuantityError& e) {
-    throw InputError(at, "gates",
-                     fmt::format("'{}': the right-hand side must be a number: {}", g.expr, e.what()));
+  const auto number = [&](const std::string& text) {
+    try {
+      return parse_quantity(trim(text), Dimension::kFraction);
+    } catch (const QuantityError& e) {
+      throw InputError(
+          at, "gates",
+          fmt::format("'{}': the right-hand side must be a number, or baseline, baseline * number or "
+                      "baseline + number: {}",
+                      g.expr, e.what()));
+    }
+  };
+  if (rhs.rfind("baseline", 0) == 0) {
+    // Relative to the baseline variant: baseline, baseline * f, baseline + d, baseline - d.
+    g.relative = true;
+    const std::string rest = trim(rhs.substr(std::string_view("baseline").size()));
+    if (!rest.empty()) {
+      const char op = rest.front();
+      const double v = number(rest.substr(1));
+      if (op == '*')
+        g.factor = v;
+      else if (op == '+')
+        g.offset = v;
+      else if (op == '-')
+        g.offset = -v;
+      else
+        throw InputError(at, "gates",
+                         fmt::format("'{}': after baseline expected * number, + number or - number", g.expr));
+    }
+  } else {
+    g.threshold = number(rhs);
   }
   return g;
 }

@@ -155,13 +155,18 @@ struct Gate {
   std::string metric;  // dotted metric path ("interfaces.too_cold_fraction")
   GateOp op = GateOp::kLess;
   double threshold = 0.0;
+  // Relative to the baseline variant ("print_time_s <= baseline * 1.05"): the threshold is the baseline's
+  // value of the same metric times `factor` plus `offset`.
+  bool relative = false;
+  double factor = 1.0;
+  double offset = 0.0;
   SourceLocation where;
 };
 
 struct Scenario {
   std::string name;
   std::string description;
-  std::string file;  // where it was read from ("<built-in default>" for the embedded one)
+  std::string file;     // where it was read from ("<built-in default>" for the embedded one)
   bool inches = false;  // the file writes lengths in inches (units: {length: in}): scale bars follow
   std::vector<Variant> variants;
   std::vector<Gate> gates;

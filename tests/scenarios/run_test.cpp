@@ -288,6 +288,29 @@ TEST(Run, PicturesOfTheRenderBlock) {
   EXPECT_NE(read_file(o.out_dir / "report.html").find("comparison-inside.png"), std::string::npos);
 }
 
+// A gate relative to the baseline (here the first variant, "fast"): the slow variant takes far longer to
+// print and fails it; the fast one passes against itself. The report keeps the threshold it was judged by.
+TEST(Run, RelativeGateFailsTheSlowerVariant) {
+  std::string text = kSmall;
+  text.replace(text.find("  - porosity < 0.5\n"), std::string("  - porosity < 0.5\n").size(),
+               "  - porosity < 0.5\n  - print_time_s <= baseline * 1.05\n");
+  const Scenario sc = load_scenario_text(text, "relative.yaml");
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_relative";
+  std::filesystem::remove_all(o.out_dir);
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), 2u);
+  ASSERT_EQ(r.variants[0].gates.size(), 3u);
+  EXPECT_EQ(r.variants[0].gates[1].expr, "print_time_s <= baseline * 1.05");
+  EXPECT_TRUE(r.variants[0].gates[1].passed);
+  EXPECT_FALSE(r.variants[1].gates[1].passed) << r.variants[1].gates[1].message;
+  EXPECT_FALSE(r.variants[1].passed);
+  EXPECT_FALSE(r.passed);
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
+  EXPECT_DOUBLE_EQ(j["variants"][1]["gates"][1]["threshold"].get<double>(),
+                   1.05 * j["variants"][0]["metrics"]["print_time_s"].get<double>());
+}
+
 TEST(Run, UnknownVariantIsAnInputError) {
   const Scenario sc = load_scenario_text(kSmall, "small.yaml");
   RunOptions o;

@@ -350,6 +350,53 @@ TEST(Gates, ParseAndEvaluate) {
   EXPECT_TRUE(evaluate_gates(sc.gates, m)[2].passed);
 }
 
+// Gates relative to the baseline variant: its value of the same metric, scaled or shifted.
+TEST(Gates, RelativeToTheBaseline) {
+  Scenario sc = load_scenario_text(
+      replace(kGood, "  - porosity < 0.05\n",
+              "  - print_time_s <= baseline * 1.05\n  - porosity <= baseline + 0.01\n"
+              "  - interfaces.too_cold_fraction <= baseline\n  - mass_kg > baseline - 2\n"),
+      "t");
+  ASSERT_EQ(sc.gates.size(), 4u);
+  EXPECT_TRUE(sc.gates[0].relative);
+  EXPECT_DOUBLE_EQ(sc.gates[0].factor, 1.05);
+  EXPECT_DOUBLE_EQ(sc.gates[1].offset, 0.01);
+  EXPECT_DOUBLE_EQ(sc.gates[3].offset, -2.0);
+  Metrics base, slower;
+  base.print_time_s = 1000.0;
+  base.porosity = 0.02;
+  base.too_cold_fraction = 0.1;
+  base.mass_kg = 50.0;
+  slower = base;
+  slower.print_time_s = 1060.0;  // 6 % slower: fails the 5 % gate
+  slower.porosity = 0.025;
+  slower.too_cold_fraction = 0.1;
+  slower.mass_kg = 47.0;  // 3 kg lighter: fails "more than 2 kg below"
+  const auto r = evaluate_gates(sc.gates, slower, &base);
+  EXPECT_FALSE(r[0].passed);
+  EXPECT_NE(r[0].message.find("baseline's: 1000"), std::string::npos) << r[0].message;
+  ASSERT_TRUE(r[0].threshold);
+  EXPECT_DOUBLE_EQ(*r[0].threshold, 1050.0);
+  EXPECT_TRUE(r[1].passed);
+  EXPECT_TRUE(r[2].passed);
+  EXPECT_FALSE(r[3].passed);
+  slower.print_time_s = 1049.0;
+  EXPECT_TRUE(evaluate_gates(sc.gates, slower, &base)[0].passed);
+  // Against itself every relative gate of a non-strict kind passes; with no baseline they fail and say so.
+  for (const GateResult& g : evaluate_gates(sc.gates, base, &base)) EXPECT_TRUE(g.passed) << g.expr;
+  const auto none = evaluate_gates(sc.gates, slower, nullptr);
+  EXPECT_FALSE(none[0].passed);
+  EXPECT_NE(none[0].message.find("no baseline"), std::string::npos);
+  // Malformed right-hand sides are errors at the gate.
+  for (const char* bad :
+       {"print_time_s <= baseline / 2", "print_time_s <= baseline * x", "print_time_s <= basline"}) {
+    SCOPED_TRACE(bad);
+    const InputError e = load_error(replace(kGood, "porosity < 0.05", bad));
+    EXPECT_EQ(e.key(), "gates");
+    EXPECT_EQ(e.where().line, 25);
+  }
+}
+
 }  // namespace
 }  // namespace beadtwin::scenarios
 

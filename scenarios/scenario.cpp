@@ -1225,7 +1225,19 @@ Tree parse_tree(const std::string& text, const std::string& file, const std::fil
 
 }  // namespace
 
-Scenario load_scenario_text(const std::string& text, const std::string& file) {
+Setting parse_setting(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(
+        {"command line", 0, 0}, "--set",
+        fmt::format("expected KEY=VALUE (such as sections.walls.speed=1.2in/s), got '{}'", text));
+  std::string key = text.substr(0, eq);
+  key.erase(key.find_last_not_of(" \t") + 1);
+  return {key, text.substr(eq + 1)};
+}
+
+Scenario load_scenario_text(const std::string& text, const std::string& file,
+                            const std::vector<Setting>& settings) {
   const std::filesystem::path dir = file.empty() || file.starts_with(kBuiltIn)
                                         ? std::filesystem::path()
                                         : std::filesystem::path(file).parent_path();
@@ -1296,6 +1308,17 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
         overrides[path] = it->second.IsScalar() ? it->second.Scalar() : YAML::Dump(it->second);
       }
     }
+    for (const Setting& setting : settings) {
+      const SourceLocation at{"command line (--set " + setting.key + "=" + setting.value + ")", 0, 0};
+      YAML::Node value;
+      try {
+        value = YAML::Load(setting.value);
+      } catch (const YAML::Exception& e) {
+        throw InputError(at, setting.key, fmt::format("the value is not YAML: {}", e.msg));
+      }
+      apply_override(tree, setting.key, value, at);
+      overrides[setting.key] = setting.value;
+    }
     Variant v = build_variant(tree, name, dir, meshes);
     v.overrides = std::move(overrides);
     sc.variants.push_back(std::move(v));
@@ -1304,18 +1327,18 @@ Scenario load_scenario_text(const std::string& text, const std::string& file) {
   return sc;
 }
 
-Scenario load_scenario(const std::filesystem::path& path) {
+Scenario load_scenario(const std::filesystem::path& path, const std::vector<Setting>& settings) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError({path.string(), 0, 0}, {}, "no such scenario file");
-  return load_scenario_text(read_text_file(path, {path.string(), 0, 0}, {}), path.string());
+  return load_scenario_text(read_text_file(path, {path.string(), 0, 0}, {}), path.string(), settings);
 }
 
-Scenario load_default_scenario() {
+Scenario load_default_scenario(const std::vector<Setting>& settings) {
   const auto& files = shipped_files();
   const auto it = files.find("default.yaml");
   if (it == files.end()) throw InternalError("the default scenario is not embedded");
-  return load_scenario_text(it->second, std::string(kBuiltIn) + "/default.yaml");
+  return load_scenario_text(it->second, std::string(kBuiltIn) + "/default.yaml", settings);
 }
 
 }  // namespace beadtwin::scenarios
@@ -1394,7 +1417,7 @@ Scenario load_program_check(const ProgramCheck& check) {
   doc["variants"] = variants;
   YAML::Emitter out;
   out << doc;
-  Scenario sc = load_scenario_text(out.c_str(), file);
+  Scenario sc = load_scenario_text(out.c_str(), file, check.settings);
   sc.warnings.insert(sc.warnings.begin(), assumed.begin(), assumed.end());
   return sc;
 }

@@ -174,14 +174,24 @@ struct Scenario {
       warnings;  // things repaired or doubtful in the inputs (mesh repairs), for the user
 };
 
+// A parameter set on the command line (`--set KEY=VALUE`): for every variant, after the variant's own
+// settings. KEY is a path as a variant's `set:` takes it; VALUE is YAML (`1.2 in/s`, `[0, 5]`, `none`).
+struct Setting {
+  std::string key;
+  std::string value;
+};
+// Parses "KEY=VALUE"; throws InputError (key "--set") when there is no '=' or no key.
+Setting parse_setting(const std::string& text);
+
 // Loads and validates a scenario file. Machine and material given by name are looked up as
 // <scenario dir>/machines/NAME.yaml (materials/NAME.yaml), then among the files shipped with beadtwin.
-Scenario load_scenario(const std::filesystem::path& path);
+Scenario load_scenario(const std::filesystem::path& path, const std::vector<Setting>& settings = {});
 // Loads scenario text (for the embedded default and for tests); `file` is used in messages and to resolve
 // relative paths (may be empty).
-Scenario load_scenario_text(const std::string& text, const std::string& file);
+Scenario load_scenario_text(const std::string& text, const std::string& file,
+                            const std::vector<Setting>& settings = {});
 // The built-in default scenario (embedded in the binary).
-Scenario load_default_scenario();
+Scenario load_default_scenario(const std::vector<Setting>& settings = {});
 
 // Metric names a gate may use (the report's metrics).
 const std::vector<std::string>& gate_metrics();
@@ -196,6 +206,7 @@ struct ProgramCheck {
   std::filesystem::path baseline;  // optional: an older program, simulated beside it and compared
   std::string machine, material;   // names (shipped or beside the scenario) or files; empty: inferred
   std::filesystem::path scenario;  // optional: machine, material, units, output, thermal and gates from it
+  std::vector<Setting> settings;   // --set, for every variant
 };
 
 // The machine a program was written for, guessed from its first megabyte: E words mean a filament

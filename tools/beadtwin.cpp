@@ -25,10 +25,19 @@ constexpr int kExitGateFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitInternal = 3;
 
-// Loads the scenario (the built-in default without a path) and prints what its inputs needed repaired.
-beadtwin::scenarios::Scenario load(const std::string& path) {
-  auto scenario =
-      path.empty() ? beadtwin::scenarios::load_default_scenario() : beadtwin::scenarios::load_scenario(path);
+// Parses every --set KEY=VALUE.
+std::vector<beadtwin::scenarios::Setting> settings_of(const std::vector<std::string>& texts) {
+  std::vector<beadtwin::scenarios::Setting> out;
+  for (const std::string& t : texts) out.push_back(beadtwin::scenarios::parse_setting(t));
+  return out;
+}
+
+// Loads the scenario (the built-in default without a path), with the command line's settings, and prints
+// what its inputs needed repaired.
+beadtwin::scenarios::Scenario load(const std::string& path, const std::vector<std::string>& sets) {
+  const auto settings = settings_of(sets);
+  auto scenario = path.empty() ? beadtwin::scenarios::load_default_scenario(settings)
+                               : beadtwin::scenarios::load_scenario(path, settings);
   for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return scenario;
 }
@@ -56,9 +65,9 @@ int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::str
   return result.passed ? kExitPass : kExitGateFailed;
 }
 
-int cmd_run(const std::string& scenario_path, const std::string& out_dir,
-            const std::vector<std::string>& variants, bool quiet) {
-  return run_and_report(load(scenario_path), out_dir, variants, quiet);
+int cmd_run(const std::string& scenario_path, const std::vector<std::string>& sets,
+            const std::string& out_dir, const std::vector<std::string>& variants, bool quiet) {
+  return run_and_report(load(scenario_path, sets), out_dir, variants, quiet);
 }
 
 // A print program simulated as it is (README, command line): machine and material given, from a scenario,
@@ -69,8 +78,9 @@ int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const std::string&
   return run_and_report(scenario, out_dir, {}, quiet);
 }
 
-int cmd_slice(const std::string& scenario_path, const std::string& variant, const std::string& out) {
-  const auto scenario = load(scenario_path);
+int cmd_slice(const std::string& scenario_path, const std::vector<std::string>& sets,
+              const std::string& variant, const std::string& out) {
+  const auto scenario = load(scenario_path, sets);
   const std::string program = beadtwin::scenarios::slice_program(scenario, variant);
   if (out == "-") {
     std::fwrite(program.data(), 1, program.size(), stdout);
@@ -116,8 +126,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("beadtwin ") + BEADTWIN_VERSION);
 
   std::string scenario_path, out_dir = "beadtwin-out", variant, program_out;
-  std::vector<std::string> variants;
+  std::vector<std::string> variants, sets;
   bool quiet = false;
+  const std::string set_help =
+      "Set a parameter for every variant, after the variants' own settings: KEY=VALUE, KEY as a variant's "
+      "set: takes it (sections.walls.speed=1.2in/s, render.width=1920); repeat for several";
 
   CLI::App* run =
       app.add_subcommand("run", "Run the whole pipeline on a scenario and write reports, images, programs.");
@@ -127,11 +140,13 @@ int main(int argc, char** argv) {
                   "Output directory (report.json, report.html, junit.xml, summary.md, per-variant files)")
       ->capture_default_str();
   run->add_option("--variant", variants, "Run only this variant (repeat for several)");
+  run->add_option("--set", sets, set_help);
   run->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
 
   CLI::App* slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
   slice->add_option("scenario", scenario_path, "Scenario YAML file (default: the built-in scenario)");
   slice->add_option("--variant", variant, "Variant to slice (default: the first)");
+  slice->add_option("--set", sets, set_help);
   slice->add_option("-o,--out", program_out, "Print program file to write, or - for standard output")
       ->required();
 
@@ -148,6 +163,7 @@ int main(int argc, char** argv) {
                         "Take machine, material, units, output, thermal and gates from this scenario");
   check_cmd->add_option("--baseline", check_baseline,
                         "An older program: simulated beside this one, differences in the report");
+  check_cmd->add_option("--set", sets, set_help);
   check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
   check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
 
@@ -173,8 +189,8 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return cmd_run(scenario_path, out_dir, variants, quiet);
-    if (*slice) return cmd_slice(scenario_path, variant, program_out);
+    if (*run) return cmd_run(scenario_path, sets, out_dir, variants, quiet);
+    if (*slice) return cmd_slice(scenario_path, sets, variant, program_out);
     if (*read_cmd) {
       check.program = check_program;
       return cmd_read(check);
@@ -183,6 +199,7 @@ int main(int argc, char** argv) {
       check.program = check_program;
       check.baseline = check_baseline;
       check.scenario = check_scenario;
+      check.settings = settings_of(sets);
       return cmd_check(check, out_dir, quiet);
     }
     if (*params) return cmd_params();

@@ -102,6 +102,32 @@ TEST(Scenario, UnknownKeyNamesFileLineAndKey) {
   EXPECT_EQ(top.key(), "colour");
 }
 
+// --set on the command line: for every variant, after the variant's own settings, and in its overrides.
+TEST(Scenario, CommandLineSettingsComeLast) {
+  const Scenario sc = load_scenario_text(
+      kGood, "test.yaml",
+      {parse_setting("sections.walls.boundary.passes=3"), parse_setting("render.width = 640")});
+  ASSERT_EQ(sc.variants.size(), 2u);
+  for (const Variant& v : sc.variants) {
+    EXPECT_EQ(v.sections[1].boundary.passes, 3) << v.name;  // "thick" set 2; the command line wins
+    EXPECT_EQ(v.render.width, 640);
+    EXPECT_EQ(v.overrides.at("sections.walls.boundary.passes"), "3");
+  }
+  EXPECT_EQ(sc.variants[1].machine.environment.bed_temp_c, 90.0);  // the variant's other setting stays
+  const InputError wrong = [&] {
+    try {
+      (void)load_scenario_text(kGood, "test.yaml", {parse_setting("sections.walls.boundary.passes=many")});
+    } catch (const InputError& e) {
+      return e;
+    }
+    return InputError("none");
+  }();
+  EXPECT_EQ(wrong.key(), "sections.walls.boundary.passes");
+  EXPECT_NE(wrong.where().file.find("--set"), std::string::npos) << wrong.what();
+  EXPECT_THROW(parse_setting("no-equals"), InputError);
+  EXPECT_THROW(parse_setting("=3"), InputError);
+}
+
 TEST(Scenario, WrongUnitAndOutOfRange) {
   const InputError unit =
       load_error(replace(kGood, "layer_height: 5\n    bead_width: 20\n    boundary: {passes: 2}",

@@ -93,6 +93,18 @@ TEST(Cli, RunPrintsTheReportAndGatesSetTheExitCode) {
                           " -q -o " + out.string());
   EXPECT_EQ(fail.code, 1) << fail.output;
   EXPECT_NE(fail.output.find("FAILED"), std::string::npos);
+  // --set on the command line changes the run: four layers of 15/4 mm make the passing gate fail, and
+  // the report keeps the setting among the variant's parameters.
+  const Result set = run("run " + (std::filesystem::temp_directory_path() / "bt_cli_pass.yaml").string() +
+                         " --set sections.a.layer_height=3.75mm -q -o " + out.string());
+  EXPECT_EQ(set.code, 1) << set.output;
+  EXPECT_NE(read_file(out / "report.json").find("sections.a.layer_height"), std::string::npos);
+  // A setting that names nothing, or has no '=', is bad input.
+  const Result bad = run("run " + (std::filesystem::temp_directory_path() / "bt_cli_pass.yaml").string() +
+                         " --set sections.b.layer_height=4 -q -o " + out.string());
+  EXPECT_EQ(bad.code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("no section named 'b'"), std::string::npos) << bad.output;
+  EXPECT_EQ(run("slice --set oops -o -").code, 2);
 }
 
 TEST(Cli, SliceWritesTheProgram) {

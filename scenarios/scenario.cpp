@@ -795,8 +795,14 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
 Gate parse_gate(const YAML::Node& node, const std::string& file) {
   const SourceLocation at = location_of(node, file);
   if (!node.IsScalar()) throw InputError(at, "gates", "expected a gate such as 'porosity < 0.03'");
+  return parse_gate_text(node.Scalar(), at);
+}
+
+}  // namespace
+
+Gate parse_gate_text(const std::string& expr, const SourceLocation& at) {
   Gate g;
-  g.expr = node.Scalar();
+  g.expr = expr;
   g.where = at;
   static const std::pair<std::string_view, GateOp> kOps[] = {
       {"<=", GateOp::kLessEqual}, {">=", GateOp::kGreaterEqual}, {"==", GateOp::kEqual},
@@ -859,6 +865,8 @@ Gate parse_gate(const YAML::Node& node, const std::string& file) {
   }
   return g;
 }
+
+namespace {
 
 constexpr std::pair<Colouring, std::string_view> kColourings[] = {
     {Colouring::kFusion, "fusion"},
@@ -1332,6 +1340,18 @@ Scenario load_scenario(const std::filesystem::path& path, const std::vector<Sett
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError({path.string(), 0, 0}, {}, "no such scenario file");
   return load_scenario_text(read_text_file(path, {path.string(), 0, 0}, {}), path.string(), settings);
+}
+
+std::vector<Gate> load_gates(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const YAML::Node root = parse_yaml(read_text_file(path, {file, 0, 0}, "--gates"), file);
+  const YAML::Node list = root.IsMap() ? root["gates"] : root;
+  if (!list || !list.IsSequence())
+    throw InputError(location_of(root, file), "gates",
+                     "expected a list of gates such as '- porosity < 0.03' (or a scenario with gates:)");
+  std::vector<Gate> out;
+  for (const YAML::Node& g : list) out.push_back(parse_gate(g, file));
+  return out;
 }
 
 Scenario load_default_scenario(const std::vector<Setting>& settings) {

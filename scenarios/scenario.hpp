@@ -193,6 +193,12 @@ Scenario load_scenario_text(const std::string& text, const std::string& file,
 // The built-in default scenario (embedded in the binary).
 Scenario load_default_scenario(const std::vector<Setting>& settings = {});
 
+// A gate written as text ("porosity < 0.03", "print_time_s <= baseline * 1.05"); `at` says where, for
+// messages. Throws InputError (key "gates") for an unknown metric, no comparison or a bad right-hand side.
+Gate parse_gate_text(const std::string& expr, const SourceLocation& at);
+// The gates of a file: a YAML list of gates, or a scenario's `gates:` list.
+std::vector<Gate> load_gates(const std::filesystem::path& path);
+
 // Metric names a gate may use (the report's metrics).
 const std::vector<std::string>& gate_metrics();
 

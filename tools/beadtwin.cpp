@@ -42,6 +42,18 @@ beadtwin::scenarios::Scenario load(const std::string& path, const std::vector<st
   return scenario;
 }
 
+// Gates from the command line (--gate EXPR, --gates FILE) join the scenario's.
+struct ExtraGates {
+  std::vector<std::string> exprs;
+  std::vector<std::string> files;
+};
+void add_gates(beadtwin::scenarios::Scenario& scenario, const ExtraGates& extra) {
+  for (const std::string& f : extra.files)
+    for (auto& g : beadtwin::scenarios::load_gates(f)) scenario.gates.push_back(std::move(g));
+  for (const std::string& e : extra.exprs)
+    scenario.gates.push_back(beadtwin::scenarios::parse_gate_text(e, {"command line (--gate)", 0, 0}));
+}
+
 // Runs a loaded scenario and prints the verdict, the report and the images.
 int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
                    const std::vector<std::string>& variants, bool quiet) {
@@ -65,15 +77,19 @@ int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::str
   return result.passed ? kExitPass : kExitGateFailed;
 }
 
-int cmd_run(const std::string& scenario_path, const std::vector<std::string>& sets,
+int cmd_run(const std::string& scenario_path, const std::vector<std::string>& sets, const ExtraGates& gates,
             const std::string& out_dir, const std::vector<std::string>& variants, bool quiet) {
-  return run_and_report(load(scenario_path, sets), out_dir, variants, quiet);
+  auto scenario = load(scenario_path, sets);
+  add_gates(scenario, gates);
+  return run_and_report(scenario, out_dir, variants, quiet);
 }
 
 // A print program simulated as it is (README, command line): machine and material given, from a scenario,
 // or inferred from the program; with a baseline, both are simulated and compared in the report.
-int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const std::string& out_dir, bool quiet) {
-  const auto scenario = beadtwin::scenarios::load_program_check(check);
+int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const ExtraGates& gates,
+              const std::string& out_dir, bool quiet) {
+  auto scenario = beadtwin::scenarios::load_program_check(check);
+  add_gates(scenario, gates);
   for (const auto& w : scenario.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   return run_and_report(scenario, out_dir, {}, quiet);
 }
@@ -127,7 +143,12 @@ int main(int argc, char** argv) {
 
   std::string scenario_path, out_dir = "beadtwin-out", variant, program_out;
   std::vector<std::string> variants, sets;
+  ExtraGates gates;
   bool quiet = false;
+  const std::string gate_help =
+      "A gate over the report's metrics, absolute or relative to the baseline variant: 'porosity < 0.03', "
+      "'print_time_s <= baseline * 1.05'; repeat for several";
+  const std::string gates_help = "A YAML file of gates (a list, or a scenario's gates:), added to the others";
   const std::string set_help =
       "Set a parameter for every variant, after the variants' own settings: KEY=VALUE, KEY as a variant's "
       "set: takes it (sections.walls.speed=1.2in/s, render.width=1920); repeat for several";
@@ -141,6 +162,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   run->add_option("--variant", variants, "Run only this variant (repeat for several)");
   run->add_option("--set", sets, set_help);
+  run->add_option("--gate", gates.exprs, gate_help);
+  run->add_option("--gates", gates.files, gates_help);
   run->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
 
   CLI::App* slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
@@ -164,6 +187,8 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--baseline", check_baseline,
                         "An older program: simulated beside this one, differences in the report");
   check_cmd->add_option("--set", sets, set_help);
+  check_cmd->add_option("--gate", gates.exprs, gate_help);
+  check_cmd->add_option("--gates", gates.files, gates_help);
   check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
   check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
 
@@ -189,7 +214,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return cmd_run(scenario_path, sets, out_dir, variants, quiet);
+    if (*run) return cmd_run(scenario_path, sets, gates, out_dir, variants, quiet);
     if (*slice) return cmd_slice(scenario_path, sets, variant, program_out);
     if (*read_cmd) {
       check.program = check_program;
@@ -200,7 +225,7 @@ int main(int argc, char** argv) {
       check.baseline = check_baseline;
       check.scenario = check_scenario;
       check.settings = settings_of(sets);
-      return cmd_check(check, out_dir, quiet);
+      return cmd_check(check, gates, out_dir, quiet);
     }
     if (*params) return cmd_params();
   } catch (const beadtwin::InputError& e) {

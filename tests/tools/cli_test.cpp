@@ -210,4 +210,33 @@ TEST(Cli, CheckSimulatesAProgramAsItIsWritten) {
   EXPECT_EQ(run("check " + sample + " --machine nosuchmachine -q -o " + out.string()).code, 2);
 }
 
+// The CI gate of docs/ci.md: a changed program checked against the old one with gates relative to it.
+// Slowing the ring from 60 to 40 mm/s makes the print half as long again: a gate that allows 5 % fails the
+// change, and one that allows 60 % passes it; gates also come from a file.
+TEST(Cli, CheckGatesAChangeAgainstItsBaseline) {
+  const auto yaml =
+      write("beadtwin_cli_gate.yaml",
+            "name: ring\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+            "sections:\n  - name: ring\n    layers: 4\n    layer_height: 5\n    bead_width: 20\n"
+            "    speed: 60 mm/s\n    outline: {points: [[0, 0], [300, 0], [300, 200], [0, 200]]}\n");
+  const auto old_nc = std::filesystem::temp_directory_path() / "beadtwin_cli_gate_old.nc";
+  const auto new_nc = std::filesystem::temp_directory_path() / "beadtwin_cli_gate_new.nc";
+  ASSERT_EQ(run("slice " + yaml.string() + " -o " + old_nc.string()).code, 0);
+  ASSERT_EQ(run("slice " + yaml.string() + " --set sections.ring.speed=40mm/s -o " + new_nc.string()).code,
+            0);
+  const auto out = std::filesystem::temp_directory_path() / "beadtwin_cli_gate_out";
+  const std::string check = "check " + new_nc.string() + " --machine lsam-ph15 --baseline " +
+                            old_nc.string() + " -q -o " + out.string();
+  const Result tight = run(check + " --gate 'print_time_s <= baseline * 1.05'");
+  EXPECT_EQ(tight.code, 1) << tight.output;
+  EXPECT_NE(tight.output.find("gate failed in program: print_time_s"), std::string::npos) << tight.output;
+  const std::string junit = read_file(out / "junit.xml");
+  EXPECT_NE(junit.find("<failure"), std::string::npos);
+  const auto gates = write("beadtwin_cli_gates.yaml", "- print_time_s <= baseline * 1.6\n- porosity < 0.1\n");
+  const Result loose = run(check + " --gates " + gates.string());
+  EXPECT_EQ(loose.code, 0) << loose.output;
+  EXPECT_EQ(run(check + " --gate 'print_tme_s <= 1'").code, 2);
+  EXPECT_EQ(run(check + " --gates /nonexistent/gates.yaml").code, 2);
+}
+
 }  // namespace

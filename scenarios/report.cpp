@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iterator>
 #include <map>
 
@@ -10,6 +11,7 @@
 
 #include "core/atomic_file.hpp"
 #include "scenarios/colours.hpp"
+#include "scenarios/run.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -720,6 +722,82 @@ std::string report_json(const RunResult& result) {
   return j.dump(2) + "\n";
 }
 
+// One column of the variants table: its heading, the value, how it is written, and which way is better
+// (-1 lower, +1 higher, 0 neither), so a difference from the baseline can be marked better or worse.
+struct VariantColumn {
+  const char* heading;
+  std::function<std::optional<double>(const Metrics&)> value;
+  std::function<std::string(double)> text;
+  int better = 0;
+  bool fraction = false;  // differences in points rather than per cent
+};
+
+// The variants side by side, each cell that differs from the baseline variant's marked with the difference
+// and coloured by whether it is better or worse.
+std::string variants_table(const RunResult& result) {
+  const auto percent = [](double v) { return fmt::format("{:.1f} %", 100 * v); };
+  const std::vector<VariantColumn> columns = {
+      {"layers", [](const Metrics& m) { return std::optional<double>(m.layers); },
+       [](double v) { return fmt::format("{:.0f}", v); }, 0},
+      {"print time", [](const Metrics& m) { return std::optional<double>(m.print_time_s); },
+       [](double v) { return hms(v); }, -1},
+      {"mass kg", [](const Metrics& m) { return std::optional<double>(m.mass_kg); },
+       [](double v) { return fmt::format("{:.1f}", v); }, -1},
+      {"porosity", [](const Metrics& m) { return std::optional<double>(m.porosity); },
+       [](double v) { return fmt::format("{:.2f} %", 100 * v); }, -1, true},
+      {"too hot", [](const Metrics& m) { return std::optional<double>(m.too_hot_fraction); }, percent, -1,
+       true},
+      {"too cold", [](const Metrics& m) { return std::optional<double>(m.too_cold_fraction); }, percent, -1,
+       true},
+      {"min healing",
+       [](const Metrics& m) {
+         return m.interfaces > 0 ? std::optional<double>(m.min_healing) : std::nullopt;
+       },
+       [](double v) { return fmt::format("{:.3f}", v); }, +1},
+      {"mean layer time s", [](const Metrics& m) { return std::optional<double>(m.layer_time_s.mean); },
+       [](double v) { return fmt::format("{:.0f}", v); }, 0},
+      {"min stock mm", [](const Metrics& m) { return m.min_stock_mm; },
+       [](double v) { return fmt::format("{:.2f}", v); }, +1},
+  };
+  const std::size_t base = result.variants.empty() ? 0 : baseline_index(result.variants);
+  std::string h = "<table class=variants><tr><th class=l>variant</th><th>verdict</th>";
+  for (const VariantColumn& c : columns) h += fmt::format("<th>{}</th>", c.heading);
+  h += "</tr>";
+  for (std::size_t i = 0; i < result.variants.size(); ++i) {
+    const VariantResult& v = result.variants[i];
+    h += fmt::format("<tr><td class=l>{}{}</td><td>{}</td>", esc(v.name),
+                     i == base && result.variants.size() > 1 ? " <span class=muted>(baseline)</span>" : "",
+                     v.passed ? "pass" : "<b>fail</b>");
+    for (const VariantColumn& c : columns) {
+      const std::optional<double> value = c.value(v.metrics);
+      if (!value || !std::isfinite(*value)) {
+        h += "<td>—</td>";
+        continue;
+      }
+      std::string cell = c.text(*value), style;
+      const std::optional<double> was = i == base ? std::nullopt : c.value(result.variants[base].metrics);
+      if (was && std::isfinite(*was)) {
+        const double change = *value - *was;
+        const double scale = std::max(std::abs(*was), 1e-12);
+        const bool differs = c.fraction ? std::abs(change) >= 5e-4 : std::abs(change) / scale >= 0.005;
+        if (differs) {
+          cell += c.fraction ? fmt::format(" <span class=delta>({:+.1f} pt)</span>", 100 * change)
+                             : fmt::format(" <span class=delta>({:+.1f} %)</span>", 100 * change / scale);
+          style = c.better == 0 ? " class=diff" : (change * c.better > 0 ? " class=better" : " class=worse");
+        }
+      }
+      h += fmt::format("<td{}>{}</td>", style, cell);
+    }
+    h += "</tr>";
+  }
+  h += "</table>";
+  if (result.variants.size() > 1)
+    h += "<p class=legend>Against the baseline: <span style=\"background:#dff2e4\"></span>better "
+         "<span style=\"background:#fbe1dd\"></span>worse <span "
+         "style=\"background:#fff3cc\"></span>different</p>";
+  return h;
+}
+
 std::string report_html(const RunResult& result) {
   const std::string name = result.scenario ? result.scenario->name : "";
   std::string h;
@@ -733,6 +811,7 @@ td,th{border:1px solid #ddd;padding:3px 8px;text-align:right} th{background:#f4f
 tr.hot td{background:#fde2df} tr.cold td{background:#dfe8f8} img{max-width:100%;border:1px solid #ddd}
 .legend span{display:inline-block;width:12px;height:12px;margin:0 4px 0 12px;vertical-align:middle}
 details{margin:1em 0} .muted{color:#777}
+td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#fff3cc} .delta{color:#555;font-size:11px}
 </style></head><body>
 )";
   h += fmt::format("<h1>{}</h1><p class=\"muted\">{}</p>", esc(name),
@@ -740,21 +819,7 @@ details{margin:1em 0} .muted{color:#777}
   h += fmt::format("<p><span class=\"verdict {}\">{}</span> beadtwin {} · {} variant(s) · {:.1f} s</p>",
                    result.passed ? "pass" : "fail", result.passed ? "PASSED" : "FAILED", BEADTWIN_VERSION,
                    result.variants.size(), result.wall_time_s);
-  h += "<h2>Variants</h2><table><tr><th class=l>variant</th><th>verdict</th><th>layers</th><th>print "
-       "time</th><th>mass kg</th>"
-       "<th>porosity</th><th>too hot</th><th>too cold</th><th>min healing</th><th>layer time s "
-       "(min/mean/max)</th></tr>";
-  for (const auto& v : result.variants) {
-    const Metrics& m = v.metrics;
-    h += fmt::format(
-        "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.2f} %</td><td>{:.1f} "
-        "%</td>"
-        "<td>{:.1f} %</td><td>{}</td><td>{:.0f} / {:.0f} / {:.0f}</td></tr>",
-        esc(v.name), v.passed ? "pass" : "<b>fail</b>", m.layers, hms(m.print_time_s), m.mass_kg,
-        100 * m.porosity, 100 * m.too_hot_fraction, 100 * m.too_cold_fraction, healing_text(m),
-        m.layer_time_s.min, m.layer_time_s.mean, m.layer_time_s.max);
-  }
-  h += "</table>";
+  h += "<h2>Variants</h2>" + variants_table(result);
   if (!result.sheets.empty()) {
     h += "<h2>The variants side by side</h2><p class=legend>Each picture of every variant, from one camera "
          "on one colour scale.</p>";

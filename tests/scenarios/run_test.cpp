@@ -285,7 +285,11 @@ TEST(Run, PicturesOfTheRenderBlock) {
             render::read_image(o.out_dir / "slow" / "fusion.png"));
   EXPECT_NE(render::read_image(o.out_dir / "fast" / "progress" / "frame-0000.png"),
             render::read_image(o.out_dir / "fast" / "progress" / "frame-0002.png"));
-  EXPECT_NE(read_file(o.out_dir / "report.html").find("comparison-inside.png"), std::string::npos);
+  const std::string html = read_file(o.out_dir / "report.html");
+  EXPECT_NE(html.find("comparison-inside.png"), std::string::npos);
+  // The variants table marks the slow variant's longer print against the baseline (the first variant).
+  EXPECT_NE(html.find("fast <span class=muted>(baseline)</span>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=worse>"), std::string::npos);
 }
 
 // A gate relative to the baseline (here the first variant, "fast"): the slow variant takes far longer to

@@ -315,6 +315,26 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
                    1.05 * j["variants"][0]["metrics"]["print_time_s"].get<double>());
 }
 
+// The shipped desktop scenario: PrusaSlicer's program for a small PLA box, simulated as written, with its
+// pictures (a cutaway among them) at a small size.
+TEST(Run, ShippedDesktopScenarioFromPrusaSlicer) {
+  const Scenario sc =
+      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "desktop-prusa.yaml",
+                    {parse_setting("render.width=320"), parse_setting("render.height=200")});
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_desktop";
+  std::filesystem::remove_all(o.out_dir);
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), 1u);
+  const Metrics& m = r.variants[0].metrics;
+  EXPECT_EQ(m.layers, 8);  // 0.3 mm first layer, then 0.3 mm to 2.4 mm
+  EXPECT_GT(m.interfaces, 1000);
+  EXPECT_NEAR(m.deposited_volume_mm3 / m.commanded_volume_mm3, 1.0, 0.01);
+  ASSERT_EQ(r.variants[0].images.size(), 3u);
+  for (const std::string& image : r.variants[0].images)
+    EXPECT_GT(std::filesystem::file_size(o.out_dir / image), 1000u);
+}
+
 TEST(Run, UnknownVariantIsAnInputError) {
   const Scenario sc = load_scenario_text(kSmall, "small.yaml");
   RunOptions o;

@@ -16,12 +16,16 @@ struct StageTime {
 
 class Stages {
  public:
-  // `log` receives one line per finished stage; pass an empty function to stay quiet.
-  explicit Stages(std::function<void(const std::string&)> log = {}) : log_(std::move(log)) {}
+  // `log` receives one line per finished stage; pass an empty function to stay quiet. `on_start`, when
+  // given, hears each stage's name as it starts.
+  explicit Stages(std::function<void(const std::string&)> log = {},
+                  std::function<void(const std::string&)> on_start = {})
+      : log_(std::move(log)), on_start_(std::move(on_start)) {}
 
   // Runs `work` as the stage `name`, timing it.
   template <class F>
   auto run(const std::string& name, F&& work) {
+    if (on_start_) on_start_(name);
     const auto t0 = std::chrono::steady_clock::now();
     struct Finish {
       Stages* self;
@@ -43,6 +47,7 @@ class Stages {
   void finish(const std::string& name, double seconds);
 
   std::function<void(const std::string&)> log_;
+  std::function<void(const std::string&)> on_start_;
   std::vector<StageTime> times_;
 };
 

@@ -61,7 +61,8 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
   return o;
 }
 
-ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit) {
+ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
+                       std::function<void(double)> progress) {
   ThermalRun out;
   thermal::MeshOptions mo;
   mo.cells_across = v.thermal.cells_across;
@@ -76,6 +77,7 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.sample_interval_s = v.thermal.sample_interval_s;
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
+  ho.progress = std::move(progress);
   // The moments the pictures colour by temperature.
   for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
@@ -333,15 +335,25 @@ struct Sliced {
 
 VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sliced,
                           const PictureFrame& frame, const std::filesystem::path& out_dir,
-                          const std::function<void(const std::string&)>& log) {
+                          const RunOptions& options) {
+  const auto& log = options.log;
   VariantResult res;
   res.name = v.name;
   res.variant = &v;
   const std::filesystem::path dir = out_dir / v.name;
   std::filesystem::create_directories(dir);
+  // How far a stage has got, for the caller's progress bar.
+  const auto progress_of = [&](const std::string& stage) -> std::function<void(double)> {
+    if (!options.progress) return {};
+    return [&options, &v, stage](double f) { options.progress(v.name, stage, f); };
+  };
   Stages stages(log ? std::function<void(const std::string&)>(
                           [&](const std::string& line) { log(fmt::format("[{}] {}", v.name, line)); })
-                    : std::function<void(const std::string&)>());
+                    : std::function<void(const std::string&)>(),
+                options.progress ? std::function<void(const std::string&)>([&](const std::string& stage) {
+                  options.progress(v.name, stage, 0.0);
+                })
+                                 : std::function<void(const std::string&)>());
 
   stages.record("slice", sliced.seconds);
   const Toolpath& tp = sliced.toolpath;
@@ -354,7 +366,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
   const sim::Deposit deposit = stages.run("deposit", [&] {
     try {
-      return sim::deposit(tp, deposit_options(v));
+      sim::DepositOptions o = deposit_options(v);
+      o.progress = progress_of("deposit");
+      return sim::deposit(tp, o);
     } catch (const InputError& e) {
       // The deposit knows the option, not where it was written: name the scenario's key.
       if (e.key() != "voxel_size") throw;
@@ -362,7 +376,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     }
   });
   const std::optional<CadCheck> cad = stages.run("compare", [&] { return check_against_cad(v, deposit); });
-  const ThermalRun th = stages.run("thermal", [&] { return run_thermal(v, tp, deposit); });
+  const ThermalRun th =
+      stages.run("thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal")); });
   if (!th.heat.snapshots.empty())
     stages.run("snapshots", [&] {
       for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {
@@ -514,7 +529,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   for (const Sliced& s : sliced) toolpaths.push_back(&s.toolpath);
   const PictureFrame frame = picture_frame(chosen, toolpaths, sc.inches);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
-    result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, options.out_dir, options.log));
+    result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, options.out_dir, options));
   }
   // The gates, once every variant has run: some compare with the baseline variant.
   if (!result.variants.empty()) {

@@ -15,6 +15,9 @@ struct RunOptions {
   std::filesystem::path out_dir = "beadtwin-out";
   std::vector<std::string> variants;  // only these (all when empty); unknown names are an InputError
   std::function<void(const std::string&)> log;  // progress lines; empty to stay quiet
+  // How far a run has got: the variant, the stage, and the stage's fraction done (0 as it starts, then
+  // during the long stages, deposit and thermal); empty: no reports.
+  std::function<void(const std::string& variant, const std::string& stage, double fraction)> progress;
 };
 
 // Runs the scenario and writes every output into options.out_dir. Throws InputError for bad input

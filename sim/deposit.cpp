@@ -445,6 +445,7 @@ LayingTotals lay_beads(const Toolpath& toolpath, std::vector<PlannedSweep>& swee
     while (end < sweeps.size() && toolpath.moves[sweeps[end].move].layer == layer) ++end;
     lay_layer(sweeps, begin, end, next_move, c);
     begin = end;
+    if (options.progress) options.progress(static_cast<double>(begin) / static_cast<double>(sweeps.size()));
   }
   check_travels(next_move, toolpath.moves.size(), c);
   return totals;

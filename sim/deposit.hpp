@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -74,6 +75,9 @@ struct DepositOptions {
   // Memory the deposit may use, bytes; 0: three quarters of the machine's physical memory. An estimate
   // above it stops the run before any voxel is written, with a voxel size that would fit.
   double memory_budget_bytes = 0.0;
+  // Called on the calling thread as the layers are laid, with the fraction of the beads laid so far (0..1);
+  // empty: no reports.
+  std::function<void(double fraction)> progress;
 };
 
 // Something wrong with the deposit, where it is and what caused it (issue 6, item 4). Runs of consecutive

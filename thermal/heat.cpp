@@ -471,8 +471,10 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     // interval (it is a fifth of a cell's time constant), so CVODE usually takes it.
     const double gap = g + 1 < groups.size() ? groups[g + 1].time_s - t : interval;
     cvode->reinit(t, before, std::max(gap, 1e-3 * interval));
+    if (options.progress) options.progress((t - t0) / std::max(t_end - t0, 1e-9));
   }
   advance(t_end);
+  if (options.progress) options.progress(1.0);
   for (std::size_t k = 0; k < integral.size(); ++k) {
     result.interfaces[k].healing_integral = integral[k];
     result.interfaces[k].healing = std::min(1.0, std::pow(integral[k], 0.25));

@@ -23,6 +23,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -44,6 +45,9 @@ struct HeatOptions {
   // Times at which every cell's temperature is kept (thermal/snapshot_files.hpp), s; outside the simulated
   // span they are clamped to its ends.
   std::vector<double> snapshot_times_s;
+  // Called on the calling thread at every birth, with the fraction of the simulated span done (0..1);
+  // empty: no reports.
+  std::function<void(double fraction)> progress;
 };
 
 // Every cell's temperature at one moment, °C; NaN for cells not yet born.

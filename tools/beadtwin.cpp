@@ -1,6 +1,9 @@
 // beadtwin: the command-line program (README, command line). A thin main: parse the command line, call the
 // scenario engine, print errors, map outcomes to exit codes:
 //   0 ran and every gate passed · 1 ran and a gate failed · 2 bad input or usage · 3 internal error.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -54,18 +57,81 @@ void add_gates(beadtwin::scenarios::Scenario& scenario, const ExtraGates& extra)
     scenario.gates.push_back(beadtwin::scenarios::parse_gate_text(e, {"command line (--gate)", 0, 0}));
 }
 
+// A progress bar on a terminal: the variant, the stage, how far it has got and the time it still needs
+// (from its pace so far), redrawn in place; the finished stages' lines print above it. Not in CI (the
+// CI environment variable) or when standard error is not a terminal: plain lines only.
+class ProgressBar {
+ public:
+  static bool wanted() { return isatty(STDERR_FILENO) != 0 && std::getenv("CI") == nullptr; }
+
+  void update(const std::string& variant, const std::string& stage, double fraction) {
+    const auto now = std::chrono::steady_clock::now();
+    if (stage != stage_ || variant != variant_) {
+      variant_ = variant;
+      stage_ = stage;
+      start_ = now;
+    } else if (now - drawn_ < std::chrono::milliseconds(100) && fraction < 1.0) {
+      return;  // at most ten redraws a second
+    }
+    drawn_ = now;
+    constexpr int kWidth = 28;
+    const int full = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * kWidth + 0.5);
+    std::string bar;
+    for (int i = 0; i < kWidth; ++i) bar += i < full ? "█" : "░";
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    std::string eta;
+    if (fraction > 0.02 && fraction < 1.0 && elapsed > 0.5) {
+      const long left = std::lround(elapsed * (1.0 - fraction) / fraction);
+      eta = fmt::format("  ETA {}:{:02}", left / 60, left % 60);
+    }
+    line_ = fmt::format("[{}] {:<10} {} {:3.0f} %{}", variant_, stage_, bar, 100 * fraction, eta);
+    std::fprintf(stderr, "\r\033[K%s", line_.c_str());
+    std::fflush(stderr);
+  }
+  // A finished stage's line, above the bar.
+  void print(const std::string& line) {
+    std::fprintf(stderr, "\r\033[K%s\n", line.c_str());
+    std::fflush(stderr);
+    line_.clear();  // the stage is done: the next one's first report draws the bar again
+  }
+  void clear() {
+    if (!line_.empty()) std::fprintf(stderr, "\r\033[K");
+    line_.clear();
+  }
+
+ private:
+  std::string variant_, stage_, line_;
+  std::chrono::steady_clock::time_point start_, drawn_;
+};
+
 // Runs a loaded scenario and prints the verdict, the report and the images.
 int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
                    const std::vector<std::string>& variants, bool quiet) {
   beadtwin::scenarios::RunOptions options;
   options.out_dir = out_dir;
   options.variants = variants;
+  ProgressBar bar;
   if (!quiet) {
-    options.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    if (ProgressBar::wanted()) {
+      options.log = [&bar](const std::string& line) { bar.print(line); };
+      options.progress = [&bar](const std::string& variant, const std::string& stage, double fraction) {
+        bar.update(variant, stage, fraction);
+      };
+    } else {
+      options.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+    }
     std::fprintf(stderr, "beadtwin %s: scenario %s (%s), %zu variant(s)\n", BEADTWIN_VERSION,
                  scenario.name.c_str(), scenario.file.c_str(), scenario.variants.size());
   }
-  const auto result = beadtwin::scenarios::run_scenario(scenario, options);
+  const auto result = [&] {
+    try {
+      return beadtwin::scenarios::run_scenario(scenario, options);
+    } catch (...) {
+      bar.clear();  // the error's message starts a clean line
+      throw;
+    }
+  }();
+  bar.clear();
   for (const auto& v : result.variants)
     for (const auto& g : v.gates)
       if (!g.passed) std::fprintf(stderr, "gate failed in %s: %s\n", v.name.c_str(), g.message.c_str());

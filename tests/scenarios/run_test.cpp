@@ -1,10 +1,13 @@
 // The whole pipeline on a small scenario: every stage runs for real and the reports hold the documented keys.
 #include "scenarios/run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -300,6 +303,11 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
                "  - porosity < 0.5\n  - print_time_s <= baseline * 1.05\n");
   const Scenario sc = load_scenario_text(text, "relative.yaml");
   RunOptions o;
+  // Progress reports: every stage starts at 0, and the long ones report their way up to 1, in order.
+  std::map<std::string, std::vector<double>> reports;
+  o.progress = [&](const std::string& variant, const std::string& stage, double fraction) {
+    reports[variant + "/" + stage].push_back(fraction);
+  };
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_relative";
   std::filesystem::remove_all(o.out_dir);
   const RunResult r = run_scenario(sc, o);
@@ -313,6 +321,17 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
   const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
   EXPECT_DOUBLE_EQ(j["variants"][1]["gates"][1]["threshold"].get<double>(),
                    1.05 * j["variants"][0]["metrics"]["print_time_s"].get<double>());
+  for (const char* stage : {"fast/deposit", "fast/thermal", "slow/deposit", "slow/thermal", "fast/render"}) {
+    SCOPED_TRACE(stage);
+    const std::vector<double>& f = reports[stage];
+    ASSERT_FALSE(f.empty());
+    EXPECT_EQ(f.front(), 0.0);
+    EXPECT_TRUE(std::is_sorted(f.begin(), f.end()));
+    EXPECT_LE(f.back(), 1.0);
+  }
+  EXPECT_GT(reports["fast/thermal"].size(), 5u);
+  EXPECT_DOUBLE_EQ(reports["fast/thermal"].back(), 1.0);
+  EXPECT_DOUBLE_EQ(reports["fast/deposit"].back(), 1.0);
 }
 
 // The shipped desktop scenario: PrusaSlicer's program for a small PLA box, simulated as written, with its

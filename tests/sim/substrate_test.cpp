@@ -143,9 +143,9 @@ TEST(Substrate, BeadIsRoundWhereTheRollerIsUp) {
   EXPECT_NEAR(flat_top, kH, 0.5);
   // A machine whose nozzle flattens every bead ignores the roller flag.
   m.roller_down = false;
-  EXPECT_NEAR(
-      sim::deposit(timed({m}), sim::DepositOptions{.voxel_size_mm = 0.5}).layers[0].mean_bead_height_mm, kH,
-      1e-9);
+  sim::DepositOptions half_mm;
+  half_mm.voxel_size_mm = 0.5;
+  EXPECT_NEAR(sim::deposit(timed({m}), half_mm).layers[0].mean_bead_height_mm, kH, 1e-9);
 }
 
 // A bead laid two layers up with nothing under it spans unsupported, for its whole length.

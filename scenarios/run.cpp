@@ -9,9 +9,6 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
-#include "render/image.hpp"
-#include "render/render.hpp"
-#include "scenarios/colours.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"

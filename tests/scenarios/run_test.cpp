@@ -354,6 +354,35 @@ TEST(Run, ShippedDesktopScenarioFromPrusaSlicer) {
     EXPECT_GT(std::filesystem::file_size(o.out_dir / image), 1000u);
 }
 
+// The shipped scenarios not run by a test of their own run as shipped, with small pictures: every variant
+// reports, with its pictures, and the report parses.
+void expect_shipped_scenario_runs(const std::string& file) {
+  const Scenario sc = load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / file,
+                                    {parse_setting("render.width=160"), parse_setting("render.height=100")});
+  RunOptions o;
+  o.out_dir = std::filesystem::temp_directory_path() / ("beadtwin_shipped_" + sc.name);
+  std::filesystem::remove_all(o.out_dir);
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), sc.variants.size());
+  const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
+  ASSERT_EQ(j["variants"].size(), sc.variants.size());
+  for (const auto& v : j["variants"]) {
+    EXPECT_GT(v["metrics"]["layers"].get<int>(), 0) << v["name"];
+    EXPECT_FALSE(v["images"].empty()) << v["name"];
+    for (const auto& image : v["images"])
+      EXPECT_TRUE(std::filesystem::exists(o.out_dir / image.get<std::string>())) << image;
+  }
+  EXPECT_TRUE(std::filesystem::exists(o.out_dir / "report.html"));
+  EXPECT_TRUE(std::filesystem::exists(o.out_dir / "junit.xml"));
+}
+
+TEST(Run, ShippedFig7ScenarioRuns) {
+  expect_shipped_scenario_runs("fig7-three-sections.yaml");
+}
+TEST(Run, ShippedFillStylesScenarioRuns) {
+  expect_shipped_scenario_runs("fill-styles.yaml");
+}
+
 TEST(Run, UnknownVariantIsAnInputError) {
   const Scenario sc = load_scenario_text(kSmall, "small.yaml");
   RunOptions o;

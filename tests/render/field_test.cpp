@@ -119,7 +119,7 @@ TEST(RenderField, CutawayShowsTheCutFace) {
   ASSERT_FALSE(std::isnan(through.depth[centre]));
   ASSERT_FALSE(std::isnan(behind.depth[centre]));
   EXPECT_NEAR(through.depth[centre] - whole.depth[centre], 10.5f, 2.0f);
-  EXPECT_EQ(through.values[centre], whole.values[centre]);  // the same layer, inside
+  EXPECT_EQ(through.values[centre], whole.values[centre]);                // the same layer, inside
   EXPECT_NEAR(behind.depth[centre] - whole.depth[centre], 200.0f, 3.0f);  // outer face -10.5, inner 189.5
   EXPECT_NE(through.image, whole.image);
   // Every pixel of the cut face at the centre row is nearer than the back wall: the face is solid (the

@@ -24,9 +24,9 @@
 namespace beadtwin::sim {
 namespace {
 
+using beadtwin::testing::read_file;
 using testing::fresh_dir;
 using testing::get;
-using beadtwin::testing::read_file;
 using testing::ring;
 
 // A .vtu as a reader sees it: the counts from the XML, and each appended array's bytes.

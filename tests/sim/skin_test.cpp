@@ -20,9 +20,9 @@
 namespace beadtwin::sim {
 namespace {
 
+using beadtwin::testing::read_file;
 using testing::fresh_dir;
 using testing::get;
-using beadtwin::testing::read_file;
 using testing::ring;
 
 // Every directed edge of a closed, consistently oriented mesh appears once, and so does its reverse.

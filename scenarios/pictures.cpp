@@ -35,7 +35,6 @@ struct Field {
   // Categories (the value is the index) or a scale.
   std::vector<render::LegendEntry> categories;
   render::ScalarScale scale;
-  std::vector<double> ticks;  // empty: round ticks over the scale
   std::string note;
 
   render::Rgb colour(double value) const {
@@ -51,45 +50,44 @@ struct Field {
   render::Legend legend() const {
     render::Legend l;
     l.title = title;
-    if (categories.empty()) {
+    if (categories.empty())
       l.scale = scale;
-      l.ticks = ticks;
-    } else {
+    else
       l.entries = categories;
-    }
     l.note = note;
     return l;
   }
 };
 
-// A value per material voxel from a value per label of `labels` (cells, layers): NaN where the label is
-// outside the table.
-openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
-                                        const std::vector<double>& by_label) {
+// A value on every material voxel of `fill`: value_at(voxel).
+template <class ValueAt>
+openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const ValueAt& value_at) {
   auto out = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
   out->setTransform(fill.transform().copy());
-  auto label_at = labels.getConstAccessor();
   auto out_at = out->getAccessor();
-  for (auto it = fill.cbeginValueOn(); it; ++it) {
-    const int label = label_at.getValue(it.getCoord());
-    const double v = label >= 0 && static_cast<std::size_t>(label) < by_label.size()
-                         ? by_label[static_cast<std::size_t>(label)]
-                         : kNaN;
-    out_at.setValue(it.getCoord(), static_cast<float>(v));
-  }
+  for (auto it = fill.cbeginValueOn(); it; ++it)
+    out_at.setValue(it.getCoord(), static_cast<float>(value_at(it.getCoord())));
   return out;
 }
 
-// `grid`'s values on the material voxels of `fill`, scaled by `factor`.
+// The value per label of `labels` (cells, layers) on the material voxels: NaN where the label is outside
+// the table.
+openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
+                                        const std::vector<double>& by_label) {
+  auto label_at = labels.getConstAccessor();
+  return values_on(fill, [&](const openvdb::Coord& ijk) {
+    const int label = label_at.getValue(ijk);
+    return label >= 0 && static_cast<std::size_t>(label) < by_label.size()
+               ? by_label[static_cast<std::size_t>(label)]
+               : kNaN;
+  });
+}
+
+// `grid`'s values on the material voxels, divided by `unit`.
 openvdb::FloatGrid::Ptr values_of(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& grid,
-                                  double factor) {
-  auto out = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
-  out->setTransform(fill.transform().copy());
+                                  double unit) {
   auto grid_at = grid.getConstAccessor();
-  auto out_at = out->getAccessor();
-  for (auto it = fill.cbeginValueOn(); it; ++it)
-    out_at.setValue(it.getCoord(), static_cast<float>(grid_at.getValue(it.getCoord()) * factor));
-  return out;
+  return values_on(fill, [&](const openvdb::Coord& ijk) { return grid_at.getValue(ijk) / unit; });
 }
 
 // A duration in the unit that reads best for `longest_s`.
@@ -138,9 +136,11 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
   const ThermalRun& th = *in.thermal;
   const Material& material = in.variant->material;
   Field f;
-  const auto scale = [&](double lo, double hi, render::ColourMap map) {
-    f.scale.lo = range ? range->first : lo;
-    f.scale.hi = range ? range->second : hi;
+  // The scale from lo to hi (display units), or the picture's own range (given in the colouring's internal
+  // unit, `unit` of them to a display unit).
+  const auto scale = [&](double lo, double hi, render::ColourMap map, double unit = 1.0) {
+    f.scale.lo = range ? range->first / unit : lo;
+    f.scale.hi = range ? range->second / unit : hi;
     f.scale.map = std::move(map);
   };
   switch (colouring) {
@@ -148,29 +148,19 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       using thermal::Verdict;
       f.heading = "Fusion";
       f.title = "each piece of bead by its worst interface";
-      for (const Verdict v : {Verdict::kOk, Verdict::kTooHot, Verdict::kTooCold, Verdict::kNoInterface})
-        f.categories.push_back({verdict_colour(v), v == Verdict::kOk ? "fuses"
-                                                   : v == Verdict::kTooHot
-                                                       ? "too hot: landed on soft material"
-                                                   : v == Verdict::kTooCold ? "too cold: does not heal"
-                                                                            : "no interface (on the table)"});
-      std::vector<double> by_cell(th.cells.size());
-      for (std::size_t i = 0; i < by_cell.size(); ++i) {
-        switch (th.cells[i]) {
-          case Verdict::kOk:
-            by_cell[i] = 0;
-            break;
-          case Verdict::kTooHot:
-            by_cell[i] = 1;
-            break;
-          case Verdict::kTooCold:
-            by_cell[i] = 2;
-            break;
-          case Verdict::kNoInterface:
-            by_cell[i] = 3;
-            break;
-        }
-      }
+      // The legend's order; a cell's value is its verdict's place in it.
+      static constexpr std::pair<Verdict, const char*> kVerdicts[] = {
+          {Verdict::kOk, "fuses"},
+          {Verdict::kTooHot, "too hot: landed on soft material"},
+          {Verdict::kTooCold, "too cold: does not heal"},
+          {Verdict::kNoInterface, "no interface (on the table)"}};
+      for (const auto& [v, label] : kVerdicts) f.categories.push_back({verdict_colour(v), label});
+      std::vector<double> by_cell;
+      by_cell.reserve(th.cells.size());
+      for (const Verdict v : th.cells)
+        by_cell.push_back(static_cast<double>(std::find_if(std::begin(kVerdicts), std::end(kVerdicts),
+                                                           [v](const auto& e) { return e.first == v; }) -
+                                              std::begin(kVerdicts)));
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
       break;
     }
@@ -198,9 +188,8 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       const TimeUnit unit = time_unit(frame.print_time_s);
       f.heading = "Deposition time";
       f.title = fmt::format("deposition time ({})", unit.name);
-      f.voxels = values_of(fill, *in.deposit->time, 1.0 / unit.seconds);
-      scale(0.0, frame.print_time_s / unit.seconds, render::ColourMap::viridis());
-      if (range) f.scale.lo = range->first / unit.seconds, f.scale.hi = range->second / unit.seconds;
+      f.voxels = values_of(fill, *in.deposit->time, unit.seconds);
+      scale(0.0, frame.print_time_s / unit.seconds, render::ColourMap::viridis(), unit.seconds);
       break;
     }
     case Colouring::kSubstrate: {
@@ -227,8 +216,8 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       f.at_point = [distance](const Eigen::Vector3d& p) { return sim::cad_distance_at(*distance, p); };
       scale(frame.stock_centre_mm - frame.stock_half_range_mm,
             frame.stock_centre_mm + frame.stock_half_range_mm, render::ColourMap::diverging());
-      f.note = fmt::format("white: the requested {:.1f} mm; blue: less (undercut below 0)",
-                           in.cad->requested_stock_mm);
+      f.note =
+          fmt::format("white: the requested {:.1f} mm; blue: less (undercut below 0)", frame.stock_centre_mm);
       break;
     }
     case Colouring::kPorosity: {
@@ -334,25 +323,20 @@ PictureFrame picture_frame(const std::vector<const Variant*>& variants,
   BT_CHECK(variants.size() == toolpaths.size());
   PictureFrame f;
   f.length_unit = inches ? render::LengthUnit::kInch : render::LengthUnit::kMetric;
-  bool first = true;
+  // The extremes over the variants, then the defaults where no variant had one.
+  f.cold_c = f.stock_centre_mm = std::numeric_limits<double>::infinity();
+  f.hot_c = -std::numeric_limits<double>::infinity();
+  f.stock_half_range_mm = 0.0;
   for (std::size_t k = 0; k < variants.size(); ++k) {
     const Variant& v = *variants[k];
     const Toolpath& tp = *toolpaths[k];
     f.print_time_s = std::max(f.print_time_s, tp.total_time_s());
     f.layers = std::max(f.layers, static_cast<int>(tp.layers.size()));
-    const double cold = v.machine.environment.ambient_c, hot = v.material.deposition_temp_c;
-    f.cold_c = first ? cold : std::min(f.cold_c, cold);
-    f.hot_c = first ? hot : std::max(f.hot_c, hot);
-    double stock = std::numeric_limits<double>::infinity(), layer = 0.0;
-    for (const slicer::SectionParams& s : v.sections) {
-      if (!s.outline_path.empty()) continue;
-      stock = std::min(stock, s.outer_stock_mm);
-      layer = std::max(layer, s.layer_height_mm);
-    }
-    if (std::isfinite(stock)) {
-      f.stock_centre_mm = first ? stock : std::min(f.stock_centre_mm, stock);
-      f.stock_half_range_mm = first ? layer : std::max(f.stock_half_range_mm, layer);
-    }
+    f.cold_c = std::min(f.cold_c, v.machine.environment.ambient_c);
+    f.hot_c = std::max(f.hot_c, v.material.deposition_temp_c);
+    const StockScale stock = stock_scale(v);
+    f.stock_centre_mm = std::min(f.stock_centre_mm, stock.requested_mm);
+    f.stock_half_range_mm = std::max(f.stock_half_range_mm, stock.half_range_mm);
     // The beads: every depositing move's ends, grown by half its bead across and by its height below.
     for (const Move& m : tp.moves) {
       if (!m.deposits()) continue;
@@ -364,10 +348,13 @@ PictureFrame picture_frame(const std::vector<const Variant*>& variants,
         f.bounds.extend(Eigen::Vector3f(q.x() + half, q.y() + half, q.z()));
       }
     }
-    first = false;
   }
+  const PictureFrame defaults;
+  if (!std::isfinite(f.cold_c)) f.cold_c = defaults.cold_c;
+  if (!std::isfinite(f.hot_c)) f.hot_c = defaults.hot_c;
   if (!(f.hot_c > f.cold_c)) f.hot_c = f.cold_c + 1.0;
-  if (!(f.stock_half_range_mm > 0.0)) f.stock_half_range_mm = 1.0;
+  if (!std::isfinite(f.stock_centre_mm)) f.stock_centre_mm = defaults.stock_centre_mm;
+  if (!(f.stock_half_range_mm > 0.0)) f.stock_half_range_mm = defaults.stock_half_range_mm;
   return f;
 }
 

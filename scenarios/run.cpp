@@ -72,11 +72,11 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;
+  // The scenario's snapshots first (written as files), then the moments the pictures colour by temperature.
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
-  ho.progress = std::move(progress);
-  // The moments the pictures colour by temperature.
   for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);
+  ho.progress = std::move(progress);
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
                                  v.machine.environment, ho);
   std::vector<double> durations;
@@ -89,36 +89,19 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
 
 // Compares the deposit with the CAD the sections print; nullopt when there is none (a program, AM Outline
 // sections). The band reaches the requested stock and a bead width beyond it (stocks beyond that are
-// reported as "at least"), within 4..32 voxels; the colour map's half range is a layer height (a bead's
-// scallop spans half of it).
-// Whether the snapshot at `t_s` is one of the scenario's thermal.snapshots (written as files), not one
-// taken for a picture alone. The thermal run clamps the times it was asked for into its span.
-bool asked_for_file(const Variant& v, const Toolpath& tp, const thermal::HeatResult& heat, double t_s) {
-  for (const double asked : v.thermal.snapshot_times_s) {
-    const double t =
-        std::clamp(std::isinf(asked) ? tp.total_time_s() : asked, heat.start_time_s, heat.end_time_s);
-    if (std::abs(t - t_s) <= 1e-9 * std::max(1.0, std::abs(t))) return true;
-  }
-  return false;
-}
-
+// reported as "at least"), within 4..32 voxels.
 std::optional<CadCheck> check_against_cad(const Variant& v, const sim::Deposit& deposit) {
   if (v.program || !v.part.loaded) return std::nullopt;
   const std::optional<slicer::TriangleMesh> cad = slicer::printed_cad(*v.part.loaded, v.sections);
   if (!cad) return std::nullopt;
+  const StockScale stock = stock_scale(v);
   CadCheck check;
-  check.requested_stock_mm = std::numeric_limits<double>::infinity();
-  double widest = 0.0;
-  for (const slicer::SectionParams& s : v.sections) {
-    if (!s.outline_path.empty()) continue;
-    check.requested_stock_mm = std::min(check.requested_stock_mm, s.outer_stock_mm);
-    widest = std::max(widest, s.bead_width_mm);
-    check.map_half_range_mm = std::max(check.map_half_range_mm, s.layer_height_mm);
-  }
+  check.requested_stock_mm = stock.requested_mm;
+  check.map_half_range_mm = stock.half_range_mm;
   sim::CadCompareOptions o;
   o.requested_stock_mm = check.requested_stock_mm;
-  o.band_mm = std::clamp(std::abs(check.requested_stock_mm) + widest, 4.0 * deposit.voxel_size_mm,
-                         32.0 * deposit.voxel_size_mm);
+  o.band_mm = std::clamp(std::abs(check.requested_stock_mm) + stock.widest_bead_mm,
+                         4.0 * deposit.voxel_size_mm, 32.0 * deposit.voxel_size_mm);
   check.comparison = sim::compare_with_cad(deposit, {cad->vertices, cad->triangles}, o);
   return check;
 }
@@ -375,10 +358,10 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   const std::optional<CadCheck> cad = stages.run("compare", [&] { return check_against_cad(v, deposit); });
   const ThermalRun th =
       stages.run("thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal")); });
-  if (!th.heat.snapshots.empty())
+  if (!v.thermal.snapshot_times_s.empty())
     stages.run("snapshots", [&] {
       for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {
-        if (!asked_for_file(v, tp, th.heat, s.time_s)) continue;  // taken for a picture only
+        if (s.request >= v.thermal.snapshot_times_s.size()) continue;  // taken for a picture only
         const std::string stem = fmt::format("temperature-{:.0f}s", s.time_s);
         thermal::write_temperature_vdb(th.mesh, s, dir / (stem + ".vdb"));
         thermal::write_temperature_vtp(th.mesh, s, dir / (stem + ".vtp"));

@@ -337,13 +337,16 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   result.layer_temp_c.assign(layer_count, {});
   std::vector<double> layer_volume(layer_count, 0.0);
   double next_sample = t0;
-  std::vector<double> snapshot_times;
-  for (const double s : options.snapshot_times_s) snapshot_times.push_back(std::clamp(s, t0, t_end));
+  // (time, index of the request), in time order.
+  std::vector<std::pair<double, std::size_t>> snapshot_times;
+  for (std::size_t k = 0; k < options.snapshot_times_s.size(); ++k)
+    snapshot_times.emplace_back(std::clamp(options.snapshot_times_s[k], t0, t_end), k);
   std::sort(snapshot_times.begin(), snapshot_times.end());
   std::size_t next_snapshot = 0;
-  const auto snapshot = [&](double t, std::span<const double> y) {
+  const auto snapshot = [&](double t, std::size_t request, std::span<const double> y) {
     TemperatureSnapshot s;
     s.time_s = t;
+    s.request = request;
     s.temp_c.assign(n, std::numeric_limits<float>::quiet_NaN());
     for (std::size_t i = 0; i < model.born(); ++i) s.temp_c[i] = static_cast<float>(y[i]);
     result.snapshots.push_back(std::move(s));
@@ -438,9 +441,9 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       }
       const std::span<const double> now = cvode->state();
       std::copy(now.begin(), now.end(), before.begin());
-      while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot] <= t) {
-        const double ts = snapshot_times[next_snapshot++];
-        snapshot(ts, ts == t ? cvode->state() : cvode->interpolate(ts));
+      while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot].first <= t) {
+        const auto [ts, request] = snapshot_times[next_snapshot++];
+        snapshot(ts, request, ts == t ? cvode->state() : cvode->interpolate(ts));
       }
       while (next_sample <= t) {
         sample(next_sample, next_sample == t ? cvode->state() : cvode->interpolate(next_sample));

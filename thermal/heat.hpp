@@ -53,6 +53,7 @@ struct HeatOptions {
 // Every cell's temperature at one moment, °C; NaN for cells not yet born.
 struct TemperatureSnapshot {
   double time_s = 0.0;
+  std::size_t request = 0;  // which of HeatOptions::snapshot_times_s asked for it
   std::vector<float> temp_c;
 };
 

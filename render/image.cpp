@@ -60,33 +60,41 @@ std::uint8_t to_byte(float value) {
   throw std::runtime_error(what + " " + path.string() + (why.empty() ? std::string() : ": " + why));
 }
 
-}  // namespace
-
-void write_png(const Image& image, const std::filesystem::path& path) {
+void check_not_empty(const Image& image, const std::filesystem::path& path) {
   if (image.width <= 0 || image.height <= 0)
     throw InputError("cannot write " + path.string() + ": the image is empty (" +
                      std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels)");
   BT_CHECK_OP(image.pixels.size(), ==, static_cast<std::size_t>(image.width) * image.height * 3);
+}
 
+// Writes `pixels` (of `type`, laid out as `spec` says) in OpenImageIO's `format` ("png", "openexr") to a
+// temporary file beside `path`, renamed into place when complete. The format is named, not taken from the
+// temporary name's extension. `label` names the format in messages.
+void write_atomically(const char* format, const std::string& label, const std::filesystem::path& path,
+                      const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* pixels) {
+  AtomicPath out(path);
+  auto writer = OIIO::ImageOutput::create(format);
+  if (!writer) fail("cannot write " + label, path, OIIO::geterror());
+  if (!writer->open(out.temp().string(), spec)) fail("cannot write " + label, path, writer->geterror());
+  if (!writer->write_image(type, pixels)) {
+    const std::string why = writer->geterror();
+    writer->close();
+    fail("error while writing " + label, path, why);
+  }
+  if (!writer->close()) fail("error while writing " + label, path, writer->geterror());
+  out.commit();
+}
+
+}  // namespace
+
+void write_png(const Image& image, const std::filesystem::path& path) {
+  check_not_empty(image, path);
   std::vector<std::uint8_t> bytes(image.pixels.size());
   std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
-
-  AtomicPath out(path);
-  const std::string temp = out.temp().string();
-  // The temporary name keeps the extension, but the format must be PNG whatever the target is called.
-  auto writer = OIIO::ImageOutput::create("png");
-  if (!writer) fail("cannot write PNG", path, OIIO::geterror());
   OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
-  if (!writer->open(temp, spec)) fail("cannot write PNG", path, writer->geterror());
-  if (!writer->write_image(OIIO::TypeDesc::UINT8, bytes.data())) {
-    const std::string why = writer->geterror();
-    writer->close();
-    fail("error while writing PNG", path, why);
-  }
-  if (!writer->close()) fail("error while writing PNG", path, writer->geterror());
-  out.commit();
+  write_atomically("png", "PNG", path, spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
 namespace {
@@ -112,10 +120,7 @@ void check_extra_channels(const Image& image, const std::filesystem::path& path,
 
 void write_exr(const Image& image, const std::filesystem::path& path,
                const std::vector<ExtraChannel>& extra) {
-  if (image.width <= 0 || image.height <= 0)
-    throw InputError("cannot write " + path.string() + ": the image is empty (" +
-                     std::to_string(image.width) + " x " + std::to_string(image.height) + " pixels)");
-  BT_CHECK_OP(image.pixels.size(), ==, static_cast<std::size_t>(image.width) * image.height * 3);
+  check_not_empty(image, path);
   check_extra_channels(image, path, extra);
 
   const int channels = 3 + static_cast<int>(extra.size());
@@ -137,18 +142,7 @@ void write_exr(const Image& image, const std::filesystem::path& path,
   spec.attribute("oiio:ColorSpace", "Linear");
   spec.attribute("compression", "zip");
   spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
-
-  AtomicPath out(path);
-  auto writer = OIIO::ImageOutput::create("openexr");
-  if (!writer) fail("cannot write EXR", path, OIIO::geterror());
-  if (!writer->open(out.temp().string(), spec)) fail("cannot write EXR", path, writer->geterror());
-  if (!writer->write_image(OIIO::TypeDesc::FLOAT, interleaved.data())) {
-    const std::string why = writer->geterror();
-    writer->close();
-    fail("error while writing EXR", path, why);
-  }
-  if (!writer->close()) fail("error while writing EXR", path, writer->geterror());
-  out.commit();
+  write_atomically("openexr", "EXR", path, spec, OIIO::TypeDesc::FLOAT, interleaved.data());
 }
 
 void write_image(const Image& image, const std::filesystem::path& path,

@@ -5,16 +5,11 @@
 # RUNS times in a process of its own; prints the median time, the peak memory and the ratio.
 # Usage: bench/bench_deposit.sh [BUILD_DIR] [RUNS]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 runs="${2:-3}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-cmake -S "$root" -B "$build" -DBEADTWIN_BENCH=ON > /dev/null
-cmake --build "$build" --target deposit_bench > /dev/null
-python3 "$root/bench/make_hull_mould.py" "$work/hull.stl"
-cp "$root/bench/hull-mould.yaml" "$work/"
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+build_bench "$build" deposit_bench
+write_hull_mould
 route() {  # route -> lines "seconds peak_kB" and the program's own line in $work/$1.txt
   for _ in $(seq "$runs"); do
     /usr/bin/time -f "%e %M" -o "$work/time.txt" "$build/bench/deposit_bench" "$work/hull-mould.yaml" "$1" > "$work/$1.txt"

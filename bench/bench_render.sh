@@ -7,16 +7,12 @@
 # frame and the rays traced per second; the pictures are written to OUT_DIR when given.
 # Usage: bench/bench_render.sh [BUILD_DIR] [FRAMES] [OUT_DIR]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 frames="${2:-5}"
 out="${3:-}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-cmake -S "$root" -B "$build" -DBEADTWIN_BENCH=ON > /dev/null
-cmake --build "$build" --target render_bench > /dev/null
-python3 "$root/bench/make_hull_mould.py" "$work/hull.stl"
-cp "$root/bench/hull-mould.yaml" "$work/"
+build_bench "$build" render_bench
+write_hull_mould
 for scenario in "$work/hull-mould.yaml" "$root/scenarios/default.yaml"; do
   name="$(basename "$scenario" .yaml)"
   echo "== $name"

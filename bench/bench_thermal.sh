@@ -7,16 +7,11 @@
 # own; prints the median solve time, real-time factors and the peak memory of the whole process.
 # Usage: bench/bench_thermal.sh [BUILD_DIR] [RUNS]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 runs="${2:-3}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-cmake -S "$root" -B "$build" -DBEADTWIN_BENCH=ON > /dev/null
-cmake --build "$build" --target thermal_bench > /dev/null
-python3 "$root/bench/make_hull_mould.py" "$work/hull.stl"
-cp "$root/bench/hull-mould.yaml" "$work/"
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+build_bench "$build" thermal_bench
+write_hull_mould
 for scenario in "$work/hull-mould.yaml" "$root/scenarios/default.yaml"; do
   : > "$work/runs"
   for _ in $(seq "$runs"); do

@@ -6,17 +6,14 @@
 # with nothing parsed (bench/toolpath_floor.cpp, compiled here).
 # Usage: bench/read_vs_wc.sh [BUILD_DIR] [RUNS] [MEGABYTES]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 runs="${2:-3}"
 megabytes="${3:-100}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
 [ -x "$build/tools/beadtwin" ] || { echo "build beadtwin first (cmake --build $build --target beadtwin)"; exit 2; }
 
 python3 "$root/bench/make_gcode.py" "$work/big.gcode" "$megabytes"
 size=$(stat -c %s "$work/big.gcode")
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 
 wc_t=$(for _ in $(seq "$runs"); do wall wc -l "$work/big.gcode"; done | median)

@@ -4,11 +4,9 @@
 # on one machine. Prints the median wall time of each over RUNS runs and their ratio.
 # Usage: bench/slice_vs_prusa.sh [BUILD_DIR] [RUNS]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 runs="${2:-5}"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
 
 command -v prusa-slicer >/dev/null || { echo "prusa-slicer is not installed (apt-get install prusa-slicer)"; exit 2; }
 [ -x "$build/tools/beadtwin" ] || { echo "build beadtwin first (cmake --build $build --target beadtwin)"; exit 2; }
@@ -24,7 +22,6 @@ sections:
   - {name: all, z: part, layer_height: 5, bead_width: 21, boundary: {passes: 2}, fill: {angle: 45 deg, angle_step: 90 deg}}
 YAML
 
-median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc -l; }
 
 bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" slice "$work/sphere.yaml" -o "$work/bt.nc"; done | median)

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -18,6 +19,8 @@
 namespace beadtwin::render {
 
 enum class View { kIsometric, kTop, kFront, kSide, kUser };
+// The view's name in scenario files ("isometric", "top", "front", "side", "user").
+std::string_view to_string(View view);
 
 // A camera as a scenario states it.
 struct CameraSpec {

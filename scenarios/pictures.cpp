@@ -259,19 +259,7 @@ render::RenderOptions render_options(const RenderSpec& r) {
 }
 
 std::string view_title(const render::CameraSpec& c) {
-  switch (c.view) {
-    case render::View::kIsometric:
-      return "isometric view";
-    case render::View::kTop:
-      return "top view";
-    case render::View::kFront:
-      return "front view";
-    case render::View::kSide:
-      return "side view";
-    case render::View::kUser:
-      return "user camera";
-  }
-  return "";
+  return c.view == render::View::kUser ? "user camera" : std::string(render::to_string(c.view)) + " view";
 }
 
 // One picture: the field drawn on the part from the camera, annotated, with its raw values.

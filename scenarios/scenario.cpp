@@ -868,32 +868,13 @@ Gate parse_gate_text(const std::string& expr, const SourceLocation& at) {
 
 namespace {
 
-constexpr std::pair<Colouring, std::string_view> kColourings[] = {
-    {Colouring::kFusion, "fusion"},
-    {Colouring::kSection, "section"},
-    {Colouring::kLayer, "layer"},
-    {Colouring::kTime, "time"},
-    {Colouring::kSubstrate, "substrate"},
-    {Colouring::kHealing, "healing"},
-    {Colouring::kDeviation, "deviation"},
-    {Colouring::kPorosity, "porosity"},
-    {Colouring::kTemperature, "temperature"},
+constexpr Colouring kColourings[] = {
+    Colouring::kFusion,    Colouring::kSection,   Colouring::kLayer,
+    Colouring::kTime,      Colouring::kSubstrate, Colouring::kHealing,
+    Colouring::kDeviation, Colouring::kPorosity,  Colouring::kTemperature,
 };
-constexpr std::pair<render::View, std::string_view> kViews[] = {
-    {render::View::kIsometric, "isometric"}, {render::View::kTop, "top"},   {render::View::kFront, "front"},
-    {render::View::kSide, "side"},           {render::View::kUser, "user"},
-};
-
-template <class Enum, std::size_t N>
-Enum named(BlockReader& r, std::string_view key, const std::string& text,
-           const std::pair<Enum, std::string_view> (&names)[N]) {
-  std::string all;
-  for (const auto& [value, name] : names) {
-    if (name == text) return value;
-    all += fmt::format("{}{}", all.empty() ? "" : ", ", name);
-  }
-  r.fail(r.take(key), key, fmt::format("expected one of {} but found '{}'", all, text));
-}
+constexpr render::View kViews[] = {render::View::kIsometric, render::View::kTop, render::View::kFront,
+                                   render::View::kSide, render::View::kUser};
 
 // Three plain numbers [x, y, z], not all zero (a direction); the spec's default when absent.
 Eigen::Vector3d read_direction(BlockReader& r, const ParamSpec& spec) {
@@ -911,7 +892,7 @@ Eigen::Vector3d read_direction(BlockReader& r, const ParamSpec& spec) {
 render::CameraSpec read_camera(BlockReader& r) {
   const auto t = image_params();
   render::CameraSpec c;
-  c.view = named(r, "view", r.string(spec(t, "view")), kViews);
+  c.view = one_of(r, "view", r.string(spec(t, "view")), kViews);
   c.field_of_view_deg = r.quantity(spec(t, "field_of_view"));
   if (c.field_of_view_deg > 0.0 && c.field_of_view_deg < 1.0)
     r.fail(r.take("field_of_view"), "field_of_view",
@@ -925,17 +906,6 @@ render::CameraSpec read_camera(BlockReader& r) {
   if (c.position && c.target && (*c.position - *c.target).norm() < 1e-3f)
     r.fail(r.take("camera.target"), "camera.target", "the eye is at the point it looks at: they must differ");
   return c;
-}
-
-std::string view_name(render::View v) {
-  for (const auto& [value, name] : kViews)
-    if (value == v) return std::string(name);
-  return "?";
-}
-std::string colouring_name(Colouring c) {
-  for (const auto& [value, name] : kColourings)
-    if (value == c) return std::string(name);
-  return "?";
 }
 
 // The unit a colouring's range is written in.
@@ -962,7 +932,7 @@ ImageSpec read_image(BlockReader& r) {
   const YAML::Node colour = r.take("colour");
   if (!colour.IsDefined() || !colour.IsScalar())
     r.fail(colour, "colour", "required: what colours the part (fusion, section, layer, ...)");
-  im.colour = named(r, "colour", colour.Scalar(), kColourings);
+  im.colour = one_of(r, "colour", colour.Scalar(), kColourings);
   im.camera = read_camera(r);
   if (r.has("cut.point")) {
     CutSpec cut;
@@ -987,9 +957,9 @@ ImageSpec read_image(BlockReader& r) {
     if (!(lo < hi)) r.fail(range, "range", fmt::format("low ({:g}) must be below high ({:g})", lo, hi));
     im.range = std::pair{lo, hi};
   }
-  const std::string view = view_name(im.camera.view);
+  const std::string view(render::to_string(im.camera.view));
   im.name = r.has("name") ? r.string(spec(t, "name"))
-                          : colouring_name(im.colour) + (view == "isometric" ? "" : "-" + view);
+                          : std::string(to_string(im.colour)) + (view == "isometric" ? "" : "-" + view);
   if (im.name.empty() || im.name.find_first_of("/\\:*?\"<>|") != std::string::npos || im.name[0] == '.')
     r.fail(r.take("name"), "name", fmt::format("'{}' cannot be a file name", im.name));
   r.finish(t);
@@ -1049,7 +1019,7 @@ RenderSpec read_render(BlockReader& r) {
       BlockReader pr(progress, r.full_key("progress"), r.shared_source(), r.overridden());
       ProgressSpec ps;
       const YAML::Node colour = pr.take("colour");
-      ps.colour = colour.IsDefined() ? named(pr, "colour", colour.Scalar(), kColourings) : Colouring::kLayer;
+      ps.colour = colour.IsDefined() ? one_of(pr, "colour", colour.Scalar(), kColourings) : Colouring::kLayer;
       ps.camera = read_camera(pr);
       if (YAML::Node every = pr.take("every"); every.IsDefined()) {
         const long n = pr.whole_number(every.IsScalar() ? every.Scalar() : "", every, "every");
@@ -1193,6 +1163,30 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
 }
 
 }  // namespace
+
+std::string_view to_string(Colouring colouring) {
+  switch (colouring) {
+    case Colouring::kFusion:
+      return "fusion";
+    case Colouring::kSection:
+      return "section";
+    case Colouring::kLayer:
+      return "layer";
+    case Colouring::kTime:
+      return "time";
+    case Colouring::kSubstrate:
+      return "substrate";
+    case Colouring::kHealing:
+      return "healing";
+    case Colouring::kDeviation:
+      return "deviation";
+    case Colouring::kPorosity:
+      return "porosity";
+    case Colouring::kTemperature:
+      return "temperature";
+  }
+  return "?";
+}
 
 std::string PartSpec::describe() const {
   switch (kind) {

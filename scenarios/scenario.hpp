@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -64,6 +65,9 @@ enum class Colouring {
   kPorosity,     // by the local void fraction around the surface
   kTemperature,  // by the temperature at a moment (render.images[].time)
 };
+
+// The colouring's name in scenario files ("fusion", "substrate", ...).
+std::string_view to_string(Colouring colouring);
 
 // A plane through the part: the half the normal points into is cut away, so the inside shows.
 struct CutSpec {

@@ -10,13 +10,10 @@ namespace beadtwin::scenarios {
 
 // Fusion verdicts: green fuses, red too hot, blue too cold, grey no interface (first layer).
 render::Rgb verdict_colour(thermal::Verdict verdict);
-// Distinct colours for sections (a qualitative palette that stays apart for colour-blind readers).
+// Distinct colours for sections: the pictures' categorical palette (render::category_colour, Okabe & Ito,
+// colour-blind safe), so the report's legends match the pictures. Deviation maps use
+// render::ColourMap::diverging() in both.
 render::Rgb section_colour(int section);
-// A diverging map for a signed length over the part, such as the stock against the CAD: white at
-// `white_mm`, deepening to blue at white_mm − half_range_mm and below (short: undercut) and to red at
-// white_mm + half_range_mm and above (excess). ColorBrewer's RdBu, five classes, interpolated in sRGB
-// between its stops (as matplotlib does). Precondition: half_range_mm > 0.
-render::Rgb deviation_colour(double value_mm, double white_mm, double half_range_mm);
 // "#rrggbb" for HTML.
 std::string hex(const render::Rgb& c);
 

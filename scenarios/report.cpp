@@ -10,7 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "render/colormap.hpp"
 #include "scenarios/colours.hpp"
+#include "scenarios/report_scripts.hpp"
 #include "scenarios/run.hpp"
 
 namespace beadtwin::scenarios {
@@ -367,7 +369,9 @@ std::string esc(std::string_view s) {
         out += "&apos;";
         break;
       default:
-        out += c;
+        // XML 1.0 allows no control characters but tab and line breaks: any other would make junit.xml
+        // unreadable.
+        out += static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r' ? '?' : c;
     }
   }
   return out;
@@ -479,70 +483,77 @@ std::string window_text(const LayerRow& l) {
          window_range(l.typical_min_s, l.typical_max_s) + ")";
 }
 
-// Substrate temperature at deposition per layer against the fusion window, as an inline SVG.
-std::string substrate_plot(const VariantResult& r) {
-  if (r.layers.empty() || !r.variant) return {};
-  const double support = r.variant->material.support_limit_c;
-  const double w = 760, h = 260, l = 56, rm = 16, t = 16, b = 40;
-  double tmax = support + 20, tmin = r.variant->machine.environment.ambient_c;
-  for (const auto& row : r.layers) {
-    if (std::isfinite(row.substrate_temp_c.max)) tmax = std::max(tmax, row.substrate_temp_c.max + 5);
-    if (std::isfinite(row.substrate_temp_c.min)) tmin = std::min(tmin, row.substrate_temp_c.min - 5);
-  }
-  const double n = static_cast<double>(r.layers.size());
-  auto x = [&](double i) { return l + (w - l - rm) * (n > 1 ? i / (n - 1) : 0.5); };
-  auto y = [&](double temp) { return t + (h - t - b) * (1 - (temp - tmin) / (tmax - tmin)); };
-  std::string svg = fmt::format(
-      R"svg(<svg viewBox="0 0 {} {}" width="{}" height="{}" role="img" aria-label="substrate temperature per layer">)svg",
-      w, h, w, h);
-  svg += fmt::format(R"svg(<rect x="{}" y="{}" width="{}" height="{}" fill="#fbe3e0"/>)svg", l, t, w - l - rm,
-                     std::max(0.0, y(support) - t));
-  svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-dasharray="4 3"/>)svg", l,
-                     w - rm, y(support), y(support), hex(verdict_colour(thermal::Verdict::kTooHot)));
-  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11" fill="#b33">support limit {:.0f} °C</text>)svg",
-                     w - rm - 130, y(support) - 4, support);
-  for (int k = 0; k <= 4; ++k) {
-    const double temp = tmin + (tmax - tmin) * k / 4.0;
-    svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11" text-anchor="end">{:.0f}</text>)svg", l - 6,
-                       y(temp) + 4, temp);
-    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="#ddd"/>)svg", l, w - rm, y(temp),
-                       y(temp));
-  }
-  // The mean as a line, the least and the most as a bar per layer, coloured by the layer's verdict.
-  std::string band, line;
-  for (std::size_t i = 0; i < r.layers.size(); ++i) {
-    const auto& row = r.layers[i];
-    const Stats3& s = row.substrate_temp_c;
-    if (!std::isfinite(s.mean)) continue;
-    const double xi = x(static_cast<double>(i));
-    line += fmt::format("{}{:.1f},{:.1f}", line.empty() ? "M" : " L", xi, y(s.mean));
-    const std::string colour = hex(verdict_colour(row.verdict == "too_hot"    ? thermal::Verdict::kTooHot
-                                                  : row.verdict == "too_cold" ? thermal::Verdict::kTooCold
-                                                  : row.verdict == "ok"       ? thermal::Verdict::kOk
-                                                                        : thermal::Verdict::kNoInterface));
-    band += fmt::format(R"svg(<line x1="{0:.1f}" x2="{0:.1f}" y1="{1:.1f}" y2="{2:.1f}" stroke="{3}"/>)svg",
-                        xi, y(s.min), y(s.max), colour);
-    band += fmt::format(
-        R"svg(<circle cx="{:.1f}" cy="{:.1f}" r="3" fill="{}"><title>layer {}: {:.1f} / {:.1f} / {:.1f} °C, {}</title></circle>)svg",
-        xi, y(s.mean), colour, row.index, s.min, s.mean, s.max, row.verdict);
-  }
-  svg += fmt::format(R"svg(<path d="{}" fill="none" stroke="#333" stroke-width="1.5"/>)svg", line) + band;
-  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle">layer</text>)svg",
-                     (l + w - rm) / 2, h - 8);
-  svg += fmt::format(
-      R"svg(<text x="14" y="{}" font-size="12" transform="rotate(-90 14 {})" text-anchor="middle">substrate °C at deposition</text>)svg",
-      (t + h - b) / 2, (t + h - b) / 2);
-  svg += "</svg>";
-  return svg;
+// A number for a plot's data: null where it is not finite (a layer with nothing to measure).
+json finite_or_null(double v) {
+  return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-// A round step (1, 2 or 5 times a power of ten) that cuts `range` into about `parts`.
-double nice_step(double range, int parts) {
-  const double raw = range / parts;
-  const double decade = std::pow(10.0, std::floor(std::log10(raw)));
-  for (const double m : {1.0, 2.0, 5.0})
-    if (m * decade >= raw) return m * decade;
-  return 10.0 * decade;
+// A plot for report_plots.js: its data as JSON in a script element (with "<" escaped, so no value can end
+// the element), drawn into a canvas after it when the page loads; a line for readers without scripts.
+std::string plot_html(const json& spec) {
+  std::string text = spec.dump();
+  std::string safe;
+  safe.reserve(text.size());
+  for (const char c : text) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
+  return "<script type=\"application/json\" class=\"beadtwin-plot\">" + safe +
+         "</script><noscript><p class=muted>This plot is drawn by a script; the same numbers are in the "
+         "layer "
+         "table below and in report.json.</p></noscript>";
+}
+
+std::string verdict_hex(const std::string& verdict) {
+  return hex(verdict_colour(verdict == "too_hot"    ? thermal::Verdict::kTooHot
+                            : verdict == "too_cold" ? thermal::Verdict::kTooCold
+                            : verdict == "ok"       ? thermal::Verdict::kOk
+                                                    : thermal::Verdict::kNoInterface));
+}
+
+// Substrate temperature at deposition per layer (least, mean, most, coloured by the layer's verdict) against
+// the support limit and T_g.
+std::string substrate_plot(const VariantResult& r) {
+  if (r.layers.empty() || !r.variant) return {};
+  json p = {{"kind", "substrate"},
+            {"label", "substrate temperature per layer"},
+            {"support", r.variant->material.support_limit_c},
+            {"tg", r.variant->material.glass_transition_c},
+            {"hot_colour", hex(verdict_colour(thermal::Verdict::kTooHot))}};
+  for (const LayerRow& row : r.layers) {
+    p["layers"].push_back(row.index);
+    p["min"].push_back(finite_or_null(row.substrate_temp_c.min));
+    p["mean"].push_back(finite_or_null(row.substrate_temp_c.mean));
+    p["max"].push_back(finite_or_null(row.substrate_temp_c.max));
+    p["verdicts"].push_back(row.verdict);
+    p["colours"].push_back(verdict_hex(row.verdict));
+  }
+  return plot_html(p);
+}
+
+// A layer-time window as a band for the plot: [least, most], the least 0 and the most null (the top of the
+// plot) where nothing bounds them; null where no layer time would do or nothing bounds either end.
+json window_band(double min_s, double max_s) {
+  if (min_s == std::numeric_limits<double>::infinity()) return nullptr;
+  const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
+  if (!lo && !hi) return nullptr;
+  if (lo && hi && min_s > max_s) return nullptr;
+  return json::array({lo ? min_s : 0.0, hi ? json(max_s) : json(nullptr)});
+}
+
+// Each layer's time as printed against the layer times that would have put it in the fusion window, for
+// all of its landing area and for half of it.
+std::string layer_time_plot(const VariantResult& r) {
+  if (r.layers.empty()) return {};
+  json p = {{"kind", "layer_time"}, {"label", "layer time per layer against the fusion window"}};
+  for (const LayerRow& row : r.layers) {
+    p["layers"].push_back(row.index);
+    p["duration"].push_back(finite_or_null(row.duration_s));
+    p["window"].push_back(window_band(row.window_min_s, row.window_max_s));
+    p["typical"].push_back(window_band(row.typical_min_s, row.typical_max_s));
+    p["window_text"].push_back(window_range(row.window_min_s, row.window_max_s));
+    p["typical_text"].push_back(window_range(row.typical_min_s, row.typical_max_s));
+    p["verdicts"].push_back(row.verdict);
+    p["colours"].push_back(verdict_hex(row.verdict));
+  }
+  return plot_html(p);
 }
 
 // 1st, 2nd, 3rd, 4th, ..., 11th, 12th, 13th, ..., 21st.
@@ -556,97 +567,30 @@ std::string ordinal(int n) {
   return fmt::format("{}{}", n, suffix);
 }
 
-// The chosen layers' mean temperature against time, with the support limit and T_g, as an inline SVG.
+// The chosen layers' mean temperature against time, with the support limit and T_g.
 std::string history_plot(const VariantResult& r) {
   const TemperatureHistory& hist = r.temperature_history;
   if (hist.layers.empty() || hist.times_s.size() < 2 || !r.variant) return {};
-  static constexpr const char* kColours[] = {"#1f77b4", "#e07b00", "#2ca02c", "#9467bd",
-                                             "#8c564b", "#d62728", "#17becf", "#7f7f7f"};
-  const Material& mat = r.variant->material;
-  const double support = mat.support_limit_c, tg = mat.glass_transition_c;
-  // The legend runs in rows of four under the axis.
-  const std::size_t per_row = 4, rows = (hist.layers.size() + per_row - 1) / per_row;
-  const double w = 760, l = 56, rm = 16, t = 16, b = 46 + 16 * static_cast<double>(rows);
-  const double h = 238 + b;
-  double lo = std::min({r.variant->machine.environment.ambient_c, tg, support});
-  double hi = std::max({mat.deposition_temp_c, tg, support});
-  for (const LayerHistory& layer : hist.layers)
-    for (const float temp : layer.temp_c)
-      if (std::isfinite(temp)) {
-        lo = std::min(lo, double{temp});
-        hi = std::max(hi, double{temp});
-      }
-  // A little room above and below the lines, and the grid at round temperatures within.
-  if (!(hi > lo)) hi = lo + 1.0;
-  const double pad = 0.03 * (hi - lo);
-  lo -= pad;
-  hi += pad;
-  const double y_step = nice_step(hi - lo, 5);
-  // Time on the print's clock, from its start.
-  const double t0 = std::min(0.0, hist.times_s.front()), t1 = hist.times_s.back();
   // Minutes once the history is longer than twenty of them.
-  const double unit_s = t1 - t0 > 1200.0 ? 60.0 : 1.0;
-  const auto x = [&](double time) { return l + (w - l - rm) * (time - t0) / (t1 - t0); };
-  const auto y = [&](double temp) { return t + (h - t - b) * (1 - (temp - lo) / (hi - lo)); };
-  std::string svg = fmt::format(
-      R"svg(<svg viewBox="0 0 {} {}" width="{}" height="{}" role="img" aria-label="layer temperature against time">)svg",
-      w, h, w, h);
-  for (double temp = std::ceil(lo / y_step) * y_step; temp <= hi; temp += y_step) {
-    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="#ddd"/>)svg", l, w - rm,
-                       y(temp), y(temp));
-    svg += fmt::format(R"svg(<text x="{}" y="{:.1f}" font-size="11" text-anchor="end">{:.0f}</text>)svg",
-                       l - 6, y(temp) + 4, temp);
+  const bool minutes = hist.times_s.back() - std::min(0.0, hist.times_s.front()) > 1200.0;
+  json times = json::array();
+  for (const double t : hist.times_s) times.push_back(minutes ? t / 60.0 : t);
+  json p = {{"kind", "history"},
+            {"label", "layer temperature against time"},
+            {"times", std::move(times)},
+            {"unit", minutes ? "min" : "s"},
+            {"support", r.variant->material.support_limit_c},
+            {"tg", r.variant->material.glass_transition_c},
+            {"hot_colour", hex(verdict_colour(thermal::Verdict::kTooHot))},
+            {"series", json::array()}};
+  for (const LayerHistory& layer : hist.layers) {
+    json temp = json::array();
+    for (std::size_t i = 0; i < hist.times_s.size(); ++i)
+      temp.push_back(i < layer.temp_c.size() ? finite_or_null(layer.temp_c[i]) : json(nullptr));
+    p["series"].push_back({{"label", fmt::format("layer {} (the {})", layer.index, ordinal(layer.index + 1))},
+                           {"temp", std::move(temp)}});
   }
-  const double x_step = nice_step((t1 - t0) / unit_s, 8);
-  for (double k = std::ceil(t0 / unit_s / x_step) * x_step; k * unit_s <= t1 + 1e-9; k += x_step) {
-    svg += fmt::format(R"svg(<line x1="{0:.1f}" x2="{0:.1f}" y1="{1}" y2="{2}" stroke="#eee"/>)svg",
-                       x(k * unit_s), t, h - b);
-    svg += fmt::format(R"svg(<text x="{:.1f}" y="{}" font-size="11" text-anchor="middle">{:g}</text>)svg",
-                       x(k * unit_s), h - b + 14, k);
-  }
-  // The support limit above its line, T_g below its own, so the two labels stay apart.
-  svg += fmt::format(
-      R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="{}" stroke-dasharray="4 3"/>)svg", l,
-      w - rm, y(support), y(support), hex(verdict_colour(thermal::Verdict::kTooHot)));
-  svg += fmt::format(
-      R"svg(<text x="{}" y="{:.1f}" font-size="11" fill="#b33" text-anchor="end">support limit {:.0f} °C</text>)svg",
-      w - rm - 4, y(support) - 4, support);
-  svg += fmt::format(
-      R"svg(<line x1="{}" x2="{}" y1="{:.1f}" y2="{:.1f}" stroke="#555" stroke-dasharray="2 3"/>)svg", l,
-      w - rm, y(tg), y(tg));
-  svg += fmt::format(
-      R"svg(<text x="{}" y="{:.1f}" font-size="11" fill="#555" text-anchor="end">T_g {:.0f} °C</text>)svg",
-      w - rm - 4, y(tg) + 13, tg);
-  // One line per layer, broken where it has no value (before the layer is laid).
-  for (std::size_t k = 0; k < hist.layers.size(); ++k) {
-    const LayerHistory& layer = hist.layers[k];
-    const char* colour = kColours[k % std::size(kColours)];
-    std::string path;
-    bool pen_down = false;
-    for (std::size_t i = 0; i < layer.temp_c.size() && i < hist.times_s.size(); ++i) {
-      if (!std::isfinite(layer.temp_c[i])) {
-        pen_down = false;
-        continue;
-      }
-      path += fmt::format("{}{:.1f},{:.1f}", pen_down ? " L" : (path.empty() ? "M" : " M"),
-                          x(hist.times_s[i]), y(layer.temp_c[i]));
-      pen_down = true;
-    }
-    svg += fmt::format(R"svg(<path d="{}" fill="none" stroke="{}" stroke-width="1.5"/>)svg", path, colour);
-    const double lx = l + 160.0 * static_cast<double>(k % per_row);
-    const double ly = h - b + 48 + 16 * static_cast<double>(k / per_row);
-    svg += fmt::format(R"svg(<line x1="{}" x2="{}" y1="{}" y2="{}" stroke="{}" stroke-width="2"/>)svg", lx,
-                       lx + 18, ly - 4, ly - 4, colour);
-    svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="11">layer {} (the {})</text>)svg", lx + 22, ly,
-                       layer.index, ordinal(layer.index + 1));
-  }
-  svg += fmt::format(R"svg(<text x="{}" y="{}" font-size="12" text-anchor="middle">time, {}</text>)svg",
-                     (l + w - rm) / 2, h - b + 30, unit_s > 1.0 ? "min" : "s");
-  svg += fmt::format(
-      R"svg(<text x="14" y="{0}" font-size="12" transform="rotate(-90 14 {0})" text-anchor="middle">layer mean °C</text>)svg",
-      (t + h - b) / 2);
-  svg += "</svg>";
-  return svg;
+  return plot_html(p);
 }
 
 // What the history plot shows, for the line above it.
@@ -668,12 +612,12 @@ std::string cad_html(const VariantResult& v) {
   const CadMetrics& c = *m.cad;
   std::string h = "<h3>The part against its CAD</h3>";
   h += fmt::format(
-      "<p class=legend>Stock the printed skin leaves over the CAD: <span style=\"background:{}\"></span>"
-      "{:.2f} mm or less (short of the request) <span style=\"background:{}\"></span>{:.2f} mm (requested) "
-      "<span style=\"background:{}\"></span>{:.2f} mm or more</p>",
-      hex(deviation_colour(-1.0, 0.0, 1.0)), c.requested_stock_mm - c.map_half_range_mm,
-      hex(deviation_colour(0.0, 0.0, 1.0)), c.requested_stock_mm, hex(deviation_colour(1.0, 0.0, 1.0)),
-      c.requested_stock_mm + c.map_half_range_mm);
+      "<p class=legend>Stock the printed skin leaves over the CAD, on the picture's diverging scale (its "
+      "numbers are on the picture, one scale for all variants): <span style=\"background:{}\"></span>less "
+      "than requested <span style=\"background:{}\"></span>the requested {:.2f} mm <span "
+      "style=\"background:{}\"></span>more</p>",
+      hex(render::ColourMap::diverging().at(0.0)), hex(render::ColourMap::diverging().at(0.5)),
+      c.requested_stock_mm, hex(render::ColourMap::diverging().at(1.0)));
   for (const auto& img : v.images)
     if (img.ends_with("deviation.png"))
       h += fmt::format("<p><img src=\"{}\" alt=\"{} deviation from the CAD\"></p>", esc(img), esc(v.name));
@@ -810,10 +754,11 @@ h1{margin-bottom:.2em} .verdict{display:inline-block;padding:.2em .7em;border-ra
 td,th{border:1px solid #ddd;padding:3px 8px;text-align:right} th{background:#f4f5f7} td.l,th.l{text-align:left}
 tr.hot td{background:#fde2df} tr.cold td{background:#dfe8f8} img{max-width:100%;border:1px solid #ddd}
 .legend span{display:inline-block;width:12px;height:12px;margin:0 4px 0 12px;vertical-align:middle}
-details{margin:1em 0} .muted{color:#777}
+details{margin:1em 0} .muted{color:#777} .plot{position:relative;height:300px;margin:1em 0}
 td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#fff3cc} .delta{color:#555;font-size:11px}
-</style></head><body>
+</style>
 )";
+  h += "</head><body>\n";
   h += fmt::format("<h1>{}</h1><p class=\"muted\">{}</p>", esc(name),
                    esc(result.scenario ? result.scenario->description : ""));
   h += fmt::format("<p><span class=\"verdict {}\">{}</span> beadtwin {} · {} variant(s) · {:.1f} s</p>",
@@ -862,6 +807,15 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
     }
     h += cad_html(v);
     h += "<h3>Substrate temperature when each layer lands</h3>" + substrate_plot(v);
+    h += "<h3>Layer time against the fusion window</h3><p class=muted>Each layer's time as printed, coloured "
+         "by "
+         "its verdict, and in green the layer times that would have put it in the fusion window: long "
+         "enough for the layer below to cool under the support limit, short enough for it to stay warm "
+         "enough to heal; darker for all of the layer's landing area (as its verdict counts it), lighter for "
+         "half of it (the typical interface). A first-order estimate from the cooling each interface was on "
+         "as it was covered: "
+         "it says which way to move and about how far.</p>" +
+         layer_time_plot(v);
     if (const std::string plot = history_plot(v); !plot.empty())
       h += "<h3>Temperature of chosen layers against time</h3>" + history_caption(v) + plot;
     const Metrics& m = v.metrics;
@@ -935,7 +889,9 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
     for (const auto& s : v.stage_times) row(s.name, fmt::format("{:.2f} s", s.seconds));
     h += "</table></details>";
   }
-  h += "</body></html>\n";
+  // Chart.js, then the script that draws the plots, at the end of the body: the plots' data is in place.
+  h += "<script>" + std::string(chartjs_source()) + "</script>\n<script>" +
+       std::string(report_plots_source()) + "</script>\n</body></html>\n";
   return h;
 }
 
@@ -945,18 +901,24 @@ std::string junit_xml(const RunResult& result) {
     for (const auto& g : v.gates) ++tests, failures += g.passed ? 0 : 1;
   const std::string name = result.scenario ? result.scenario->name : "beadtwin";
   std::string x = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  x += fmt::format("<testsuites name=\"beadtwin\" tests=\"{}\" failures=\"{}\">\n", tests, failures);
+  x += fmt::format(
+      "<testsuites name=\"beadtwin\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n", tests,
+      failures, result.wall_time_s);
   for (const auto& v : result.variants) {
     int vf = 0;
     for (const auto& g : v.gates) vf += g.passed ? 0 : 1;
-    x += fmt::format("  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\">\n", esc(name),
-                     esc(v.name), v.gates.size(), vf);
+    double seconds = 0;
+    for (const auto& stage : v.stage_times) seconds += stage.seconds;
+    x += fmt::format(
+        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n", esc(name),
+        esc(v.name), v.gates.size(), vf, seconds);
     for (const auto& g : v.gates) {
       x += fmt::format("    <testcase classname=\"{}.{}\" name=\"{}\"", esc(name), esc(v.name), esc(g.expr));
       if (g.passed) {
         x += "/>\n";
       } else {
-        x += fmt::format(">\n      <failure message=\"{}\"/>\n    </testcase>\n", esc(g.message));
+        x += fmt::format(">\n      <failure message=\"{0}\" type=\"gate\">{0}</failure>\n    </testcase>\n",
+                         esc(g.message));
       }
     }
     x += "  </testsuite>\n";

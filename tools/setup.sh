@@ -9,7 +9,7 @@ packages=(
   libtbb-dev libopenvdb-dev libboost-dev libboost-iostreams-dev libblosc-dev
   libembree-dev libopenimageio-dev libsundials-dev libpolyclipping-dev libassimp-dev
   libmeshoptimizer-dev libfreetype-dev fonts-dejavu-core
-  libgtest-dev libgmock-dev
+  libgtest-dev libgmock-dev libxml2-dev libjs-chart.js
 )
 
 missing=()

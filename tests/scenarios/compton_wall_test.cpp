@@ -21,6 +21,7 @@
 #include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
+#include "tests/scenarios/report_checks.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
 #include "thermal/thermal.hpp"
@@ -134,11 +135,17 @@ TEST(ComptonWall, ShippedScenarioRuns) {
       EXPECT_LT(last, index == 0 ? 65.0 : 30.0);  // the first layer lies on the 65 C table
     }
   }
-  const std::string html = read_file(o.out_dir / "report.html");
-  EXPECT_NE(html.find("aria-label=\"layer temperature against time\""), std::string::npos);
-  EXPECT_NE(html.find("layer 29 (the 30th)"), std::string::npos);
-  EXPECT_NE(html.find("support limit 125 °C"), std::string::npos);
-  EXPECT_NE(html.find("T_g 110 °C"), std::string::npos);
+  // The report plots the three layers against time, with the support limit and T_g, from the same samples.
+  const std::vector<nlohmann::json> plots = testing::report_plots(read_file(o.out_dir / "report.html"));
+  const auto history =
+      std::find_if(plots.begin(), plots.end(), [](const auto& p) { return p["kind"] == "history"; });
+  ASSERT_NE(history, plots.end());
+  ASSERT_EQ((*history)["series"].size(), 3u);
+  EXPECT_EQ((*history)["series"][2]["label"], "layer 29 (the 30th)");
+  EXPECT_EQ((*history)["series"][2]["temp"].size(),
+            j["variants"][0]["temperature_history"]["times_s"].size());
+  EXPECT_EQ((*history)["support"].get<double>(), 125.0);
+  EXPECT_EQ((*history)["tg"].get<double>(), 110.0);
 }
 
 // The wall as the 3-D model sees it, per toolpath layer.

@@ -9,12 +9,16 @@
 #include <sstream>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "render/colormap.hpp"
 #include "render/image.hpp"
+#include "scenarios/colours.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/read_file.hpp"
+#include "tests/scenarios/report_checks.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -238,6 +242,11 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   EXPECT_GT(std::filesystem::file_size(o.out_dir / images[4].get<std::string>()), 1000u);
   const std::string html = read_file(o.out_dir / "report.html");
   EXPECT_NE(html.find("The part against its CAD"), std::string::npos);
+  // Its legend shows the picture's colours: the diverging map's ends and middle.
+  for (const double t : {0.0, 0.5, 1.0})
+    EXPECT_NE(html.find(fmt::format("background:{}", hex(render::ColourMap::diverging().at(t)))),
+              std::string::npos)
+        << t;
   EXPECT_NE(html.find("<img src=\"baseline/deviation.png\""), std::string::npos);
 }
 
@@ -332,6 +341,62 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
   EXPECT_GT(reports["fast/thermal"].size(), 5u);
   EXPECT_DOUBLE_EQ(reports["fast/thermal"].back(), 1.0);
   EXPECT_DOUBLE_EQ(reports["fast/deposit"].back(), 1.0);
+
+  // junit.xml as CI systems read it: valid JUnit XML, one test case per gate and variant, the counts adding
+  // up, and the failed gate with its message.
+  const testing::XmlDoc junit = testing::read_junit(o.out_dir / "junit.xml");
+  ASSERT_TRUE(junit);
+  const auto number = [&](const std::string& xpath) { return testing::xpath_number(junit.get(), xpath); };
+  int failed = 0;
+  for (const auto& v : r.variants)
+    for (const auto& g : v.gates) failed += g.passed ? 0 : 1;
+  EXPECT_EQ(number("count(/testsuites/testsuite)"), 2);
+  EXPECT_EQ(number("count(//testcase)"), 6);
+  EXPECT_EQ(number("/testsuites/@tests"), 6);
+  EXPECT_EQ(number("count(//failure)"), failed);
+  EXPECT_EQ(number("/testsuites/@failures"), failed);
+  EXPECT_EQ(number("sum(/testsuites/testsuite/@failures)"), failed);
+  EXPECT_EQ(number("count(//testsuite[@name='small-box.slow']/testcase)"), 3);
+  EXPECT_EQ(
+      testing::xpath_string(junit.get(),
+                            "//testsuite[@name='small-box.slow']/testcase[@name='print_time_s <= baseline * "
+                            "1.05']/failure/@message"),
+      r.variants[1].gates[1].message);
+  EXPECT_EQ(number("count(//testsuite[@name='small-box.fast']/testcase[@name='print_time_s <= baseline * "
+                   "1.05']/failure)"),
+            0);
+
+  // report.html's plots carry each variant's layers as report.json has them: the substrate temperature and
+  // the layer time with its window, for the page's script (Chart.js, embedded once) to draw.
+  const std::string html = read_file(o.out_dir / "report.html");
+  EXPECT_EQ(html.find("Chart.js v3"), html.rfind("Chart.js v3"));
+  EXPECT_NE(html.find("Chart.js v3"), std::string::npos);
+  std::map<std::string, std::vector<nlohmann::json>> plots;  // by kind, in variant order
+  for (const nlohmann::json& p : testing::report_plots(html)) plots[p["kind"]].push_back(p);
+  ASSERT_EQ(plots["substrate"].size(), 2u);
+  ASSERT_EQ(plots["layer_time"].size(), 2u);
+  ASSERT_EQ(plots["history"].size(), 2u);  // the default history layers
+  for (std::size_t k = 0; k < 2; ++k) {
+    SCOPED_TRACE(k);
+    const auto& layers = j["variants"][k]["layers"];
+    const auto& substrate = plots["substrate"][k];
+    const auto& times = plots["layer_time"][k];
+    ASSERT_EQ(substrate["layers"].size(), layers.size());
+    ASSERT_EQ(times["duration"].size(), layers.size());
+    EXPECT_DOUBLE_EQ(substrate["support"].get<double>(), sc.variants[k].material.support_limit_c);
+    for (std::size_t i = 0; i < layers.size(); ++i) {
+      EXPECT_EQ(substrate["layers"][i], layers[i]["index"]);
+      EXPECT_EQ(substrate["mean"][i], layers[i]["substrate_temp_c"]["mean"]);
+      EXPECT_EQ(substrate["verdicts"][i], layers[i]["verdict"]);
+      EXPECT_DOUBLE_EQ(times["duration"][i].get<double>(), layers[i]["duration_s"].get<double>());
+      // The window's band starts at its least (0 where nothing bounds it below) and ends at its most.
+      const auto& window = layers[i]["layer_time_window_s"];
+      const auto& band = times["window"][i];
+      if (band.is_null()) continue;
+      EXPECT_EQ(band[0].get<double>(), window["min"].is_null() ? 0.0 : window["min"].get<double>());
+      EXPECT_EQ(band[1], window["max"]);
+    }
+  }
 }
 
 // The shipped desktop scenario: PrusaSlicer's program for a small PLA box, simulated as written, with its

@@ -73,11 +73,6 @@ json fill_json(const slicer::FillParams& f) {
           {"angle_tolerance_deg", f.angle_tolerance_deg}};
 }
 
-// The least healing over the interfaces, or a dash for a part without any (a single layer).
-std::string healing_text(const Metrics& m) {
-  return m.interfaces > 0 ? fmt::format("{:.3f}", m.min_healing) : std::string("—");
-}
-
 // The rest of the part-versus-CAD comparison, or null without a CAD.
 json cad_json(const Metrics& m) {
   if (!m.cad) return nullptr;
@@ -368,10 +363,20 @@ std::string esc(std::string_view s) {
       case '\'':
         out += "&apos;";
         break;
+      // Tabs and line breaks as references, which keep them in attribute values (XML normalises the
+      // characters themselves to spaces there).
+      case '\t':
+        out += "&#9;";
+        break;
+      case '\n':
+        out += "&#10;";
+        break;
+      case '\r':
+        out += "&#13;";
+        break;
       default:
-        // XML 1.0 allows no control characters but tab and line breaks: any other would make junit.xml
-        // unreadable.
-        out += static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r' ? '?' : c;
+        // XML 1.0 allows no other control character: one would make junit.xml unreadable.
+        out += static_cast<unsigned char>(c) < 0x20 ? '?' : c;
     }
   }
   return out;
@@ -673,16 +678,15 @@ struct VariantColumn {
   std::function<std::optional<double>(const Metrics&)> value;
   std::function<std::string(double)> text;
   int better = 0;
-  bool fraction = false;  // differences in points rather than per cent
+  bool fraction = false;   // differences in points rather than per cent
+  bool in_summary = true;  // also in summary.md, which stays short enough for a pull-request comment
 };
 
-// The variants side by side, each cell that differs from the baseline variant's marked with the difference
-// and coloured by whether it is better or worse.
-std::string variants_table(const RunResult& result) {
-  const auto percent = [](double v) { return fmt::format("{:.1f} %", 100 * v); };
-  const std::vector<VariantColumn> columns = {
+const std::vector<VariantColumn>& variant_columns() {
+  static const auto percent = [](double v) { return fmt::format("{:.1f} %", 100 * v); };
+  static const std::vector<VariantColumn> columns = {
       {"layers", [](const Metrics& m) { return std::optional<double>(m.layers); },
-       [](double v) { return fmt::format("{:.0f}", v); }, 0},
+       [](double v) { return fmt::format("{:.0f}", v); }, 0, false, false},
       {"print time", [](const Metrics& m) { return std::optional<double>(m.print_time_s); },
        [](double v) { return hms(v); }, -1},
       {"mass kg", [](const Metrics& m) { return std::optional<double>(m.mass_kg); },
@@ -699,38 +703,59 @@ std::string variants_table(const RunResult& result) {
        },
        [](double v) { return fmt::format("{:.3f}", v); }, +1},
       {"mean layer time s", [](const Metrics& m) { return std::optional<double>(m.layer_time_s.mean); },
-       [](double v) { return fmt::format("{:.0f}", v); }, 0},
+       [](double v) { return fmt::format("{:.0f}", v); }, 0, false, false},
       {"min stock mm", [](const Metrics& m) { return m.min_stock_mm; },
        [](double v) { return fmt::format("{:.2f}", v); }, +1},
   };
+  return columns;
+}
+
+// A cell of the variants table: the value as written, and its difference from the baseline's where it
+// differs (in points for fractions, else per cent), with -1 worse, +1 better, 0 neither.
+struct VariantCell {
+  std::string text;   // "—" without a value
+  std::string delta;  // "+1.5 %", "-2.0 pt"; empty where it does not differ or for the baseline itself
+  int judgement = 0;
+};
+
+VariantCell variant_cell(const VariantColumn& c, const Metrics& m, const Metrics* baseline) {
+  const std::optional<double> value = c.value(m);
+  if (!value || !std::isfinite(*value)) return {"—", {}, 0};
+  VariantCell cell{c.text(*value), {}, 0};
+  const std::optional<double> was = baseline ? c.value(*baseline) : std::nullopt;
+  if (!was || !std::isfinite(*was)) return cell;
+  const double change = *value - *was;
+  const double scale = std::max(std::abs(*was), 1e-12);
+  const bool differs = c.fraction ? std::abs(change) >= 5e-4 : std::abs(change) / scale >= 0.005;
+  if (!differs) return cell;
+  cell.delta =
+      c.fraction ? fmt::format("{:+.1f} pt", 100 * change) : fmt::format("{:+.1f} %", 100 * change / scale);
+  cell.judgement = change * c.better > 0 ? +1 : (c.better == 0 ? 0 : -1);
+  return cell;
+}
+
+// The variants side by side, each cell that differs from the baseline variant's marked with the difference
+// and coloured by whether it is better or worse.
+std::string variants_table(const RunResult& result) {
   const std::size_t base = result.variants.empty() ? 0 : baseline_index(result.variants);
   std::string h = "<table class=variants><tr><th class=l>variant</th><th>verdict</th>";
-  for (const VariantColumn& c : columns) h += fmt::format("<th>{}</th>", c.heading);
+  for (const VariantColumn& c : variant_columns()) h += fmt::format("<th>{}</th>", c.heading);
   h += "</tr>";
   for (std::size_t i = 0; i < result.variants.size(); ++i) {
     const VariantResult& v = result.variants[i];
     h += fmt::format("<tr><td class=l>{}{}</td><td>{}</td>", esc(v.name),
                      i == base && result.variants.size() > 1 ? " <span class=muted>(baseline)</span>" : "",
                      v.passed ? "pass" : "<b>fail</b>");
-    for (const VariantColumn& c : columns) {
-      const std::optional<double> value = c.value(v.metrics);
-      if (!value || !std::isfinite(*value)) {
-        h += "<td>—</td>";
+    for (const VariantColumn& c : variant_columns()) {
+      const VariantCell cell =
+          variant_cell(c, v.metrics, i == base ? nullptr : &result.variants[base].metrics);
+      if (cell.delta.empty()) {
+        h += fmt::format("<td>{}</td>", cell.text);
         continue;
       }
-      std::string cell = c.text(*value), style;
-      const std::optional<double> was = i == base ? std::nullopt : c.value(result.variants[base].metrics);
-      if (was && std::isfinite(*was)) {
-        const double change = *value - *was;
-        const double scale = std::max(std::abs(*was), 1e-12);
-        const bool differs = c.fraction ? std::abs(change) >= 5e-4 : std::abs(change) / scale >= 0.005;
-        if (differs) {
-          cell += c.fraction ? fmt::format(" <span class=delta>({:+.1f} pt)</span>", 100 * change)
-                             : fmt::format(" <span class=delta>({:+.1f} %)</span>", 100 * change / scale);
-          style = c.better == 0 ? " class=diff" : (change * c.better > 0 ? " class=better" : " class=worse");
-        }
-      }
-      h += fmt::format("<td{}>{}</td>", style, cell);
+      h += fmt::format("<td class={}>{} <span class=delta>({})</span></td>",
+                       cell.judgement > 0 ? "better" : (cell.judgement < 0 ? "worse" : "diff"), cell.text,
+                       cell.delta);
     }
     h += "</tr>";
   }
@@ -927,21 +952,69 @@ std::string junit_xml(const RunResult& result) {
   return x;
 }
 
-std::string summary_md(const RunResult& result) {
-  std::string s = fmt::format("## beadtwin: {} — {}\n\n", result.scenario ? result.scenario->name : "",
-                              result.passed ? "passed" : "**failed**");
-  s += "| variant | verdict | print time | mass kg | porosity | too hot | too cold | min healing |\n";
-  s += "|---|---|---|---|---|---|---|---|\n";
-  for (const auto& v : result.variants) {
-    const Metrics& m = v.metrics;
-    s += fmt::format("| {} | {} | {} | {:.1f} | {:.2f} % | {:.1f} % | {:.1f} % | {} |\n", v.name,
-                     v.passed ? "pass" : "**fail**", hms(m.print_time_s), m.mass_kg, 100 * m.porosity,
-                     100 * m.too_hot_fraction, 100 * m.too_cold_fraction, healing_text(m));
+// A table cell for Markdown: the pipes a name may hold escaped.
+std::string md(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '|') out += '\\';
+    out += c == '\n' ? ' ' : c;
   }
+  return out;
+}
+
+std::string summary_md(const RunResult& result) {
+  // Short enough for a pull-request comment: the verdict, the variants against the baseline (the first
+  // kSummaryRows, the failed ones first), and the failed gates; the rest is in report.html.
+  constexpr std::size_t kSummaryRows = 20;
+  int failed_gates = 0;
   for (const auto& v : result.variants)
-    for (const auto& g : v.gates)
-      if (!g.passed) s += fmt::format("\n- `{}` failed in {}: {}", g.expr, v.name, g.message);
-  s += "\n";
+    for (const auto& g : v.gates) failed_gates += g.passed ? 0 : 1;
+  std::string s = fmt::format(
+      "## beadtwin: {} — {}\n\n", md(result.scenario ? result.scenario->name : ""),
+      result.passed ? "passed"
+                    : fmt::format("**failed** ({} gate{})", failed_gates, failed_gates == 1 ? "" : "s"));
+  const std::size_t base = result.variants.empty() ? 0 : baseline_index(result.variants);
+  const bool compare = result.variants.size() > 1;
+  s += "| variant | verdict |";
+  std::string rule = "|---|---|";
+  for (const VariantColumn& c : variant_columns())
+    if (c.in_summary) s += fmt::format(" {} |", c.heading), rule += "---|";
+  s += "\n" + rule + "\n";
+  std::vector<std::size_t> order(result.variants.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return i == base; });
+  std::stable_partition(order.begin() + (order.empty() ? 0 : 1), order.end(),
+                        [&](std::size_t i) { return !result.variants[i].passed; });
+  for (std::size_t k = 0; k < order.size() && k < kSummaryRows; ++k) {
+    const std::size_t i = order[k];
+    const VariantResult& v = result.variants[i];
+    s += fmt::format("| {}{} | {} |", md(v.name), compare && i == base ? " (baseline)" : "",
+                     v.passed ? "pass" : "**fail**");
+    for (const VariantColumn& c : variant_columns()) {
+      if (!c.in_summary) continue;
+      const VariantCell cell =
+          variant_cell(c, v.metrics, i == base ? nullptr : &result.variants[base].metrics);
+      s += " " + cell.text;
+      if (!cell.delta.empty())
+        s += cell.judgement < 0   ? fmt::format(" (**{}**, worse)", cell.delta)
+             : cell.judgement > 0 ? fmt::format(" ({}, better)", cell.delta)
+                                  : fmt::format(" ({})", cell.delta);
+      s += " |";
+    }
+    s += "\n";
+  }
+  if (order.size() > kSummaryRows)
+    s += fmt::format("\n{} more variants in report.html.\n", order.size() - kSummaryRows);
+  int listed = 0;
+  for (const std::size_t i : order)
+    for (const auto& g : result.variants[i].gates) {
+      if (g.passed) continue;
+      if (listed++ == 0) s += "\n";
+      if (listed > static_cast<int>(kSummaryRows)) continue;
+      s += fmt::format("- {}: {}\n", md(result.variants[i].name), md(g.message));
+    }
+  if (listed > static_cast<int>(kSummaryRows))
+    s += fmt::format("- and {} more failed gates in report.html\n", listed - static_cast<int>(kSummaryRows));
   return s;
 }
 

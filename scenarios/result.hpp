@@ -166,9 +166,8 @@ struct VariantResult {
   std::string deposit_file;                  // relative path of the .vdb
   ExportedFiles exported;
   std::vector<StageTime> stage_times;
-  std::vector<sim::Defect> defects;
-  std::vector<std::string> notes;  // what the stages chose for the user (a coarser voxel size, ...)  // what
-                                   // the deposit found, in toolpath order (voids last, largest first)
+  std::vector<sim::Defect> defects;  // what the deposit found, in toolpath order (voids last, largest first)
+  std::vector<std::string> notes;    // what the stages chose for the user (a coarser voxel size, ...)
   bool passed = true;
 };
 

@@ -183,7 +183,7 @@ TEST(Run, SmallScenarioEndToEnd) {
   EXPECT_NE(junit.find("testcase classname=\"small-box.fast\" name=\"porosity &lt; 0.5\""), std::string::npos)
       << junit;
   EXPECT_NE(read_file(out / "report.html").find("<img src=\"fast/fusion.png\""), std::string::npos);
-  EXPECT_NE(read_file(out / "summary.md").find("| fast |"), std::string::npos);
+  EXPECT_NE(read_file(out / "summary.md").find("| fast (baseline) |"), std::string::npos);
   // Nothing half-written is left behind.
   for (const auto& e : std::filesystem::recursive_directory_iterator(out))
     EXPECT_EQ(e.path().filename().string().rfind(".tmp-", 0), std::string::npos) << e.path();

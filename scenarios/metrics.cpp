@@ -1,5 +1,7 @@
 // The metrics a gate may name, each once: its dotted name (as in report.json) and how to read it.
 #include <algorithm>
+#include <string_view>
+#include <utility>
 
 #include "core/error.hpp"
 #include "scenarios/result.hpp"
@@ -27,6 +29,7 @@ const MetricDef kMetrics[] = {
     {"deposited_volume_mm3",
      [](const Metrics& m) -> std::optional<double> { return m.deposited_volume_mm3; }},
     {"mass_kg", [](const Metrics& m) -> std::optional<double> { return m.mass_kg; }},
+    {"material_cost", [](const Metrics& m) -> std::optional<double> { return m.material_cost; }},
     {"porosity", [](const Metrics& m) -> std::optional<double> { return m.porosity; }},
     {"min_stock_mm", [](const Metrics& m) { return m.min_stock_mm; }},
     {"undercut_fraction", [](const Metrics& m) { return m.undercut_fraction; }},
@@ -71,7 +74,70 @@ const MetricDef kMetrics[] = {
     {"layer_fill.max", [](const Metrics& m) { return m.max_layer_fill; }},
 };
 
+// A section's figures, named as sections.NAME.FIGURE.
+struct SectionMetricDef {
+  const char* name;
+  std::optional<double> (*read)(const SectionRow&);
+};
+
+const SectionMetricDef kSectionMetrics[] = {
+    {"layers", [](const SectionRow& s) -> std::optional<double> { return s.layers; }},
+    {"print_time_s", [](const SectionRow& s) -> std::optional<double> { return s.print_time_s; }},
+    {"print_length_mm", [](const SectionRow& s) -> std::optional<double> { return s.print_length_mm; }},
+    {"commanded_volume_mm3",
+     [](const SectionRow& s) -> std::optional<double> { return s.commanded_volume_mm3; }},
+    {"mass_kg", [](const SectionRow& s) -> std::optional<double> { return s.mass_kg; }},
+    {"material_cost", [](const SectionRow& s) -> std::optional<double> { return s.material_cost; }},
+    {"mean_layer_time_s", [](const SectionRow& s) -> std::optional<double> { return s.mean_layer_time_s; }},
+    {"interfaces.count", [](const SectionRow& s) -> std::optional<double> { return s.interfaces; }},
+    {"interfaces.too_hot_fraction",
+     [](const SectionRow& s) -> std::optional<double> { return s.too_hot_fraction; }},
+    {"interfaces.too_cold_fraction",
+     [](const SectionRow& s) -> std::optional<double> { return s.too_cold_fraction; }},
+    {"interfaces.min_healing",
+     [](const SectionRow& s) -> std::optional<double> {
+       return s.interfaces > 0 ? std::optional<double>(s.healing) : std::nullopt;
+     }},
+    {"interfaces.mean_healing",
+     [](const SectionRow& s) -> std::optional<double> {
+       return s.interfaces > 0 ? std::optional<double>(s.healing_mean) : std::nullopt;
+     }},
+};
+
+constexpr std::string_view kSectionPrefix = "sections.";
+
+// sections.NAME.FIGURE split into NAME and the figure's definition; nullopt for any other name.
+std::optional<std::pair<std::string, const SectionMetricDef*>> split_section_metric(const std::string& name) {
+  if (!name.starts_with(kSectionPrefix)) return std::nullopt;
+  const std::string_view rest = std::string_view(name).substr(kSectionPrefix.size());
+  for (const auto& d : kSectionMetrics) {
+    const std::string suffix = std::string(".") + d.name;
+    if (rest.size() > suffix.size() && rest.ends_with(suffix))
+      return std::make_pair(std::string(rest.substr(0, rest.size() - suffix.size())), &d);
+  }
+  return std::nullopt;
+}
+
 }  // namespace
+
+const std::vector<std::string>& section_gate_metrics() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& d : kSectionMetrics) out.emplace_back(d.name);
+    return out;
+  }();
+  return names;
+}
+
+bool is_gate_metric(const std::string& name) {
+  const auto& top = gate_metrics();
+  return std::find(top.begin(), top.end(), name) != top.end() || split_section_metric(name).has_value();
+}
+
+std::optional<std::string> gate_metric_section(const std::string& name) {
+  if (const auto split = split_section_metric(name)) return split->first;
+  return std::nullopt;
+}
 
 const std::vector<std::string>& gate_metrics() {
   static const std::vector<std::string> names = [] {
@@ -85,6 +151,11 @@ const std::vector<std::string>& gate_metrics() {
 std::optional<double> Metrics::get(const std::string& name) const {
   for (const auto& d : kMetrics)
     if (name == d.name) return d.read(*this);
+  if (const auto split = split_section_metric(name)) {
+    for (const SectionRow& s : sections)
+      if (s.name == split->first) return split->second->read(s);
+    return std::nullopt;
+  }
   throw InternalError("unknown metric " + name);
 }
 

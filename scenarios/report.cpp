@@ -265,9 +265,16 @@ json variant_json(const VariantResult& r) {
     layers.push_back(row);
   }
   json sections = json::array();
-  for (const SectionRow& s : r.sections) {
+  for (const SectionRow& s : r.metrics.sections) {
     json row = fusion_json(s);
     row["name"] = s.name;
+    row["layers"] = s.layers;
+    row["print_time_s"] = s.print_time_s;
+    row["print_length_mm"] = s.print_length_mm;
+    row["commanded_volume_mm3"] = s.commanded_volume_mm3;
+    row["mass_kg"] = s.mass_kg;
+    row["material_cost"] = s.material_cost;
+    row["mean_layer_time_s"] = s.mean_layer_time_s;
     sections.push_back(row);
   }
   json defects = json::array();
@@ -878,15 +885,19 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
     h += "</table>";
     h += fmt::format("<p>Print program: <a href=\"{0}\">{0}</a></p>", esc(v.program));
     h += files_html(v);
-    h += "<h3>Fusion by section</h3><table><tr><th class=l>section</th><th>interfaces</th><th>substrate °C "
+    h += "<h3>Sections</h3><table><tr><th class=l>section</th><th>layers</th><th>print time</th><th>mean "
+         "layer time s</th><th>bead m</th><th>material kg</th><th>cost</th><th>interfaces</th><th>substrate "
+         "°C "
          "at deposition min/mean/max</th><th>too hot %</th><th>too cold %</th><th>healing min/mean</th>"
          "<th class=l>verdict</th></tr>";
-    for (const SectionRow& sr : v.sections) {
+    for (const SectionRow& sr : v.metrics.sections) {
       const Stats3& s = sr.substrate_temp_c;
       h += fmt::format(
-          "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
+          "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.0f}</td><td>{:.1f}</td><td>{:.2f}</td>"
+          "<td>{:.2f}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
           "class=l>{}</td></tr>",
-          esc(sr.name), sr.interfaces, substrate_text(s), 100 * sr.too_hot_fraction,
+          esc(sr.name), sr.layers, hms(sr.print_time_s), sr.mean_layer_time_s, sr.print_length_mm / 1000,
+          sr.mass_kg, sr.material_cost, sr.interfaces, substrate_text(s), 100 * sr.too_hot_fraction,
           100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean), sr.verdict);
     }
     h += "</table>";

@@ -36,6 +36,29 @@ struct CadMetrics {
   double map_half_range_mm = 0;
 };
 
+// What the interfaces where a layer's or a section's beads landed add up to (thermal/summary.hpp): the
+// substrate's temperature where they landed on top (NaN: on nothing but the table), the least and the mean
+// healing (NaN: no interface), how many interfaces were too hot or too cold and their share of the interface
+// area, the verdict.
+struct FusionRow {
+  int interfaces = 0;
+  Stats3 substrate_temp_c;
+  double healing = 0, healing_mean = 0;
+  int too_hot = 0, too_cold = 0;
+  double too_hot_fraction = 0, too_cold_fraction = 0;
+  std::string verdict;
+};
+
+// A section's interfaces, as LayerRow has them per layer, and what it takes to print: its layers, the
+// head's time in it (its moves, travels and dwells included), bead length, material (commanded volume at
+// the material's density, which the deposit conserves) and cost, and its mean layer time.
+struct SectionRow : FusionRow {
+  std::string name;
+  int layers = 0;
+  double print_time_s = 0, print_length_mm = 0, commanded_volume_mm3 = 0, mass_kg = 0, material_cost = 0;
+  double mean_layer_time_s = 0;
+};
+
 struct Metrics {
   int layers = 0;
   double print_time_s = 0, print_length_mm = 0, travel_length_mm = 0;
@@ -72,23 +95,12 @@ struct Metrics {
   int collisions = 0;
   // Layers' commanded material over their outline times height (1: exactly full), the lowest and highest.
   std::optional<double> min_layer_fill, max_layer_fill;
+  // Per section, in the toolpath's order.
+  std::vector<SectionRow> sections;
 
-  // The value of a gate metric by its dotted name; nullopt when not measured. Throws InternalError on a
-  // name not in gate_metrics().
+  // The value of a gate metric by its dotted name (a section's as sections.NAME.FIGURE); nullopt when not
+  // measured (or no section has that name). Throws InternalError on a name is_gate_metric() refuses.
   std::optional<double> get(const std::string& name) const;
-};
-
-// What the interfaces where a layer's or a section's beads landed add up to (thermal/summary.hpp): the
-// substrate's temperature where they landed on top (NaN: on nothing but the table), the least and the mean
-// healing (NaN: no interface), how many interfaces were too hot or too cold and their share of the interface
-// area, the verdict.
-struct FusionRow {
-  int interfaces = 0;
-  Stats3 substrate_temp_c;
-  double healing = 0, healing_mean = 0;
-  int too_hot = 0, too_cold = 0;
-  double too_hot_fraction = 0, too_cold_fraction = 0;
-  std::string verdict;
 };
 
 struct LayerRow : FusionRow {
@@ -103,11 +115,6 @@ struct LayerRow : FusionRow {
   // The deposit (sim::LayerDeposit): fill ratio (0: outline unknown), bead height after following the
   // substrate, void and ploughed volume, unsupported length.
   double fill_ratio = 0, bead_height_mm = 0, void_mm3 = 0, plough_mm3 = 0, unsupported_mm = 0;
-};
-
-// A section's interfaces, as LayerRow has them per layer.
-struct SectionRow : FusionRow {
-  std::string name;
 };
 
 // The mean temperature of chosen layers against time (output.history_layers), from the thermal model's
@@ -156,7 +163,6 @@ struct VariantResult {
   const Variant* variant = nullptr;
   Metrics metrics;
   std::vector<LayerRow> layers;
-  std::vector<SectionRow> sections;
   TemperatureHistory temperature_history;
   std::vector<GateResult> gates;
   std::vector<std::string> images;           // PNG pictures, relative to the output directory

@@ -233,7 +233,7 @@ std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const
   return rows;
 }
 
-std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th) {
+std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th, const Material& material) {
   std::vector<int> section_of_cell;
   section_of_cell.reserve(th.mesh.cells.size());
   for (const thermal::ThermalCell& c : th.mesh.cells) section_of_cell.push_back(tp.moves[c.move].section);
@@ -245,6 +245,24 @@ std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th) {
     static_cast<FusionRow&>(row) = fusion_row(sums[k]);
     row.name = tp.sections[k];
     rows.push_back(row);
+  }
+  for (const Move& m : tp.moves) {
+    if (m.section < 0 || static_cast<std::size_t>(m.section) >= rows.size()) continue;
+    SectionRow& row = rows[static_cast<std::size_t>(m.section)];
+    row.print_time_s += m.duration_s;
+    if (m.deposits()) row.print_length_mm += m.length_mm();
+    row.commanded_volume_mm3 += m.volume_mm3;
+  }
+  for (const ToolpathLayer& l : tp.layers) {
+    if (l.section < 0 || static_cast<std::size_t>(l.section) >= rows.size()) continue;
+    SectionRow& row = rows[static_cast<std::size_t>(l.section)];
+    ++row.layers;
+    row.mean_layer_time_s += l.duration_s();
+  }
+  for (SectionRow& row : rows) {
+    row.mass_kg = row.commanded_volume_mm3 * 1e-9 * material.density_kg_m3;
+    row.material_cost = row.mass_kg * material.price_per_kg;
+    if (row.layers > 0) row.mean_layer_time_s /= row.layers;
   }
   return rows;
 }
@@ -396,7 +414,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.metrics.planned_voids = plan_stats.voids_found;
   res.metrics.planned_void_area_mm2 = plan_stats.void_area_mm2;
   res.layers = layer_rows(tp, th, deposit);
-  res.sections = section_rows(tp, th);
+  res.metrics.sections = section_rows(tp, th, v.material);
   res.temperature_history = temperature_history(v, th.heat);
   res.defects = deposit.defects;
   res.notes = deposit.notes;
@@ -443,6 +461,14 @@ std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Met
     if (!r.value) {
       r.passed = false;
       r.message = fmt::format("{} is not measured for this run", g.metric);
+      if (const std::optional<std::string> section = gate_metric_section(g.metric)) {
+        std::vector<std::string> names;
+        for (const SectionRow& row : metrics.sections) names.push_back(row.name);
+        if (std::find(names.begin(), names.end(), *section) == names.end())
+          r.message =
+              fmt::format("{}: this run has no section '{}'; its sections are: {}", g.metric, *section,
+                          names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", ")));
+      }
     } else if (!threshold) {
       r.passed = false;
       r.message = baseline ? fmt::format("{} is not measured for the baseline", g.metric)
@@ -488,6 +514,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
           fmt::format("scenario '{}' has no variant named '{}'; it has: {}", sc.name, name, names));
     }
   }
+  check_gate_sections(sc);
   std::filesystem::create_directories(options.out_dir);
   RunResult result;
   result.scenario = &sc;

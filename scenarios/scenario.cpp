@@ -826,11 +826,14 @@ Gate parse_gate_text(const std::string& expr, const SourceLocation& at) {
   };
   g.metric = trim(g.expr.substr(0, pos));
   const std::string rhs = trim(g.expr.substr(pos + len));
-  const auto& known = gate_metrics();
-  if (std::find(known.begin(), known.end(), g.metric) == known.end()) {
+  if (!is_gate_metric(g.metric)) {
     std::string names;
     for (const auto& n : gate_metrics()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError(at, "gates", fmt::format("unknown metric '{}'; expected one of: {}", g.metric, names));
+    std::string figures;
+    for (const auto& n : section_gate_metrics()) figures += (figures.empty() ? "" : ", ") + n;
+    throw InputError(at, "gates",
+                     fmt::format("unknown metric '{}'; expected one of: {}; or sections.NAME. and one of: {}",
+                                 g.metric, names, figures));
   }
   const auto number = [&](const std::string& text) {
     try {
@@ -1434,6 +1437,28 @@ Scenario load_program_check(const ProgramCheck& check) {
   Scenario sc = load_scenario_text(out.c_str(), file, check.settings);
   sc.warnings.insert(sc.warnings.begin(), assumed.begin(), assumed.end());
   return sc;
+}
+
+}  // namespace beadtwin::scenarios
+
+namespace beadtwin::scenarios {
+
+void check_gate_sections(const Scenario& sc) {
+  // A program's sections are known once it is read: its gates are judged then.
+  for (const Variant& v : sc.variants)
+    if (v.program) return;
+  for (const Gate& g : sc.gates) {
+    const std::optional<std::string> section = gate_metric_section(g.metric);
+    if (!section) continue;
+    std::vector<std::string> names;
+    for (const Variant& v : sc.variants)
+      for (const slicer::SectionParams& s : v.sections)
+        if (std::find(names.begin(), names.end(), s.name) == names.end()) names.push_back(s.name);
+    if (std::find(names.begin(), names.end(), *section) != names.end()) continue;
+    throw InputError(g.where, "gates",
+                     fmt::format("'{}' names section '{}', which no variant has; the sections are: {}",
+                                 g.expr, *section, fmt::join(names, ", ")));
+  }
 }
 
 }  // namespace beadtwin::scenarios

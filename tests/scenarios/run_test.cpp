@@ -342,6 +342,27 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
   EXPECT_DOUBLE_EQ(reports["fast/thermal"].back(), 1.0);
   EXPECT_DOUBLE_EQ(reports["fast/deposit"].back(), 1.0);
 
+  // Per section: what it took to print adds up to the part's (travel between sections aside), and the
+  // report keeps each section's row.
+  for (const auto& v : r.variants) {
+    SCOPED_TRACE(v.name);
+    ASSERT_EQ(v.metrics.sections.size(), 2u);
+    double mass = 0, time = 0, length = 0;
+    int layers = 0;
+    for (const SectionRow& s : v.metrics.sections) {
+      mass += s.mass_kg, time += s.print_time_s, length += s.print_length_mm, layers += s.layers;
+      EXPECT_GT(s.mean_layer_time_s, 0.0) << s.name;
+    }
+    EXPECT_EQ(layers, v.metrics.layers);
+    EXPECT_NEAR(mass, v.metrics.mass_kg, 0.01 * v.metrics.mass_kg);
+    EXPECT_NEAR(length, v.metrics.print_length_mm, 1e-6 * v.metrics.print_length_mm);
+    EXPECT_LE(time, v.metrics.print_time_s + 1e-6);
+    EXPECT_GT(time, 0.9 * v.metrics.print_time_s);
+  }
+  EXPECT_EQ(j["variants"][1]["sections"][1]["name"], "walls");
+  EXPECT_DOUBLE_EQ(j["variants"][1]["sections"][1]["mass_kg"].get<double>(),
+                   r.variants[1].metrics.sections[1].mass_kg);
+
   // junit.xml as CI systems read it: valid JUnit XML, one test case per gate and variant, the counts adding
   // up, and the failed gate with its message.
   const testing::XmlDoc junit = testing::read_junit(o.out_dir / "junit.xml");

@@ -379,6 +379,59 @@ TEST(Gates, ParseAndEvaluate) {
   EXPECT_TRUE(evaluate_gates(sc.gates, m)[2].passed);
 }
 
+// A section's figures as sections.NAME.FIGURE: judged on that section's row, refused for a figure that is
+// not one, and for a section no variant has, with the sections named.
+TEST(Gates, OnASection) {
+  Scenario sc = load_scenario_text(
+      replace(kGood, "  - porosity < 0.05\n",
+              "  - sections.walls.interfaces.too_hot_fraction <= 5 %\n  - sections.floor.mass_kg < 10\n"
+              "  - sections.walls.print_time_s <= baseline * 1.05\n"),
+      "t");
+  ASSERT_EQ(sc.gates.size(), 3u);
+  EXPECT_NO_THROW(check_gate_sections(sc));
+  Metrics m;
+  SectionRow floor, walls;
+  floor.name = "floor";
+  floor.mass_kg = 12.0;
+  walls.name = "walls";
+  walls.too_hot_fraction = 0.02;
+  walls.print_time_s = 1000.0;
+  m.sections = {floor, walls};
+  Metrics base = m;
+  base.sections[1].print_time_s = 900.0;
+  const auto r = evaluate_gates(sc.gates, m, &base);
+  EXPECT_TRUE(r[0].passed) << r[0].message;
+  EXPECT_EQ(*r[0].value, 0.02);
+  EXPECT_FALSE(r[1].passed);  // 12 kg of floor
+  EXPECT_EQ(*r[1].value, 12.0);
+  EXPECT_FALSE(r[2].passed);  // 1000 s against 900 * 1.05
+  EXPECT_DOUBLE_EQ(*r[2].threshold, 945.0);
+
+  // A run without the section (a program's own sections): the gate fails and names the sections there are.
+  m.sections = {floor};
+  const auto missing = evaluate_gates(sc.gates, m, &base);
+  EXPECT_FALSE(missing[0].passed);
+  EXPECT_NE(missing[0].message.find("no section 'walls'; its sections are: floor"), std::string::npos)
+      << missing[0].message;
+
+  const InputError figure = load_error(replace(kGood, "porosity < 0.05", "sections.walls.colour < 1"));
+  EXPECT_NE(std::string(figure.what()).find("sections.NAME. and one of: layers, print_time_s"),
+            std::string::npos)
+      << figure.what();
+  Scenario typo = load_scenario_text(replace(kGood, "porosity < 0.05", "sections.wals.mass_kg < 1"), "t");
+  try {
+    check_gate_sections(typo);
+    ADD_FAILURE() << "no error for a gate on section 'wals'";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "gates");
+    EXPECT_EQ(e.where().line, 25);
+    EXPECT_NE(std::string(e.what()).find(
+                  "names section 'wals', which no variant has; the sections are: floor, walls"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Gates relative to the baseline variant: its value of the same metric, scaled or shifted.
 TEST(Gates, RelativeToTheBaseline) {
   Scenario sc = load_scenario_text(

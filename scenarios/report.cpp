@@ -341,6 +341,7 @@ json variant_json(const VariantResult& r) {
       {"sections", sections},
       {"temperature_history", history_json(r.temperature_history)},
       {"defects", defects},
+      {"notes", r.notes},
       {"images", r.images},
       {"images_exr", r.exr_images},
       {"progress_frames", r.progress_frames},
@@ -805,6 +806,11 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
   }
   for (const auto& v : result.variants) {
     h += fmt::format("<h2>Variant {}</h2>", esc(v.name));
+    if (!v.notes.empty()) {
+      h += "<h3>Notes</h3><ul>";
+      for (const std::string& n : v.notes) h += "<li>" + esc(n) + "</li>";
+      h += "</ul>";
+    }
     h += "<h3>Gates</h3><table><tr><th class=l>gate</th><th>value</th><th>result</th></tr>";
     for (const auto& g : v.gates)
       h += fmt::format("<tr><td class=l><code>{}</code></td><td>{}</td><td>{}</td></tr>", esc(g.expr),

@@ -299,7 +299,7 @@ bool compare(double value, GateOp op, double threshold) {
 
 // The as-printed skin as a mesh file, with what the report says of it.
 void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
-                const std::filesystem::path& dir, ExportedFiles& files) {
+                const std::filesystem::path& dir, ExportedFiles& files, std::vector<std::string>& notes) {
   const auto* format =
       std::find_if(std::begin(sim::kMeshFormats), std::end(sim::kMeshFormats),
                    [&](sim::MeshFormat f) { return sim::to_string(f) == v.output.skin_format; });
@@ -307,6 +307,15 @@ void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposi
   const std::string name = "skin." + v.output.skin_format;
   const sim::SkinMesh skin =
       sim::extract_skin(deposit, v.output.skin_adaptivity, true, v.output.skin_tolerance_mm);
+  if (skin.triangles.empty()) {
+    // Simplified away: beads no thicker than the tolerance (a desktop bead against the 0.3 mm default).
+    notes.push_back(
+        fmt::format("no skin written: simplified to within output.skin_tolerance = {:.3g} mm, the "
+                    "part's surface left no triangles (its beads are about that thin); a smaller "
+                    "tolerance, or 0, keeps them",
+                    v.output.skin_tolerance_mm));
+    return;
+  }
   sim::write_mesh(skin, dir / name, *format);
   files.skin = (std::filesystem::path(v.name) / name).string();
   files.skin_bytes = std::filesystem::file_size(dir / name);
@@ -406,7 +415,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
   res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
   if (!v.output.skin_format.empty())
-    stages.run("skin", [&] { write_skin(v, tp, deposit, dir, res.exported); });
+    stages.run("skin", [&] { write_skin(v, tp, deposit, dir, res.exported, res.notes); });
   if (v.output.write_fields) stages.run("fields", [&] { write_fields(v, deposit, dir, res.exported); });
   res.metrics = measure(v, tp, deposit, th);
   if (cad) put_cad_metrics(*cad, res.metrics);
@@ -417,7 +426,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.metrics.sections = section_rows(tp, th, v.material);
   res.temperature_history = temperature_history(v, th.heat);
   res.defects = deposit.defects;
-  res.notes = deposit.notes;
+  res.notes.insert(res.notes.begin(), deposit.notes.begin(), deposit.notes.end());
   if (log)
     for (const std::string& n : res.notes) log(fmt::format("[{}] note: {}", v.name, n));
   res.stage_times = stages.times();

@@ -240,3 +240,22 @@ TEST(Cli, CheckGatesAChangeAgainstItsBaseline) {
 }
 
 }  // namespace
+
+namespace {
+
+// Two thin desktop beads (0.3 mm): the skin simplifies away at the 0.3 mm default tolerance. The run says
+// so in a note (also in report.json) and writes no skin, instead of stopping with an internal error.
+TEST(Cli, ThinBeadsLeaveNoSkinAndSaySo) {
+  const auto program =
+      write("bt_cli_thin.gcode", "G21\nG90\nM83\nG1 Z0.3 F600\nG1 X50 Y0 E2\nG1 X50 Y50 E2\nM30\n");
+  const auto out = std::filesystem::temp_directory_path() / "bt_cli_thin";
+  std::filesystem::remove_all(out);
+  const Result r = run("check " + program.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("no skin written"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out / "program" / "skin.ply"));
+  EXPECT_NE(read_file(out / "report.json").find("no skin written"), std::string::npos);
+  EXPECT_NE(read_file(out / "report.html").find("<h3>Notes</h3>"), std::string::npos);
+}
+
+}  // namespace

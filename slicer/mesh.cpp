@@ -1,8 +1,10 @@
 #include "slicer/mesh.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
@@ -161,6 +163,47 @@ std::string assimp_message(const Assimp::Importer& importer) {
   return message;
 }
 
+// An STL file's own account of itself, checked before assimp reads it (whose messages for a broken STL
+// speak of its "storage representation"): ASCII begins "solid" and has facets; binary is an 80-byte
+// header, a triangle count and 50 bytes per triangle.
+void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (ext != ".stl") return;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::min<std::uintmax_t>(bytes, 4096), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (head.starts_with("solid") && head.find("facet") != std::string::npos) return;  // ASCII
+  const std::string file = path.string();
+  if (bytes < 84)
+    throw InputError({file, 0, 0}, {},
+                     fmt::format("not an STL: {} bytes, shorter than a binary STL's 84-byte header, and not "
+                                 "ASCII STL (\"solid\" and facets)",
+                                 bytes));
+  std::uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) count |= std::uint32_t{static_cast<unsigned char>(head[80 + i])} << (8 * i);
+  const std::uintmax_t expected = 84 + 50 * std::uintmax_t{count};
+  if (count == 0) throw InputError({file, 0, 0}, {}, "the binary STL holds no triangles");
+  if (bytes < expected && expected / 64 > bytes)  // far beyond the file: a count read from other data
+    throw InputError(
+        {file, 0, 0}, {},
+        fmt::format("not an STL: as binary STL its header would count {} triangles ({} bytes) in a "
+                    "file of {} bytes; and it is not ASCII STL (\"solid\" and facets)",
+                    count, expected, bytes));
+  if (bytes < expected)
+    throw InputError(
+        {file, 0, 0}, {},
+        fmt::format("truncated binary STL: its header counts {} triangles ({} bytes), the file has {} bytes "
+                    "({} whole triangles)",
+                    count, expected, bytes, (bytes - 84) / 50));
+  if (bytes > expected + 1024)  // some writers pad; more than that is not this format
+    throw InputError(
+        {file, 0, 0}, {},
+        fmt::format("not an STL: as binary STL its header counts {} triangles ({} bytes) but the "
+                    "file has {} bytes; and it is not ASCII STL (\"solid\" and facets)",
+                    count, expected, bytes));
+}
+
 // The file's triangles as assimp reads them, polygons triangulated, before any repair.
 TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, MeshReport& report) {
   const std::string file = path.string();
@@ -168,7 +211,9 @@ TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, 
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError({file, 0, 0}, {},
                      std::filesystem::exists(path, ec) ? "not a regular file" : "no such mesh file");
-  if (std::filesystem::file_size(path, ec) == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (bytes == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
+  check_stl(path, bytes);
   // Only triangulation: joining vertices, dropping degenerates and fixing normals are done (and counted) by
   // repair_mesh, which assimp's own post-processing steps would do silently.
   Assimp::Importer importer;

@@ -467,7 +467,27 @@ TEST(Mesh, UnreadableFilesAreInputErrorsNamingTheFile) {
   write_text(temp_file("empty.stl"), "");
   EXPECT_NE(read_error(temp_file("empty.stl")).find("empty"), std::string::npos);
   write_text(temp_file("text.stl"), "this is a shopping list, not a mesh\n");
-  EXPECT_NE(read_error(temp_file("text.stl")).find("cannot read the mesh"), std::string::npos);
+  EXPECT_NE(read_error(temp_file("text.stl"))
+                .find("not an STL: 36 bytes, shorter than a binary STL's 84-byte header"),
+            std::string::npos)
+      << read_error(temp_file("text.stl"));
+  // Binary STL: cut short, a header counting what no file this size holds, and no triangles at all.
+  std::string binary(84, '\0');
+  binary[80] = 100;  // 100 triangles
+  binary += std::string(12 * 50, '\0');
+  write_text(temp_file("cut.stl"), binary);
+  EXPECT_NE(read_error(temp_file("cut.stl"))
+                .find("truncated binary STL: its header counts 100 triangles (5084 bytes), the file has 684 "
+                      "bytes (12 "
+                      "whole triangles)"),
+            std::string::npos)
+      << read_error(temp_file("cut.stl"));
+  binary[83] = 100;  // about 1.7 billion triangles
+  write_text(temp_file("garbage.stl"), binary);
+  EXPECT_NE(read_error(temp_file("garbage.stl")).find("not an STL: as binary STL its header would count"),
+            std::string::npos);
+  write_text(temp_file("none.stl"), std::string(84, '\0'));
+  EXPECT_NE(read_error(temp_file("none.stl")).find("the binary STL holds no triangles"), std::string::npos);
   write_text(temp_file("text.obj"), "this is a shopping list, not a mesh\n");
   read_error(temp_file("text.obj"));
   write_text(temp_file("notes.txt"), "this is a shopping list, not a mesh\n");

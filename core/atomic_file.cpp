@@ -1,11 +1,16 @@
 #include "core/atomic_file.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
 
 #include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
 
 namespace beadtwin {
 
@@ -56,6 +61,25 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     if (!f) throw std::runtime_error("error while writing " + out.temp().string());
   }
   out.commit();
+}
+
+void prepare_output_dir(const std::filesystem::path& dir, const std::string& option) {
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(
+        {dir.string(), 0, 0}, option,
+        fmt::format("cannot write the output here: {}; choose a writable directory with {}", why, option));
+  };
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) refuse(ec.message());
+  if (!std::filesystem::is_directory(dir, ec)) refuse("not a directory");
+  // Whether files can be made here (permissions, a read-only file system): a probe, removed at once.
+  const std::filesystem::path probe = dir / fmt::format(".tmp-{}-probe", ::getpid());
+  {
+    std::ofstream f(probe, std::ios::binary | std::ios::trunc);
+    if (!f) refuse(std::error_code(errno, std::generic_category()).message());
+  }
+  std::filesystem::remove(probe, ec);
 }
 
 }  // namespace beadtwin

@@ -9,6 +9,11 @@
 
 namespace beadtwin {
 
+// Makes `dir` (and its parents) if missing and checks that files can be written in it: before a run, so a
+// bad output directory stops it at once rather than after the work. Throws InputError (key `option`, the
+// command-line option that named it) saying why, with exit code 2.
+void prepare_output_dir(const std::filesystem::path& dir, const std::string& option);
+
 // Writes `content` to `path` atomically. Throws std::runtime_error naming the path on failure.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 

@@ -524,7 +524,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
     }
   }
   check_gate_sections(sc);
-  std::filesystem::create_directories(options.out_dir);
+  prepare_output_dir(options.out_dir, "--out");
   RunResult result;
   result.scenario = &sc;
   // Every variant sliced first: the pictures of all of them share one frame (camera box, colour scales).

@@ -107,6 +107,7 @@ class ProgressBar {
 // Runs a loaded scenario and prints the verdict, the report and the images.
 int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
                    const std::vector<std::string>& variants, bool quiet) {
+  beadtwin::prepare_output_dir(out_dir, "--out");  // before the work, not after it
   beadtwin::scenarios::RunOptions options;
   options.out_dir = out_dir;
   options.variants = variants;
@@ -163,6 +164,10 @@ int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const ExtraGates& 
 int cmd_slice(const std::string& scenario_path, const std::vector<std::string>& sets,
               const std::string& variant, const std::string& out) {
   const auto scenario = load(scenario_path, sets);
+  if (out != "-") {
+    const std::filesystem::path parent = std::filesystem::absolute(out).parent_path();
+    beadtwin::prepare_output_dir(parent, "--out");
+  }
   const std::string program = beadtwin::scenarios::slice_program(scenario, variant);
   if (out == "-") {
     std::fwrite(program.data(), 1, program.size(), stdout);

@@ -259,3 +259,23 @@ TEST(Cli, ThinBeadsLeaveNoSkinAndSaySo) {
 }
 
 }  // namespace
+
+namespace {
+
+// An output directory that cannot be made or written: exit code 2 at once, naming it and the option,
+// before any work; nothing written.
+TEST(Cli, UnwritableOutputDirectoryIsAnInputError) {
+  const auto file = write("bt_cli_a_file", "not a directory\n");
+  for (const std::string& out : {file.string() + "/out", std::string("/proc/beadtwin-out")}) {
+    SCOPED_TRACE(out);
+    const Result r = run("run -o " + out);
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--out: cannot write the output here"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("[baseline]"), std::string::npos) << "the run started: " << r.output;
+  }
+  const Result slice = run("slice -o " + file.string() + "/program.nc");
+  EXPECT_EQ(slice.code, 2) << slice.output;
+  EXPECT_NE(slice.output.find("Not a directory"), std::string::npos) << slice.output;
+}
+
+}  // namespace

@@ -33,6 +33,10 @@ void validate(const Extruder& e) {
   if (!(e.max_rpm >= 0)) problem(fmt::format("max RPM must not be negative, got {}", e.max_rpm));
   if (!(e.max_flow_mm3_s >= 0))
     problem(fmt::format("max flow must not be negative, got {} mm3/s", e.max_flow_mm3_s));
+  if (!(e.constant_feed_mm_s >= 0))
+    problem(fmt::format("constant filament feed must not be negative, got {} mm/s", e.constant_feed_mm_s));
+  if (e.constant_feed_mm_s > 0 && e.kind != ExtruderKind::kFilament)
+    problem(fmt::format("a constant filament feed needs a filament extruder, not a {}", to_string(e.kind)));
   if (!problems.empty()) throw InputError({}, "extruder", problems);
 }
 

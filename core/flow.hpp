@@ -37,15 +37,21 @@ struct Extruder {
   double filament_diameter_mm = 0.0;  // d_f of eqs. 1 and 3; required for kFilament only
   double max_rpm = 0.0;               // highest pump, screw or drive speed, rev/min; 0: no limit
   double max_flow_mm3_s = 0.0;        // highest volumetric flow the extruder melts, mm³/s; 0: no limit
+  // A filament drive that the program can only switch on and off (melt on / melt off codes, no E words)
+  // feeds its filament at this constant v_e, mm/s: Q = π d_f² v_e / 4 while the melt is on, and the head's
+  // feed sets the bead, A = Q / v (seed 002 eqs. 1, 12, Table 1). 0: no such drive. kFilament only.
+  double constant_feed_mm_s = 0.0;
 
   bool has_rpm() const { return displacement_mm3_per_rev > 0.0; }
+  bool has_constant_feed() const { return constant_feed_mm_s > 0.0; }
   // Whether programs carry its commands: speed words for a pump or screw of known displacement, E words for
   // a filament drive.
   bool has_commands() const { return has_rpm() || kind == ExtruderKind::kFilament; }
 };
 
 // Throws InputError (key "extruder") naming every problem found: a gear pump or screw without a positive
-// displacement, a filament extruder without a positive filament diameter, negative limits.
+// displacement, a filament extruder without a positive filament diameter, negative limits, a constant feed
+// that is negative or belongs to a pump or screw.
 void validate(const Extruder& extruder);
 
 // Q = A(w, h) v, mm³/s, for a bead of width w and height h (mm) laid at v (mm/s). Precondition: 0 < h <= w.

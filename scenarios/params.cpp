@@ -328,6 +328,11 @@ constexpr ParamSpec kMachine[] = {
      "estimate per machine"},
     {"extruder.filament_diameter", T::kQuantity, D::kLength, "0", 0, 100, false,
      "filament diameter d_f of a filament extruder (E words)", "seed 002 eq. 1"},
+    {"extruder.constant_feed", T::kQuantity, D::kSpeed, "0", 0, 1000, false,
+     "filament extruder whose drive the program only switches on and off: it feeds the filament at this "
+     "constant v_e from melt_on to melt_off, Q = π d_f² v_e / 4, and where a program's moves carry no E "
+     "word the head's feed sets the bead, A = Q / v (0: the flow comes from E or speed words)",
+     "seed 002 eqs. 1 and 12, Table 1"},
     {"extruder.ooze_time", T::kQuantity, D::kTime, "0", 0, 1000, false,
      "time constant of the nozzle's pressure after a melt off: without a coast or a reverse the melt oozes "
      "on, its flow falling as exp(-t/τ), onto the dwells and travels that follow (0: no ooze)",

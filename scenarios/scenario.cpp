@@ -161,10 +161,15 @@ Machine read_machine(BlockReader& r) {
   m.extruder.displacement_mm3_per_rev = r.quantity(spec(t, "extruder.displacement"));
   m.extruder.filament_diameter_mm = r.quantity(spec(t, "extruder.filament_diameter"));
   m.extruder.max_rpm = r.quantity(spec(t, "extruder.max_rpm"));
+  m.extruder.constant_feed_mm_s = r.quantity(spec(t, "extruder.constant_feed"));
   m.ooze_time_s = r.quantity(spec(t, "extruder.ooze_time"));
   if (m.extruder.kind == ExtruderKind::kFilament && !(m.extruder.filament_diameter_mm > 0))
     r.fail(r.take("extruder.filament_diameter"), "extruder.filament_diameter",
            "a filament extruder needs its filament diameter");
+  if (m.extruder.has_constant_feed() && m.extruder.kind != ExtruderKind::kFilament)
+    r.fail(r.take("extruder.constant_feed"), "extruder.constant_feed",
+           "a constant feed is a filament drive's: set extruder.kind to filament, or give a pump its speed "
+           "words");
   if (m.extruder_output_kg_s > m.extruder_max_output_kg_s)
     r.fail(r.take("extruder.output"), "extruder.output",
            "nominal output is above the extruder's maximum output");
@@ -215,6 +220,10 @@ Machine read_machine(BlockReader& r) {
   m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
   m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
   m.dialect.absolute_e = r.boolean(spec(t, "gcode.absolute_e"));
+  if (m.extruder.has_constant_feed() && (m.dialect.melt_on.empty() || m.dialect.melt_off.empty()))
+    r.fail(
+        r.take("extruder.constant_feed"), "extruder.constant_feed",
+        "a constant feed runs from melt on to melt off: give the machine gcode.melt_on and gcode.melt_off");
   r.finish(t);
   return m;
 }

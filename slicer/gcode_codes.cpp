@@ -111,6 +111,10 @@ void validate(const ReaderOptions& o) {
     } catch (const InputError& e) {
       problems.push_back("reader.extruder: " + e.message());
     }
+    if (o.extruder->has_constant_feed() && o.melt_on.empty())
+      problems.push_back(
+          "reader.extruder: a constant filament feed runs from melt on to melt off, but "
+          "reader.melt_on names no code");
   }
   if (problems.empty()) return;
   std::string all = problems.front();

@@ -25,7 +25,7 @@ constexpr std::size_t kMacroText = std::size_t{8} << 20;
 
 // A parameterised (Fanuc macro) program, run by the macro interpreter into the reader.
 Toolpath read_macro(const std::string& text, const std::string& file_name, const ReaderOptions& options,
-                    ReadStats* stats, int lines) {
+                    ReadStats* stats) {
   MacroOptions mo;
   mo.file_name = file_name;
   mo.block_delete = options.block_delete;
@@ -40,7 +40,9 @@ Toolpath read_macro(const std::string& text, const std::string& file_name, const
   Toolpath tp = reader.finish();
   if (stats) {
     *stats = reader.stats();
-    stats->lines = static_cast<std::size_t>(lines);
+    // The program's lines, not the lines lexed before its first macro line was met.
+    stats->lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) +
+                   (!text.empty() && text.back() != '\n' ? 1 : 0);
   }
   return tp;
 }
@@ -160,7 +162,7 @@ Toolpath read_gcode(std::istream& in, const std::string& file_name, const Reader
     std::string rest(std::istreambuf_iterator<char>(in), {});
     if (rest.find('\0') != std::string::npos)
       throw InputError({file_name, 0, 0}, "gcode", "NUL byte in the program: this is not a text file");
-    return read_macro(kept + chunk_tail + rest, file_name, options, stats, number);
+    return read_macro(kept + chunk_tail + rest, file_name, options, stats);
   }
   Toolpath tp = reader.finish();
   if (stats) {

@@ -307,10 +307,14 @@ class GcodeReader::State {
     return codes_.melt_on.empty() ? rpm_ > 0.0 : melt_;
   }
 
-  // Flow of the running pump, mm³/s; 0 when not known.
+  // Flow of the running pump, mm³/s: its speed word's, else a filament drive's constant feed; 0 when not
+  // known.
   double pump_flow_mm3_s() const {
-    if (!pump_running() || !(rpm_ > 0.0) || !opt_.extruder || !opt_.extruder->has_rpm()) return 0.0;
-    return flow_for_rpm(*opt_.extruder, rpm_);
+    if (!pump_running() || !opt_.extruder) return 0.0;
+    if (rpm_ > 0.0 && opt_.extruder->has_rpm()) return flow_for_rpm(*opt_.extruder, rpm_);
+    if (opt_.extruder->has_constant_feed())
+      return flow_for_filament_feed(*opt_.extruder, opt_.extruder->constant_feed_mm_s);
+    return 0.0;
   }
 
   void dwell(SortedBlock& s) {
@@ -507,9 +511,8 @@ class GcodeReader::State {
         volume = bead_area_mm2(opt_.default_bead_width_mm, opt_.default_layer_height_mm) * length;
       } else {
         warn("unknown flow", 0,
-             "melt on, but neither the pump's speed and an extruder nor a default bead give the flow: the "
-             "print "
-             "moves carry no material");
+             "melt on, but neither the pump's speed and an extruder, a constant filament feed nor a default "
+             "bead give the flow: the print moves carry no material");
       }
     }
     for (std::size_t k = 1; k < points.size(); ++k) {

@@ -8,7 +8,9 @@
 // What the blocks mean:
 //   motion     G0 is travel. G1, G2 and G3 print when material flows: the E word grows (filament machines),
 //              or, without an E word, the melt is on and the pump turns (pump machines; the S word is its
-//              speed in rev/min, turned into flow by ReaderOptions::extruder). G2/G3 take I/J/K centre
+//              speed in rev/min, turned into flow by ReaderOptions::extruder; a filament drive with a
+//              constant feed, Extruder::constant_feed_mm_s, feeds Q = π d_f² v_e / 4 from melt on to melt
+//              off, as on the hybrid machine of seed 002). G2/G3 take I/J/K centre
 //              offsets (from the start) or R (negative: the longer arc) in the plane of G17 (XY), G18 (ZX)
 //              or G19 (YZ), start == end with I/J/K being a full circle, the third axis moving along (a
 //              helix), P the number of turns; they become straight moves within the chord tolerance
@@ -20,7 +22,8 @@
 //              read it), F is per minute (in/min under G20).
 //   dwells     G4 P (milliseconds, or seconds with ReaderOptions::dwell_p_seconds), S or X (seconds).
 //   material   A print move's volume is the E it feeds times the filament's section (or E itself when
-//              volumetric), or the pump's flow times the move's duration at its feed (length / feed). E drawn
+//              volumetric), or the pump's (or constant feed's) flow times the move's duration at its feed
+//              (length / feed): the slower the head, the wider the bead (seed 002 eq. 12). E drawn
 //              back (a retraction: E falling without motion) is owed; E fed again first refills the nozzle
 //              (ReaderOptions::refill_after_retract), only what exceeds the debt is laid.
 //   beads      The section A = volume / length and the layer height h give the width through the stadium of
@@ -100,8 +103,9 @@ struct ReaderOptions {
   bool filament_diameter_from_program = true;
   bool volumetric_e = false;  // E is volume (mm³, in³ under G20) from the start
 
-  // The pump or screw (kGearPump, kScrew): turns the S word (rev/min) into flow. Without one, a pump
-  // program's print moves lay the default bead, or nothing when there is none.
+  // The pump or screw (kGearPump, kScrew): turns the S word (rev/min) into flow; or a filament drive, whose
+  // constant feed (if any) is the flow between melt on and melt off where moves carry no E word. Without
+  // one, a pump program's print moves lay the default bead, or nothing when there is none.
   std::optional<Extruder> extruder;
   bool refill_after_retract = true;    // E fed after a retraction refills the nozzle before material is laid
   double default_bead_width_mm = 0.0;  // the bead a print move of unknown flow lays (0: none)

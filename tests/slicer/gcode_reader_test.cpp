@@ -376,6 +376,54 @@ TEST(GcodeReaderPump, UnknownFlowTakesTheDefaultBeadOrWarns) {
   EXPECT_NEAR(with.moves.at(2).bead_width_mm, 10.0, 1e-9);
 }
 
+// The hybrid machine of seed 002 (Negrău, Pancu and Grebenișan 2023): a filament drive fed at a constant
+// v_e that M23/M24 only start and stop, so the flow is Q = π d_f² v_e / 4 (eq. 1) whatever the axes do and
+// the axis feed sets the bead, A = Q / v (eq. 12). Table 1: 1.75 mm filament at 2.31 mm/s.
+TEST(GcodeReaderPump, ConstantFilamentFeedLaysQOverTheFeed) {
+  Extruder drive;
+  drive.kind = ExtruderKind::kFilament;
+  drive.filament_diameter_mm = 1.75;
+  drive.constant_feed_mm_s = 2.31;
+  ReaderOptions o;
+  o.extruder = drive;
+  const double q = filament_area(1.75) * 2.31;  // 5.56 mm³/s
+  ReadStats st;
+  const Toolpath tp = read(
+      "G0 X0 Y0 Z0.5\n"
+      "G1 X10 F100\n"     // melt off: travel
+      "M23\n"             // feed start
+      "G1 X20 F100\n"     // 10 mm at 100 mm/min: 6 s of feed
+      "G1 X30 F550\n"     // 5.5 times faster: 5.5 times thinner
+      "G4 P500\n"         // the feed runs on while the head waits: 0.5 s of it, a blob
+      "G0 X40\n"          // rapid: nothing booked
+      "G1 X50 E1 F100\n"  // an E word says what is fed instead
+      "M24\n"             // feed stop
+      "G1 X60 F100\n",
+      o, &st);
+  EXPECT_EQ(moves_of_line(tp, 2).at(0).kind, MoveKind::kTravel);
+  const Move slow = moves_of_line(tp, 4).at(0), fast = moves_of_line(tp, 5).at(0);
+  EXPECT_NEAR(slow.volume_mm3, q * 6.0, 1e-9);
+  EXPECT_NEAR(fast.volume_mm3, q * 60.0 / 550.0 * 10.0, 1e-9);
+  EXPECT_NEAR(slow.volume_mm3 / slow.length_mm(), q / (100.0 / 60.0), 1e-9);  // A = Q / v
+  EXPECT_NEAR(bead_area_mm2(slow.bead_width_mm, 0.5), q / (100.0 / 60.0), 1e-9);
+  EXPECT_GT(slow.bead_width_mm, 5.0 * fast.bead_width_mm);
+  EXPECT_NEAR(moves_of_line(tp, 6).at(0).volume_mm3, q * 0.5, 1e-9);
+  EXPECT_EQ(moves_of_line(tp, 7).at(0).kind, MoveKind::kTravel);
+  EXPECT_NEAR(moves_of_line(tp, 8).at(0).volume_mm3, filament_area(1.75) * 1.0, 1e-9);
+  EXPECT_EQ(moves_of_line(tp, 10).at(0).kind, MoveKind::kTravel) << "feed stopped: no material";
+  EXPECT_EQ(st.count("unknown flow"), 0u);
+
+  // Without codes to start and stop it, a constant feed is refused.
+  ReaderOptions no_codes = o;
+  no_codes.melt_on.clear();
+  EXPECT_THROW((void)read("G1 X1 F100\n", no_codes), InputError);
+  // A pump has no constant filament feed.
+  ReaderOptions pump = o;
+  pump.extruder = gear_pump();
+  pump.extruder->constant_feed_mm_s = 2.31;
+  EXPECT_THROW((void)read("G1 X1 F100\n", pump), InputError);
+}
+
 // ---- layers, beads, features ----
 
 TEST(GcodeReaderLayers, MaterialAtANewZStartsALayerHopsDoNot) {
@@ -532,6 +580,10 @@ TEST(GcodeReaderBadInput, ProgramEndAndBlockDelete) {
   ReaderOptions keep;
   keep.block_delete = false;
   EXPECT_EQ(read("G1 X1 F600\n/G1 X5\nM2\n", keep).moves.size(), 2u);
+  // A macro program is read whole: all its lines, not those before its first macro line.
+  ReadStats macro;
+  (void)read("G0 X0 F600\n#1 = 5\nWHILE [#1 GT 0] DO 1\nG1 X#1\n#1 = #1 - 1\nEND 1\nM30", {}, &macro);
+  EXPECT_EQ(macro.lines, 7u);
 }
 
 // Issue 5 item 3: rotary axes B and C (seed 002's 5-axis machine) are parsed and kept with the moves,

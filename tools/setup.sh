@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages beadtwin builds with, if any are missing. Plain apt-get as root,
-# sudo otherwise. Safe to run again: it installs only what is missing.
+# Installs the Debian 12 packages beadtwin builds with, if any are missing; with --tests, also what the test
+# suite runs besides (tools/test.sh passes it). Plain apt-get as root, sudo otherwise. Safe to run again: it
+# installs only what is missing.
 set -euo pipefail
 
 packages=(
@@ -11,6 +12,19 @@ packages=(
   libmeshoptimizer-dev libfreetype-dev fonts-dejavu-core
   libgtest-dev libgmock-dev libxml2-dev libjs-chart.js
 )
+# Not needed to build or run beadtwin: headless Chromium opens report.html in the browser tests
+# (tests/scenarios/report_browser_test.cpp, skipped without it): 78 more packages on Debian 12, 138 MB to
+# download, 459 MB installed.
+test_packages=(chromium)
+
+case "${1:-}" in
+  "") ;;
+  --tests) packages+=("${test_packages[@]}") ;;
+  *)
+    echo "usage: setup.sh [--tests]" >&2
+    exit 2
+    ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

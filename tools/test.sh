@@ -5,7 +5,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BEADTWIN_BUILD_DIR:-$root/build}"
 
-bash "$root/tools/setup.sh"
+bash "$root/tools/setup.sh" --tests
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBEADTWIN_BUILD_TESTS=ON -DBEADTWIN_WERROR=ON >"$build/configure.log" 2>&1 || {
   cat "$build/configure.log"

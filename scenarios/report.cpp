@@ -482,6 +482,7 @@ std::string healing_text(double min, double mean) {
 // The layer times that would have put a layer in the window: "120 – 300", "at least 120", "at most 300",
 // "none" (the bounds cross, or no wait would cool it enough), or a dash where nothing bounds them.
 std::string window_range(double min_s, double max_s) {
+  if (max_s <= 0.0) return "none";  // no layer time is short enough
   const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
   if (lo && hi) return min_s <= max_s ? fmt::format("{:.0f} – {:.0f}", min_s, max_s) : std::string("none");
   if (min_s == std::numeric_limits<double>::infinity()) return "none";
@@ -544,7 +545,7 @@ std::string substrate_plot(const VariantResult& r) {
 // A layer-time window as a band for the plot: [least, most], the least 0 and the most null (the top of the
 // plot) where nothing bounds them; null where no layer time would do or nothing bounds either end.
 json window_band(double min_s, double max_s) {
-  if (min_s == std::numeric_limits<double>::infinity()) return nullptr;
+  if (min_s == std::numeric_limits<double>::infinity() || max_s <= 0.0) return nullptr;
   const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
   if (!lo && !hi) return nullptr;
   if (lo && hi && min_s > max_s) return nullptr;
@@ -698,7 +699,8 @@ const std::vector<VariantColumn>& variant_columns() {
       {"print time", [](const Metrics& m) { return std::optional<double>(m.print_time_s); },
        [](double v) { return hms(v); }, -1},
       {"mass kg", [](const Metrics& m) { return std::optional<double>(m.mass_kg); },
-       [](double v) { return fmt::format("{:.1f}", v); }, -1},
+       // A tenth of a kilogram at LSAM scale, three digits for a desktop part's grams.
+       [](double v) { return v >= 1.0 ? fmt::format("{:.1f}", v) : fmt::format("{:.3g}", v); }, -1},
       {"porosity", [](const Metrics& m) { return std::optional<double>(m.porosity); },
        [](double v) { return fmt::format("{:.2f} %", 100 * v); }, -1, true},
       {"too hot", [](const Metrics& m) { return std::optional<double>(m.too_hot_fraction); }, percent, -1,
@@ -792,8 +794,9 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
 </style>
 )";
   h += "</head><body>\n";
-  h += fmt::format("<h1>{}</h1><p class=\"muted\">{}</p>", esc(name),
-                   esc(result.scenario ? result.scenario->description : ""));
+  h += fmt::format("<h1>{}</h1>", esc(name));
+  if (result.scenario && !result.scenario->description.empty())
+    h += fmt::format("<p class=\"muted\">{}</p>", esc(result.scenario->description));
   h += fmt::format("<p><span class=\"verdict {}\">{}</span> beadtwin {} · {} variant(s) · {:.1f} s</p>",
                    result.passed ? "pass" : "fail", result.passed ? "PASSED" : "FAILED", BEADTWIN_VERSION,
                    result.variants.size(), result.wall_time_s);
@@ -811,26 +814,35 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
       for (const std::string& n : v.notes) h += "<li>" + esc(n) + "</li>";
       h += "</ul>";
     }
-    h += "<h3>Gates</h3><table><tr><th class=l>gate</th><th>value</th><th>result</th></tr>";
-    for (const auto& g : v.gates)
-      h += fmt::format("<tr><td class=l><code>{}</code></td><td>{}</td><td>{}</td></tr>", esc(g.expr),
-                       fmt_opt(g.value), g.passed ? "pass" : "<b>fail</b>");
-    h += "</table>";
-    h += fmt::format(
-        "<h3>The part, coloured by fusion verdict</h3><p class=legend>Each piece of bead by its worst "
-        "interface "
-        "where it landed: <span style=\"background:{}\"></span>fuses <span "
-        "style=\"background:{}\"></span>too "
-        "hot (the substrate under it above the support limit) <span style=\"background:{}\"></span>too cold "
-        "(an interface that does not heal) <span style=\"background:{}\"></span>no interface (on the table "
-        "alone)</p>",
-        hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
-        hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kNoInterface)));
+    if (v.gates.empty()) {
+      h += "<h3>Gates</h3><p class=muted>No gates: the variant passes as long as it runs.</p>";
+    } else {
+      h += "<h3>Gates</h3><table><tr><th class=l>gate</th><th>value</th><th>result</th></tr>";
+      for (const auto& g : v.gates)
+        h += fmt::format("<tr><td class=l><code>{}</code></td><td>{}</td><td>{}</td></tr>", esc(g.expr),
+                         fmt_opt(g.value), g.passed ? "pass" : "<b>fail</b>");
+      h += "</table>";
+    }
+    // The pictures (each with its own title, legend and scale), and what the fusion colours mean.
+    const bool fusion = std::any_of(v.images.begin(), v.images.end(), [](const std::string& img) {
+      return std::filesystem::path(img).stem().string().starts_with("fusion");
+    });
+    if (!v.images.empty()) h += "<h3>Pictures</h3>";
+    if (fusion)
+      h += fmt::format(
+          "<p class=legend>Fusion: each piece of bead by its worst interface where it landed: <span "
+          "style=\"background:{}\"></span>fuses <span style=\"background:{}\"></span>too hot (the substrate "
+          "under it above the support limit) <span style=\"background:{}\"></span>too cold (an interface "
+          "that "
+          "does not heal) <span style=\"background:{}\"></span>no interface (on the table alone)</p>",
+          hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
+          hex(verdict_colour(thermal::Verdict::kTooCold)),
+          hex(verdict_colour(thermal::Verdict::kNoInterface)));
     for (const auto& img : v.images) {
       if (img.ends_with("sections.png") || img.ends_with("deviation.png")) continue;
       h += fmt::format("<p><img src=\"{}\" alt=\"{} {}\"></p>", esc(img), esc(v.name), esc(img));
     }
-    if (v.variant) {
+    if (v.variant && !v.variant->sections.empty()) {
       h += "<h3>The sections</h3><p class=legend>";
       for (std::size_t i = 0; i < v.variant->sections.size(); ++i) {
         const auto& sec = v.variant->sections[i];

@@ -1252,9 +1252,12 @@ Setting parse_setting(const std::string& text) {
 
 Scenario load_scenario_text(const std::string& text, const std::string& file,
                             const std::vector<Setting>& settings) {
-  const std::filesystem::path dir = file.empty() || file.starts_with(kBuiltIn)
-                                        ? std::filesystem::path()
-                                        : std::filesystem::path(file).parent_path();
+  // Beside the scenario file ("." for one named without a directory); none for a built-in one.
+  std::filesystem::path dir;
+  if (!file.empty() && !file.starts_with(kBuiltIn)) {
+    dir = std::filesystem::path(file).parent_path();
+    if (dir.empty()) dir = ".";
+  }
   const Tree base = parse_tree(text, file, dir);
   const YAML::Node& root = base.root;
 

@@ -279,3 +279,27 @@ TEST(Cli, UnwritableOutputDirectoryIsAnInputError) {
 }
 
 }  // namespace
+
+namespace {
+
+// A scenario named without a directory finds the machine files beside it, as one named ./s.yaml does.
+TEST(Cli, ScenarioInTheWorkingDirectoryFindsItsMachines) {
+  const auto dir = std::filesystem::temp_directory_path() / "bt_cli_cwd";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "machines");
+  std::filesystem::copy_file(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios/machines/lsam-ph15.yaml",
+                             dir / "machines/my-gantry.yaml");
+  std::ofstream(dir / "s.yaml") << "name: cwd\nunits: {length: mm}\nmachine: my-gantry\nmaterial: cf-abs-20\n"
+                                   "part:\n  box: {size: [200, 150, 10]}\nsections:\n"
+                                   "  - {name: all, z: part, layer_height: 5, bead_width: 20}\n";
+  const std::string cmd = "cd " + dir.string() + " && " + BEADTWIN_BINARY + " slice s.yaml -o - 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string output;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
+  EXPECT_EQ(pclose(p), 0) << output;
+  EXPECT_NE(output.find("G1"), std::string::npos) << output;
+}
+
+}  // namespace

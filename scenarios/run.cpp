@@ -43,6 +43,17 @@ Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
     throw InputError({}, "sections",
                      fmt::format("variant '{}': no section's Z range meets the part ({}), nothing to print",
                                  v.name, v.part.describe()));
+  if (std::none_of(tp.moves.begin(), tp.moves.end(), [](const Move& m) { return m.deposits(); })) {
+    // Layers, but no bead fits in any of them: the beads are wider than the part's sections.
+    double widest = 0;
+    for (const auto& s : v.sections) widest = std::max(widest, s.bead_width_mm);
+    const Eigen::Vector3d size = v.part.loaded->max_corner() - v.part.loaded->min_corner();
+    throw InputError({}, "sections",
+                     fmt::format("variant '{}': no bead fits in any layer, nothing to print: the beads (up to "
+                                 "{:.4g} mm wide) are wider than the part's sections ({:.4g} x {:.4g} mm at "
+                                 "most); choose a narrower bead_width",
+                                 v.name, widest, size.x(), size.y()));
+  }
   return tp;
 }
 

@@ -1,0 +1,65 @@
+// The bad-input corpus (tests/bad/cases.yaml): every case ends with its exit code and its message, within a
+// time limit, never with an internal error, and a case that stops with exit code 2 leaves no report and no
+// half-written file behind.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int code = -1;
+  std::string output;
+};
+
+// Runs `args` from tests/bad with a time limit: an endless loop is a failure, not a hang.
+Outcome run_case(const std::string& args) {
+  const std::string cmd = "cd " + (fs::path(BEADTWIN_SOURCE_DIR) / "tests/bad").string() +
+                          " && timeout 120 " + BEADTWIN_BINARY + " " + args + " 2>&1";
+  Outcome r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.output.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
+  const YAML::Node cases = YAML::LoadFile(std::string(BEADTWIN_SOURCE_DIR) + "/tests/bad/cases.yaml");
+  ASSERT_GE(cases.size(), 15u);
+  int n = 0;
+  for (const YAML::Node& c : cases) {
+    const std::string name = c["case"].as<std::string>();
+    SCOPED_TRACE(name);
+    const fs::path out = fs::temp_directory_path() / ("bt_bad_" + std::to_string(n++));
+    fs::remove_all(out);
+    std::string args = c["run"].as<std::string>();
+    for (std::size_t at; (at = args.find("{out}")) != std::string::npos;) args.replace(at, 5, out.string());
+    const Outcome r = run_case(args);
+    EXPECT_EQ(r.code, c["exit"].as<int>()) << r.output;
+    EXPECT_NE(r.output.find(c["message"].as<std::string>()), std::string::npos) << r.output;
+    // Exit 3 is an internal error: no input may cause one.
+    EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+    // Stopped: no report (a run's finished stages may have left their own complete files), no program from
+    // slice, nothing half-written.
+    if (r.code == 2 && fs::exists(out)) {
+      for (const auto& e : fs::recursive_directory_iterator(out)) {
+        const std::string file = e.path().filename().string();
+        EXPECT_NE(file, "report.json") << e.path();
+        EXPECT_EQ(file.rfind(".tmp-", 0), std::string::npos) << e.path();
+        if (args.starts_with("slice")) ADD_FAILURE() << "slice stopped but wrote " << e.path();
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -1,18 +1,40 @@
 #!/usr/bin/env python3
 """Writes a binary STL of an LSAM-scale hull-mould shell (the deposition benchmark's part):
-make_hull_mould.py OUT [LENGTH_MM WIDTH_MM HEIGHT_MM WALL_MM].
+make_hull_mould.py OUT [LENGTH_MM WIDTH_MM HEIGHT_MM WALL_MM] [--segments N] [--rings N] [--even-wall].
 
 An open-top tub whose horizontal sections are rounded rectangles (superellipses, exponent 4) that flare
 from 80 % of the top's size at the bottom to the full size at the top, like the female mould of a boat
-hull; the wall and the floor are WALL_MM thick (two 0.83 in LSAM beads by default). Closed and
-outward-facing."""
+hull; the floor is WALL_MM thick (two 0.83 in LSAM beads by default), and so is the wall where the sections
+cross the axes: the inner section is the outer's with its semi-axes WALL_MM shorter, which leaves the wall
+thicker at the rounded corners (up to 47 mm at the default size). With --even-wall the inner section is the
+outer's offset in plan instead, and the wall is WALL_MM thick all round. Closed and outward-facing.
+
+Each section is a polygon of SEGMENTS points (default 160: at most 0.14 mm from the true curve on the default
+size; 96 gives 0.38 mm) and the wall is straight between RINGS + 1 sections spaced evenly in height (default
+40; at 16 the wall stays within 0.35 mm of its curve above the floor, 2.8 mm in the floor's height, where
+it flares fastest). A triangle takes 50 bytes: 4 SEGMENTS (RINGS + 1) triangles in all."""
+import argparse
 import math
 import struct
-import sys
 
-out = sys.argv[1]
-length, width, height, wall = (float(v) for v in (sys.argv[2:6] if len(sys.argv) >= 6 else (1500, 600, 500, 41)))
-segments, rings = 160, 40
+parser = argparse.ArgumentParser(description="Writes a binary STL of an LSAM-scale hull-mould shell.")
+parser.add_argument("out")
+parser.add_argument("size", nargs="*", type=float, metavar="LENGTH_MM WIDTH_MM HEIGHT_MM WALL_MM",
+                    help="outer length, width and height and the wall's thickness (default 1500 600 500 41)")
+parser.add_argument("--segments", type=int, default=160, help="points round each section (default 160)")
+parser.add_argument("--rings", type=int, default=40, help="straight bands of wall up the height (default 40)")
+parser.add_argument("--even-wall", action="store_true",
+                    help="make the inner face the outer's offset in plan, so the wall is WALL_MM thick all round "
+                         "(by default the inner section is the outer's with semi-axes WALL_MM shorter: at the "
+                         "default size 41 mm thick on the axes and up to 47 mm at the rounded corners)")
+args = parser.parse_args()
+if len(args.size) not in (0, 4):
+    parser.error("give all four of LENGTH_MM WIDTH_MM HEIGHT_MM WALL_MM, or none")
+if args.segments < 8 or args.rings < 1:
+    parser.error("at least 8 segments and 1 ring")
+out = args.out
+length, width, height, wall = args.size or (1500, 600, 500, 41)
+segments, rings = args.segments, args.rings
 cx, cy = length / 2 + 50, width / 2 + 50
 
 
@@ -23,12 +45,17 @@ def semi_axes(z):
 
 def ring(z, inset):
     a, b = semi_axes(z)
-    a, b = a - inset, b - inset
+    if not args.even_wall:
+        a, b, inset = a - inset, b - inset, 0.0
     pts = []
     for i in range(segments):
         phi = 2 * math.pi * i / segments
         c, s = math.cos(phi), math.sin(phi)
-        pts.append((cx + a * math.copysign(abs(c) ** 0.5, c), cy + b * math.copysign(abs(s) ** 0.5, s), z))
+        x, y = a * math.copysign(abs(c) ** 0.5, c), b * math.copysign(abs(s) ** 0.5, s)
+        # The outward normal of |x/a|^4 + |y/b|^4 = 1 is along (x^3 / a^4, y^3 / b^4).
+        nx, ny = x ** 3 / a ** 4, y ** 3 / b ** 4
+        n = math.hypot(nx, ny)
+        pts.append((cx + x - inset * nx / n, cy + y - inset * ny / n, z))
     return pts
 
 

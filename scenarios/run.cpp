@@ -48,11 +48,12 @@ Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
     double widest = 0;
     for (const auto& s : v.sections) widest = std::max(widest, s.bead_width_mm);
     const Eigen::Vector3d size = v.part.loaded->max_corner() - v.part.loaded->min_corner();
-    throw InputError({}, "sections",
-                     fmt::format("variant '{}': no bead fits in any layer, nothing to print: the beads (up to "
-                                 "{:.4g} mm wide) are wider than the part's sections ({:.4g} x {:.4g} mm at "
-                                 "most); choose a narrower bead_width",
-                                 v.name, widest, size.x(), size.y()));
+    throw InputError(
+        {}, "sections",
+        fmt::format("variant '{}': no bead fits in any layer, nothing to print: the beads (up to "
+                    "{:.4g} mm wide) are wider than the part's sections ({:.4g} x {:.4g} mm at "
+                    "most); choose a narrower bead_width",
+                    v.name, widest, size.x(), size.y()));
   }
   return tp;
 }

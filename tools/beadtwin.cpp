@@ -8,10 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
@@ -216,6 +218,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> variants, sets;
   ExtraGates gates;
   bool quiet = false;
+  int threads = 0;
+  const std::string threads_help = "Use at most N threads (default: every core); results do not depend on it";
   const std::string gate_help =
       "A gate over the report's metrics, absolute or relative to the baseline variant: 'porosity < 0.03', "
       "'print_time_s <= baseline * 1.05'; repeat for several";
@@ -236,6 +240,7 @@ int main(int argc, char** argv) {
   run->add_option("--gate", gates.exprs, gate_help);
   run->add_option("--gates", gates.files, gates_help);
   run->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
+  run->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   CLI::App* slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
   slice->add_option("scenario", scenario_path, "Scenario YAML file (default: the built-in scenario)");
@@ -262,6 +267,7 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--gates", gates.files, gates_help);
   check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
   check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
+  check_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
 
   CLI::App* read_cmd = app.add_subcommand(
       "read", "Read a print program and print what beadtwin sees in it (layers, moves, material, time).");
@@ -283,6 +289,10 @@ int main(int argc, char** argv) {
     (void)app.exit(e);
     return kExitBadInput;
   }
+
+  // The TBB thread pool's limit for the whole run (deposit, thermal vectors, rendering).
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   try {
     if (*run) return cmd_run(scenario_path, sets, gates, out_dir, variants, quiet);

@@ -5,8 +5,10 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "tests/read_file.hpp"
 
@@ -300,6 +302,49 @@ TEST(Cli, ScenarioInTheWorkingDirectoryFindsItsMachines) {
   for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
   EXPECT_EQ(pclose(p), 0) << output;
   EXPECT_NE(output.find("G1"), std::string::npos) << output;
+}
+
+}  // namespace
+
+namespace {
+
+// report.json without what measures the run rather than the part: wall and stage times.
+nlohmann::json without_timing(nlohmann::json j) {
+  j.erase("wall_time_s");
+  for (auto& v : j["variants"]) v.erase("stage_seconds");
+  return j;
+}
+
+// The same part, whatever the threads: report.json equal in every number (timings aside) and summary.md
+// equal, on one thread and on two, and on a second run.
+TEST(Cli, ReportsDoNotDependOnThreadsOrRuns) {
+  const auto scenario = write("bt_cli_threads.yaml", R"(name: threads
+units: {length: mm}
+machine: lsam-ph15
+material: cf-abs-20
+part:
+  open_box: {size: [240, 180, 30], wall: 40, floor: 10}
+output: {voxel_size: 2.5 mm}
+render: {width: 160, height: 100}
+sections:
+  - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
+  - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
+)");
+  std::vector<nlohmann::json> reports;
+  std::vector<std::string> summaries;
+  for (const char* threads : {"1", "2", "2"}) {
+    const auto out =
+        std::filesystem::temp_directory_path() / ("bt_cli_threads_" + std::to_string(reports.size()));
+    std::filesystem::remove_all(out);
+    const Result r = run("run " + scenario.string() + " -q --threads " + threads + " -o " + out.string());
+    ASSERT_LE(r.code, 1) << r.output;
+    reports.push_back(without_timing(nlohmann::json::parse(read_file(out / "report.json"))));
+    summaries.push_back(read_file(out / "summary.md"));
+  }
+  EXPECT_EQ(reports[0], reports[1]) << nlohmann::json::diff(reports[0], reports[1]).dump(1).substr(0, 2000);
+  EXPECT_EQ(reports[1], reports[2]) << nlohmann::json::diff(reports[1], reports[2]).dump(1).substr(0, 2000);
+  EXPECT_EQ(summaries[0], summaries[1]);
+  EXPECT_EQ(run("run --threads 0").code, 2);  // at least one
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 
 namespace beadtwin {
 
@@ -80,6 +81,7 @@ void prepare_output_dir(const std::filesystem::path& dir, const std::string& opt
     if (!f) refuse(std::error_code(errno, std::generic_category()).message());
   }
   std::filesystem::remove(probe, ec);
+  remove_stale_temporaries(dir);  // what an interrupted run left half-written
 }
 
 }  // namespace beadtwin

@@ -19,6 +19,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
@@ -114,12 +115,15 @@ int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::str
   options.out_dir = out_dir;
   options.variants = variants;
   ProgressBar bar;
+  const bool draw = !quiet && ProgressBar::wanted();
+  // Every stage's progress tells the interrupt handler what a Ctrl-C would stop.
+  options.progress = [&bar, draw](const std::string& variant, const std::string& stage, double fraction) {
+    beadtwin::set_interrupt_context(variant + ": " + stage);
+    if (draw) bar.update(variant, stage, fraction);
+  };
   if (!quiet) {
-    if (ProgressBar::wanted()) {
+    if (draw) {
       options.log = [&bar](const std::string& line) { bar.print(line); };
-      options.progress = [&bar](const std::string& variant, const std::string& stage, double fraction) {
-        bar.update(variant, stage, fraction);
-      };
     } else {
       options.log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     }
@@ -290,6 +294,8 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
+  beadtwin::install_interrupt_handler();
+  beadtwin::set_interrupt_context("loading the input");
   // The TBB thread pool's limit for the whole run (deposit, thermal vectors, rendering).
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);

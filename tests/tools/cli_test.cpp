@@ -348,3 +348,33 @@ sections:
 }
 
 }  // namespace
+
+namespace {
+
+// Ctrl-C in the middle of a run: exit code 130, a line saying what it stopped, the previous run's report
+// unchanged; the next run clears what the stopped one left half-written.
+TEST(Cli, InterruptedRunKeepsThePreviousReport) {
+  const auto out = std::filesystem::temp_directory_path() / "bt_cli_interrupt";
+  std::filesystem::remove_all(out);
+  const std::string part = std::string(BEADTWIN_SOURCE_DIR) + "/tests/bad/part.yaml";
+  ASSERT_EQ(run("run " + part + " -q -o " + out.string()).code, 0);
+  const std::string before = read_file(out / "report.json");
+  // A stale temporary, as a run killed while writing a picture leaves one (no process has this id).
+  std::ofstream(out / "baseline" / ".tmp-4999999-fusion.png") << "half a picture";
+
+  // The default scenario takes about 12 s; stopped after 3.
+  const std::string cmd = std::string(BEADTWIN_BINARY) + " run -q -o " + out.string() +
+                          " 2>&1 & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo \"exit=$?\"";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string output;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
+  pclose(p);
+  EXPECT_NE(output.find("exit=130"), std::string::npos) << output;
+  EXPECT_NE(output.find("interrupted: stopped during "), std::string::npos) << output;
+  EXPECT_EQ(read_file(out / "report.json"), before);
+  EXPECT_FALSE(std::filesystem::exists(out / "baseline" / ".tmp-4999999-fusion.png"));
+}
+
+}  // namespace

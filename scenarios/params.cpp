@@ -362,6 +362,8 @@ constexpr ParamSpec kMachine[] = {
      "patent (47) corner pull-back"},
     {"gcode.roller_up", T::kString, D::kDimensionless, "none", 0, 0, false,
      "code that lifts the compression roller off the bead", "patent (47) corner pull-back"},
+    {"gcode.macro_step_limit", T::kInteger, D::kDimensionless, "10000000", 1000, 2000000000, false,
+     "statements a macro program may run before it is stopped as an endless loop", ""},
     {"gcode.macro_loops", T::kBool, D::kDimensionless, "false", 0, 0, false,
      "Fanuc macro program: layers that repeat one path are written once in a WHILE loop stepping Z",
      "seed 002 section 2.7"},

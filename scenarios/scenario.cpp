@@ -121,6 +121,7 @@ YAML::Node resolve_library(const YAML::Node& root, const std::string& kind,
 // it has a roller or tamper but no codes for it.
 slicer::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
   slicer::ReaderOptions o = slicer::reader_options_for(m.dialect, extruder);
+  o.max_macro_steps = m.macro_step_limit;
   o.roller_down_at_start =
       (m.kind == "roller-gantry" || m.kind == "tamper-gantry") && m.dialect.roller_down.empty();
   return o;
@@ -219,6 +220,7 @@ Machine read_machine(BlockReader& r) {
   m.dialect.reverse_off = code("gcode.reverse_off");
   m.dialect.rpm_word = r.string(spec(t, "gcode.rpm_word"));
   m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
+  m.macro_step_limit = r.integer(spec(t, "gcode.macro_step_limit"));
   m.dialect.absolute_e = r.boolean(spec(t, "gcode.absolute_e"));
   if (m.extruder.has_constant_feed() && (m.dialect.melt_on.empty() || m.dialect.melt_off.empty()))
     r.fail(

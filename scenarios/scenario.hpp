@@ -38,6 +38,7 @@ struct Machine {
   Extruder extruder;  // its max flow is set from max_output once the material's density is known
   Environment environment;
   slicer::GcodeDialect dialect;
+  long macro_step_limit = 10'000'000;  // statements a macro program may run (gcode.macro_step_limit)
 };
 
 struct PartSpec {

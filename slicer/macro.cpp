@@ -125,8 +125,8 @@ class Interpreter {
     const std::string what =
         back_jump_.line > 0 ? back_jump_.what : fmt::format("last at line {}", line_->line);
     throw InputError({p_.file, line, 0}, {},
-                     fmt::format("program did not finish after {} steps ({}); raise the step limit if it is "
-                                 "meant to run this long",
+                     fmt::format("program did not finish after {} steps ({}); if it is meant to run this "
+                                 "long, raise the machine's gcode.macro_step_limit",
                                  options_.max_steps, what));
   }
 

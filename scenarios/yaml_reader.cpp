@@ -268,8 +268,15 @@ void BlockReader::finish(std::span<const ParamSpec> specs,
       const std::size_t d = edit_distance(key, k);
       if (d < best_d) best_d = d, best = k;
     }
+    // The keys of the same group (boundary.* for boundary.overlapp) when it has any, else all: a list a
+    // reader can take in, the rest are in `beadtwin params`.
+    const std::size_t dot = key.rfind('.');
+    const std::string group = dot == std::string::npos ? std::string() : key.substr(0, dot + 1);
     std::string list;
-    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    for (const auto& k : known)
+      if (!group.empty() && k.starts_with(group)) list += (list.empty() ? "" : ", ") + k;
+    if (list.empty())
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
     throw InputError(where(key_node, key), full_key(key),
                      best.empty()
                          ? fmt::format("unknown key; expected one of: {}", list)

@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -36,10 +38,17 @@ Outcome run_case(const std::string& args) {
 TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
   const YAML::Node cases = YAML::LoadFile(std::string(BEADTWIN_SOURCE_DIR) + "/tests/bad/cases.yaml");
   ASSERT_GE(cases.size(), 15u);
+  // docs/RELIABILITY.md's table lists every case.
+  std::ifstream doc_file(std::string(BEADTWIN_SOURCE_DIR) + "/docs/RELIABILITY.md");
+  const std::string doc((std::istreambuf_iterator<char>(doc_file)), {});
   int n = 0;
   for (const YAML::Node& c : cases) {
     const std::string name = c["case"].as<std::string>();
     SCOPED_TRACE(name);
+    EXPECT_NE(doc.find("| " + name + " | `beadtwin " + c["run"].as<std::string>() + "` | " +
+                       std::to_string(c["exit"].as<int>()) + " |"),
+              std::string::npos)
+        << "docs/RELIABILITY.md has no row for this case";
     const fs::path out = fs::temp_directory_path() / ("bt_bad_" + std::to_string(n++));
     fs::remove_all(out);
     std::string args = c["run"].as<std::string>();

@@ -479,13 +479,19 @@ std::string healing_text(double min, double mean) {
   return std::isfinite(min) ? fmt::format("{:.3f} / {:.3f}", min, mean) : "–";
 }
 
+// Whether no layer time would put the layer in the window: no wait cools it enough (a least of +infinity),
+// none is short enough (a most of 0), or the bounds cross.
+bool no_layer_time_would(double min_s, double max_s) {
+  return min_s == std::numeric_limits<double>::infinity() || max_s <= 0.0 ||
+         (std::isfinite(min_s) && std::isfinite(max_s) && min_s > max_s);
+}
+
 // The layer times that would have put a layer in the window: "120 – 300", "at least 120", "at most 300",
 // "none" (the bounds cross, or no wait would cool it enough), or a dash where nothing bounds them.
 std::string window_range(double min_s, double max_s) {
-  if (max_s <= 0.0) return "none";  // no layer time is short enough
+  if (no_layer_time_would(min_s, max_s)) return "none";
   const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
-  if (lo && hi) return min_s <= max_s ? fmt::format("{:.0f} – {:.0f}", min_s, max_s) : std::string("none");
-  if (min_s == std::numeric_limits<double>::infinity()) return "none";
+  if (lo && hi) return fmt::format("{:.0f} – {:.0f}", min_s, max_s);
   if (lo) return fmt::format("at least {:.0f}", min_s);
   if (hi) return fmt::format("at most {:.0f}", max_s);
   return "–";
@@ -545,10 +551,8 @@ std::string substrate_plot(const VariantResult& r) {
 // A layer-time window as a band for the plot: [least, most], the least 0 and the most null (the top of the
 // plot) where nothing bounds them; null where no layer time would do or nothing bounds either end.
 json window_band(double min_s, double max_s) {
-  if (min_s == std::numeric_limits<double>::infinity() || max_s <= 0.0) return nullptr;
   const bool lo = std::isfinite(min_s), hi = std::isfinite(max_s);
-  if (!lo && !hi) return nullptr;
-  if (lo && hi && min_s > max_s) return nullptr;
+  if (no_layer_time_would(min_s, max_s) || (!lo && !hi)) return nullptr;
   return json::array({lo ? min_s : 0.0, hi ? json(max_s) : json(nullptr)});
 }
 

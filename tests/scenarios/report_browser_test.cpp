@@ -19,6 +19,7 @@
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
 #include "tests/chromium.hpp"
+#include "tests/scenarios/small_box.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -27,19 +28,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using testing::Chromium;
 
-// Two variants of a small box with the default pictures, at the size of run_test's: a few seconds' run.
-const std::string kTwoVariants = R"(name: browser-box
-units: {length: mm}
-machine: lsam-ph15
-material: cf-abs-20
-part:
-  open_box: {size: [240, 180, 30], wall: 40, floor: 10}
-output: {voxel_size: 2.5 mm}
-render: {width: 160, height: 100}
-sections:
-  - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
-  - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
-variants:
+// Two variants of the small box with the default pictures: a few seconds' run.
+const std::string kTwoVariants = testing::small_box("browser-box") + R"(variants:
   - name: fast
   - name: slow
     set: {sections.walls.speed: 10 mm/s, sections.floor.speed: 10 mm/s}

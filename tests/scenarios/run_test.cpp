@@ -19,24 +19,14 @@
 #include "scenarios/scenario.hpp"
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"
+#include "tests/scenarios/small_box.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
 
 using testing::read_file;
 
-const std::string kSmall = R"(name: small-box
-units: {length: mm}
-machine: lsam-ph15
-material: cf-abs-20
-part:
-  open_box: {size: [240, 180, 30], wall: 40, floor: 10}
-output: {voxel_size: 2.5 mm, fields: vtu}
-render: {width: 160, height: 100}
-sections:
-  - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
-  - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
-variants:
+const std::string kSmall = testing::small_box("small-box", "{voxel_size: 2.5 mm, fields: vtu}") + R"(variants:
   - name: fast
   - name: slow
     set: {sections.walls.speed: 10 mm/s, sections.floor.speed: 10 mm/s, output.skin: stl, output.fields: none}

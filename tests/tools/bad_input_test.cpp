@@ -1,9 +1,6 @@
 // The bad-input corpus (tests/bad/cases.yaml): every case ends with its exit code and its message, within a
 // time limit, never with an internal error, and a case that stops with exit code 2 leaves no report and no
 // half-written file behind.
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -12,27 +9,16 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include "tests/shell.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int code = -1;
-  std::string output;
-};
-
 // Runs `args` from tests/bad with a time limit: an endless loop is a failure, not a hang.
-Outcome run_case(const std::string& args) {
-  const std::string cmd = "cd " + (fs::path(BEADTWIN_SOURCE_DIR) / "tests/bad").string() +
-                          " && timeout 120 " + BEADTWIN_BINARY + " " + args + " 2>&1";
-  Outcome r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+beadtwin::testing::ShellResult run_case(const std::string& args) {
+  return beadtwin::testing::shell("cd " + (fs::path(BEADTWIN_SOURCE_DIR) / "tests/bad").string() +
+                                  " && timeout 120 " + BEADTWIN_BINARY + " " + args + " 2>&1");
 }
 
 TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
@@ -53,7 +39,7 @@ TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
     fs::remove_all(out);
     std::string args = c["run"].as<std::string>();
     for (std::size_t at; (at = args.find("{out}")) != std::string::npos;) args.replace(at, 5, out.string());
-    const Outcome r = run_case(args);
+    const beadtwin::testing::ShellResult r = run_case(args);
     EXPECT_EQ(r.code, c["exit"].as<int>()) << r.output;
     EXPECT_NE(r.output.find(c["message"].as<std::string>()), std::string::npos) << r.output;
     // Exit 3 is an internal error: no input may cause one.

@@ -1,6 +1,4 @@
 // The beadtwin program as a user runs it: exit codes and messages (README, command line).
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,27 +9,18 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/read_file.hpp"
+#include "tests/scenarios/small_box.hpp"
+#include "tests/shell.hpp"
 
 namespace {
 
 using beadtwin::testing::read_file;
 
-struct Result {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
+using Result = beadtwin::testing::ShellResult;
 
+// The beadtwin program with `args`, its stdout and stderr together.
 Result run(const std::string& args) {
-  const std::string cmd = std::string(BEADTWIN_BINARY) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  std::size_t n = 0;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) r.output.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return beadtwin::testing::shell(std::string(BEADTWIN_BINARY) + " " + args + " 2>&1");
 }
 
 std::filesystem::path write(const std::string& name, const std::string& text) {
@@ -120,10 +109,6 @@ TEST(Cli, SliceWritesTheProgram) {
   EXPECT_EQ(first, "%");
 }
 
-}  // namespace
-
-namespace {
-
 // docs/parameters.md is generated from the parameter table; it must be what the program prints now.
 TEST(Cli, ParametersDocIsCurrent) {
   const Result r = run("params");
@@ -135,10 +120,6 @@ TEST(Cli, ParametersDocIsCurrent) {
   const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   EXPECT_EQ(doc, r.output) << "regenerate it: beadtwin params > docs/parameters.md";
 }
-
-}  // namespace
-
-namespace {
 
 // Inputs that would need absurd work are refused up front with the key and line to change.
 TEST(Cli, AbsurdResolutionsAreInputErrors) {
@@ -161,10 +142,6 @@ TEST(Cli, AbsurdResolutionsAreInputErrors) {
   EXPECT_NE(r2.output.find(layers.string() + ":10:"), std::string::npos) << r2.output;
   EXPECT_NE(r2.output.find("150000 layers"), std::string::npos) << r2.output;
 }
-
-}  // namespace
-
-namespace {
 
 // `beadtwin check PROGRAM` (issue 5 item 5): a program from another slicer, simulated as written, with the
 // machine inferred and said so; with a baseline, both side by side; a program written as a Fanuc macro
@@ -241,10 +218,6 @@ TEST(Cli, CheckGatesAChangeAgainstItsBaseline) {
   EXPECT_EQ(run(check + " --gates /nonexistent/gates.yaml").code, 2);
 }
 
-}  // namespace
-
-namespace {
-
 // Two thin desktop beads (0.3 mm): the skin simplifies away at the 0.3 mm default tolerance. The run says
 // so in a note (also in report.json) and writes no skin, instead of stopping with an internal error.
 TEST(Cli, ThinBeadsLeaveNoSkinAndSaySo) {
@@ -259,10 +232,6 @@ TEST(Cli, ThinBeadsLeaveNoSkinAndSaySo) {
   EXPECT_NE(read_file(out / "report.json").find("no skin written"), std::string::npos);
   EXPECT_NE(read_file(out / "report.html").find("<h3>Notes</h3>"), std::string::npos);
 }
-
-}  // namespace
-
-namespace {
 
 // An output directory that cannot be made or written: exit code 2 at once, naming it and the option,
 // before any work; nothing written.
@@ -280,10 +249,6 @@ TEST(Cli, UnwritableOutputDirectoryIsAnInputError) {
   EXPECT_NE(slice.output.find("Not a directory"), std::string::npos) << slice.output;
 }
 
-}  // namespace
-
-namespace {
-
 // A scenario named without a directory finds the machine files beside it, as one named ./s.yaml does.
 TEST(Cli, ScenarioInTheWorkingDirectoryFindsItsMachines) {
   const auto dir = std::filesystem::temp_directory_path() / "bt_cli_cwd";
@@ -294,19 +259,11 @@ TEST(Cli, ScenarioInTheWorkingDirectoryFindsItsMachines) {
   std::ofstream(dir / "s.yaml") << "name: cwd\nunits: {length: mm}\nmachine: my-gantry\nmaterial: cf-abs-20\n"
                                    "part:\n  box: {size: [200, 150, 10]}\nsections:\n"
                                    "  - {name: all, z: part, layer_height: 5, bead_width: 20}\n";
-  const std::string cmd = "cd " + dir.string() + " && " + BEADTWIN_BINARY + " slice s.yaml -o - 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string output;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
-  EXPECT_EQ(pclose(p), 0) << output;
-  EXPECT_NE(output.find("G1"), std::string::npos) << output;
+  const Result r =
+      beadtwin::testing::shell("cd " + dir.string() + " && " + BEADTWIN_BINARY + " slice s.yaml -o - 2>&1");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("G1"), std::string::npos) << r.output;
 }
-
-}  // namespace
-
-namespace {
 
 // report.json without what measures the run rather than the part: wall and stage times.
 nlohmann::json without_timing(nlohmann::json j) {
@@ -318,18 +275,7 @@ nlohmann::json without_timing(nlohmann::json j) {
 // The same part, whatever the threads: report.json equal in every number (timings aside) and summary.md
 // equal, on one thread and on two, and on a second run.
 TEST(Cli, ReportsDoNotDependOnThreadsOrRuns) {
-  const auto scenario = write("bt_cli_threads.yaml", R"(name: threads
-units: {length: mm}
-machine: lsam-ph15
-material: cf-abs-20
-part:
-  open_box: {size: [240, 180, 30], wall: 40, floor: 10}
-output: {voxel_size: 2.5 mm}
-render: {width: 160, height: 100}
-sections:
-  - {name: floor, z: [0, 10], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: {angle: 45 deg}}
-  - {name: walls, z: [10, 30], layer_height: 5, bead_width: 20, boundary: {passes: 2}, fill: none}
-)");
+  const auto scenario = write("bt_cli_threads.yaml", beadtwin::testing::small_box("threads"));
   std::vector<nlohmann::json> reports;
   std::vector<std::string> summaries;
   for (const char* threads : {"1", "2", "2"}) {
@@ -347,10 +293,6 @@ sections:
   EXPECT_EQ(run("run --threads 0").code, 2);  // at least one
 }
 
-}  // namespace
-
-namespace {
-
 // Ctrl-C in the middle of a run: exit code 130, a line saying what it stopped, the previous run's report
 // unchanged; the next run clears what the stopped one left half-written.
 TEST(Cli, InterruptedRunKeepsThePreviousReport) {
@@ -363,16 +305,11 @@ TEST(Cli, InterruptedRunKeepsThePreviousReport) {
   std::ofstream(out / "baseline" / ".tmp-4999999-fusion.png") << "half a picture";
 
   // The default scenario takes about 12 s; stopped after 3.
-  const std::string cmd = std::string(BEADTWIN_BINARY) + " run -q -o " + out.string() +
-                          " 2>&1 & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo \"exit=$?\"";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string output;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) output.append(buf, n);
-  pclose(p);
-  EXPECT_NE(output.find("exit=130"), std::string::npos) << output;
-  EXPECT_NE(output.find("interrupted: stopped during "), std::string::npos) << output;
+  const Result r =
+      beadtwin::testing::shell(std::string(BEADTWIN_BINARY) + " run -q -o " + out.string() +
+                               " 2>&1 & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo \"exit=$?\"");
+  EXPECT_NE(r.output.find("exit=130"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interrupted: stopped during "), std::string::npos) << r.output;
   EXPECT_EQ(read_file(out / "report.json"), before);
   EXPECT_FALSE(std::filesystem::exists(out / "baseline" / ".tmp-4999999-fusion.png"));
 }

@@ -229,7 +229,7 @@ json fusion_json(const FusionRow& f) {
           {"too_cold", f.too_cold},
           {"too_hot_fraction", f.too_hot_fraction},
           {"too_cold_fraction", f.too_cold_fraction},
-          {"verdict", f.verdict}};
+          {"verdict", thermal::to_string(f.verdict)}};
 }
 
 json variant_json(const VariantResult& r) {
@@ -521,13 +521,6 @@ std::string plot_html(const json& spec) {
          "table below and in report.json.</p></noscript>";
 }
 
-std::string verdict_hex(const std::string& verdict) {
-  return hex(verdict_colour(verdict == "too_hot"    ? thermal::Verdict::kTooHot
-                            : verdict == "too_cold" ? thermal::Verdict::kTooCold
-                            : verdict == "ok"       ? thermal::Verdict::kOk
-                                                    : thermal::Verdict::kNoInterface));
-}
-
 // Substrate temperature at deposition per layer (least, mean, most, coloured by the layer's verdict) against
 // the support limit and T_g.
 std::string substrate_plot(const VariantResult& r) {
@@ -542,8 +535,8 @@ std::string substrate_plot(const VariantResult& r) {
     p["min"].push_back(finite_or_null(row.substrate_temp_c.min));
     p["mean"].push_back(finite_or_null(row.substrate_temp_c.mean));
     p["max"].push_back(finite_or_null(row.substrate_temp_c.max));
-    p["verdicts"].push_back(row.verdict);
-    p["colours"].push_back(verdict_hex(row.verdict));
+    p["verdicts"].push_back(thermal::to_string(row.verdict));
+    p["colours"].push_back(hex(verdict_colour(row.verdict)));
   }
   return plot_html(p);
 }
@@ -568,8 +561,8 @@ std::string layer_time_plot(const VariantResult& r) {
     p["typical"].push_back(window_band(row.typical_min_s, row.typical_max_s));
     p["window_text"].push_back(window_range(row.window_min_s, row.window_max_s));
     p["typical_text"].push_back(window_range(row.typical_min_s, row.typical_max_s));
-    p["verdicts"].push_back(row.verdict);
-    p["colours"].push_back(verdict_hex(row.verdict));
+    p["verdicts"].push_back(thermal::to_string(row.verdict));
+    p["colours"].push_back(hex(verdict_colour(row.verdict)));
   }
   return plot_html(p);
 }
@@ -920,7 +913,8 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
           "class=l>{}</td></tr>",
           esc(sr.name), sr.layers, hms(sr.print_time_s), sr.mean_layer_time_s, sr.print_length_mm / 1000,
           sr.mass_kg, sr.material_cost, sr.interfaces, substrate_text(s), 100 * sr.too_hot_fraction,
-          100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean), sr.verdict);
+          100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean),
+          thermal::to_string(sr.verdict));
     }
     h += "</table>";
     h += "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
@@ -934,12 +928,12 @@ td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#f
           "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td>"
           "<td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
           "class=l>{}</td><td>{}</td></tr>",
-          l.verdict == "too_hot"    ? "hot"
-          : l.verdict == "too_cold" ? "cold"
-                                    : "",
+          l.verdict == thermal::Verdict::kTooHot    ? "hot"
+          : l.verdict == thermal::Verdict::kTooCold ? "cold"
+                                                    : "",
           l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, substrate_text(s), l.interfaces,
           100 * l.too_hot_fraction, 100 * l.too_cold_fraction, healing_text(l.healing, l.healing_mean),
-          l.verdict, window_text(l));
+          thermal::to_string(l.verdict), window_text(l));
     }
     h += "</table></details>";
     h += defects_html(v.defects);

@@ -10,6 +10,7 @@
 #include "core/stages.hpp"
 #include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
+#include "thermal/fusion.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -46,7 +47,7 @@ struct FusionRow {
   double healing = 0, healing_mean = 0;
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;
-  std::string verdict;
+  thermal::Verdict verdict = thermal::Verdict::kNoInterface;
 };
 
 // A section's interfaces, as LayerRow has them per layer, and what it takes to print: its layers, the

@@ -212,7 +212,7 @@ FusionRow fusion_row(const thermal::FusionSummary& f) {
   row.too_cold = static_cast<int>(f.too_cold);
   row.too_hot_fraction = f.too_hot_fraction();
   row.too_cold_fraction = f.too_cold_fraction();
-  row.verdict = std::string(thermal::to_string(f.verdict()));
+  row.verdict = f.verdict();
   return row;
 }
 

@@ -34,6 +34,15 @@ Enum one_of(BlockReader& r, std::string_view key, const std::string& text, const
   r.fail(r.take(key), key, fmt::format("expected one of {} but found '{}'", names, text));
 }
 
+// A list item's name: its `name` when it is a map with a scalar one. yaml-cpp throws when a scalar or a list
+// is asked for a key, so an item that is not a map must not be asked.
+std::optional<std::string> item_name(const YAML::Node& item) {
+  if (!item.IsMap()) return std::nullopt;
+  const YAML::Node name = item["name"];
+  if (!name || !name.IsScalar()) return std::nullopt;
+  return name.Scalar();
+}
+
 std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
                            const std::string& key) {
   std::ifstream f(path, std::ios::binary);
@@ -777,7 +786,7 @@ void apply_override(Tree& tree, const std::string& path, const YAML::Node& value
     YAML::Node sections = tree.root["sections"];
     bool found = false;
     for (std::size_t i = 0; sections.IsSequence() && i < sections.size() && !found; ++i) {
-      if (sections[i]["name"] && sections[i]["name"].Scalar() == parts[1]) {
+      if (item_name(sections[i]) == parts[1]) {
         target.reset(sections[i]);
         found = true;
       }
@@ -1141,8 +1150,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     throw InputError(location_of(sections ? sections : tree.root, tree.scenario_src->file), "sections",
                      "expected a list of sections, each with at least a name and z limits");
   for (std::size_t i = 0; i < sections.size(); ++i) {
-    const std::string prefix =
-        sections[i]["name"] ? "sections." + sections[i]["name"].Scalar() : fmt::format("sections[{}]", i);
+    const std::optional<std::string> section_name = item_name(sections[i]);
+    const std::string prefix = section_name ? "sections." + *section_name : fmt::format("sections[{}]", i);
     BlockReader sr(sections[i], prefix, tree.scenario_src, &tree.overridden);
     v.sections.push_back(read_section(sr, v.machine, v.material, *v.part.loaded, tools));
     if (v.part.kind == PartSpec::Kind::kNone && v.sections.back().outline_path.empty())
@@ -1252,8 +1261,10 @@ Setting parse_setting(const std::string& text) {
   return {key, text.substr(eq + 1)};
 }
 
-Scenario load_scenario_text(const std::string& text, const std::string& file,
-                            const std::vector<Setting>& settings) {
+namespace {
+
+Scenario build_scenario(const std::string& text, const std::string& file,
+                        const std::vector<Setting>& settings) {
   // Beside the scenario file ("." for one named without a directory); none for a built-in one.
   std::filesystem::path dir;
   if (!file.empty() && !file.starts_with(kBuiltIn)) {
@@ -1344,6 +1355,20 @@ Scenario load_scenario_text(const std::string& text, const std::string& file,
   }
   sc.warnings = std::move(meshes.warnings);
   return sc;
+}
+
+}  // namespace
+
+Scenario load_scenario_text(const std::string& text, const std::string& file,
+                            const std::vector<Setting>& settings) {
+  try {
+    return build_scenario(text, file, settings);
+  } catch (const YAML::Exception& e) {
+    // Nodes are checked for their kind before they are read, with messages naming the key; yaml-cpp's own
+    // error (a map asked of a scalar, a value of the wrong type) is the last line of defence, at its mark.
+    throw InputError({file, e.mark.line + 1, e.mark.column + 1}, {},
+                     fmt::format("unexpected YAML structure: {}", e.msg));
+  }
 }
 
 Scenario load_scenario(const std::filesystem::path& path, const std::vector<Setting>& settings) {

@@ -14,8 +14,9 @@ packages=(
 )
 # Not needed to build or run beadtwin: headless Chromium opens report.html in the browser tests
 # (tests/scenarios/report_browser_test.cpp, skipped without it): 78 more packages on Debian 12, 138 MB to
-# download, 459 MB installed.
-test_packages=(chromium)
+# download, 459 MB installed. Clang with its sanitizer and libFuzzer runtimes (libclang-rt-14-dev) and
+# llvm's symbolizer build and run the readers under the sanitizers and the fuzzer (tools/sanitize.sh).
+test_packages=(chromium clang libclang-rt-14-dev llvm)
 
 case "${1:-}" in
   "") ;;

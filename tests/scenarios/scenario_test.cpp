@@ -105,6 +105,21 @@ TEST(Scenario, UnknownKeyNamesFileLineAndKey) {
   EXPECT_EQ(top.key(), "colour");
 }
 
+TEST(Scenario, ASectionThatIsNotAMapIsAnInputErrorAtIt) {
+  // A section written as a bare name: yaml-cpp throws its own exception when a scalar is asked for a key
+  // (found by tests/fuzz), which ended the program; now the loader checks the kind first.
+  const InputError e = load_error(replace(kGood, "  - name: walls\n", "  - walls\n  - name: other\n"));
+  EXPECT_EQ(e.where().line, 14);
+  EXPECT_EQ(e.key(), "sections[1]");
+  EXPECT_NE(std::string(e.what()).find("expected a map"), std::string::npos) << e.what();
+  // Setting a key of a section by name passes over such an item rather than asking it for its name.
+  EXPECT_NE(std::string(load_error(replace(kGood, "set: {sections.walls.boundary.passes: 2,",
+                                           "set: {sections.nowhere.boundary.passes: 2,"))
+                            .what())
+                .find("no section named 'nowhere'"),
+            std::string::npos);
+}
+
 // --set on the command line: for every variant, after the variant's own settings, and in its overrides.
 TEST(Scenario, CommandLineSettingsComeLast) {
   const Scenario sc = load_scenario_text(

@@ -430,6 +430,65 @@ TEST(Mesh, PointsAndLinesAreIgnored) {
   EXPECT_TRUE(has_warning(report, "2 points and lines were ignored")) << all_warnings(report);
 }
 
+TEST(Mesh, ConcavePolygonsAreCutInsideTheirOutline) {
+  // An L-shaped prism, 10 high, whose end faces are concave hexagons, written from the corner of the notch: a
+  // fan from there would cover the notch and leave part of the L bare.
+  const std::vector<Eigen::Vector2d> l = {{20, 10}, {10, 10}, {10, 20}, {0, 20}, {0, 0}, {20, 0}};
+  std::string text = "o ell\n";
+  for (double z : {0.0, 10.0})
+    for (const auto& p : l) text += fmt::format("v {} {} {}\n", p.x(), p.y(), z);
+  text += "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n";  // bottom facing down, top facing up
+  for (int i = 0; i < 6; ++i) {
+    const int j = (i + 1) % 6;
+    text += fmt::format("f {} {} {} {}\n", i + 1, j + 1, j + 7, i + 7);
+  }
+  write_text(temp_file("ell.obj"), text);
+  MeshReport report;
+  const TriangleMesh m = read_mesh(temp_file("ell.obj"), 1.0, &report);
+  EXPECT_EQ(m.triangles.size(), 2u * 4 + 6 * 2);
+  EXPECT_NEAR(m.volume_mm3(), 300.0 * 10, 1e-9);
+  EXPECT_NEAR(area_at(m, 5), 300.0, 1e-9);
+  for (const auto& t : m.triangles) {
+    const Eigen::Vector3d c = (corner(m, t, 0) + corner(m, t, 1) + corner(m, t, 2)) / 3.0;
+    EXPECT_FALSE(c.x() > 10 + 1e-9 && c.y() > 10 + 1e-9)
+        << "a triangle in the notch, centred at " << c.transpose();
+  }
+}
+
+TEST(Mesh, PlyFacesWithoutCornersAreIgnored) {
+  // A face of no corners: assimp's own triangulation aborts the program on it (found by tests/fuzz).
+  write_text(temp_file("tetra.ply"),
+             "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 5\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n10 0 0\n0 10 0\n"
+             "0 0 10\n3 0 2 1\n3 0 1 3\n0\n3 0 3 2\n3 1 2 3\n");
+  MeshReport report;
+  const TriangleMesh m = read_mesh(temp_file("tetra.ply"), 1.0, &report);
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(report.ignored_primitives, 1);
+  EXPECT_NEAR(m.volume_mm3(), 1000.0 / 6, 1e-9);
+}
+
+TEST(Mesh, APlyHeaderMustEnd) {
+  // assimp reads a PLY header without end_header for ever (found by tests/fuzz).
+  write_text(temp_file("data.ply"), "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n0\n");
+  EXPECT_NE(read_error(temp_file("data.ply")).find(":5:1: PLY header: '0' is not a header line"),
+            std::string::npos)
+      << read_error(temp_file("data.ply"));
+  write_text(temp_file("open.ply"), "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n");
+  EXPECT_NE(read_error(temp_file("open.ply")).find("not a PLY: its header has no end_header line"),
+            std::string::npos)
+      << read_error(temp_file("open.ply"));
+  // Whatever its name: assimp knows a PLY by its first line too.
+  write_text(temp_file("open.model"), "ply\nformat ascii 1.0\nelement vertex 4\n");
+  EXPECT_NE(read_error(temp_file("open.model")).find("end_header"), std::string::npos);
+  write_text(temp_file("tab.ply"), "ply\nformat ascii 1.0\nend_header\v0 0 0\n");  // a vertical tab
+  EXPECT_NE(read_error(temp_file("tab.ply")).find("is not a header line"), std::string::npos);
+  write_text(temp_file("odd.ply"), "ply\nformat utf8 1.0\nend_header\n");
+  EXPECT_NE(read_error(temp_file("odd.ply")).find("PLY format 'utf8'"), std::string::npos);
+  write_text(temp_file("notply.ply"), "solid x\n");
+  EXPECT_NE(read_error(temp_file("notply.ply")).find("its first line is not \"ply\""), std::string::npos);
+}
+
 TEST(Mesh, ANestedShellInOneBodyIsACavity) {
   // The outer and the inner box in one object, both wound outward in the file: the inner one is a cavity.
   TriangleMesh both = make_box({100, 100, 50});

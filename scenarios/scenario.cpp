@@ -43,8 +43,21 @@ std::optional<std::string> item_name(const YAML::Node& item) {
   return name.Scalar();
 }
 
+// Scenario, machine, material and gate files are text people write: a few kB. One far larger is not one of
+// them (a mesh or a program named by mistake), and yaml-cpp takes some fifty times a file's size to hold it.
+constexpr std::uintmax_t kMaxTextFileBytes = 16u << 20;
+
 std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
                            const std::string& key) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(from, key, fmt::format("'{}' is not a regular file", path.string()));
+  if (const std::uintmax_t bytes = std::filesystem::file_size(path, ec); !ec && bytes > kMaxTextFileBytes)
+    throw InputError(
+        from, key,
+        fmt::format("'{}' is {:.1f} MB, too large for a YAML settings file (at most {} MB); is it "
+                    "the right file?",
+                    path.string(), static_cast<double>(bytes) / (1 << 20), kMaxTextFileBytes >> 20));
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(from, key, fmt::format("cannot open '{}'", path.string()));
   std::ostringstream s;
@@ -319,18 +332,21 @@ struct MeshCache {
   std::map<std::pair<std::string, double>, std::shared_ptr<const slicer::TriangleMesh>> meshes;
   std::vector<std::string> warnings;
 
-  std::shared_ptr<const slicer::TriangleMesh> get(const std::filesystem::path& path, double scale) {
+  std::shared_ptr<const slicer::TriangleMesh> get(const std::filesystem::path& path, double scale,
+                                                  double memory_budget_bytes) {
     auto& slot = meshes[{path.string(), scale}];
     if (!slot) {
       slicer::MeshReport report;
-      slot = std::make_shared<const slicer::TriangleMesh>(slicer::read_mesh(path, scale, &report));
+      slot = std::make_shared<const slicer::TriangleMesh>(
+          slicer::read_mesh(path, scale, &report, memory_budget_bytes));
       warnings.insert(warnings.end(), report.warnings.begin(), report.warnings.end());
     }
     return slot;
   }
 };
 
-PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& meshes) {
+PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& meshes,
+                   double memory_budget_bytes) {
   PartSpec p;
   const ParamSpec kLen{"", ParamType::kQuantity, Dimension::kLength, "", 0, 1e5, true, "", ""};
   auto length = [&](const std::string& key) {
@@ -362,7 +378,7 @@ PartSpec read_part(BlockReader& r, const std::filesystem::path& dir, MeshCache& 
         r.fail(units, "mesh_units", e.what());
       }
     }
-    p.loaded = meshes.get(p.mesh, p.mesh_scale);
+    p.loaded = meshes.get(p.mesh, p.mesh_scale, memory_budget_bytes);
   } else {
     const std::string kind = has_box ? "box" : "open_box";
     p.kind = has_box ? PartSpec::Kind::kBox : PartSpec::Kind::kOpenBox;
@@ -1068,17 +1084,18 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   BlockReader material_r(tree.material, "material", tree.material_src, &tree.overridden);
   v.material = read_material(material_r);
   v.machine.extruder.max_flow_mm3_s = v.machine.extruder_max_output_kg_s / v.material.density_kg_m3 * 1e9;
+  // The memory budget first: the part's mesh is read against it.
+  BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
+  v.output.memory_budget_gb = out_r.quantity(spec(output_params(), "memory_budget"));
   BlockReader part_r(tree.root["part"], "part", tree.scenario_src, &tree.overridden);
   // No part is fine when every section prints an AM Outline (checked with the sections below).
   if (tree.root["part"])
-    v.part = read_part(part_r, dir, meshes);
+    v.part = read_part(part_r, dir, meshes, v.output.memory_budget_gb * 1e9);
   else
     v.part.kind = PartSpec::Kind::kNone;
 
-  BlockReader out_r(tree.root["output"], "output", tree.scenario_src, &tree.overridden);
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
   v.output.voxel_size_at = out_r.where(out_r.take("voxel_size"), "voxel_size");
-  v.output.memory_budget_gb = out_r.quantity(spec(output_params(), "memory_budget"));
   const std::string skin = out_r.string(spec(output_params(), "skin"));
   if (skin != "ply" && skin != "stl" && skin != "none")
     out_r.fail(out_r.take("skin"), "skin", fmt::format("expected ply, stl or none but found '{}'", skin));
@@ -1131,6 +1148,9 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     if (tree.root["sections"] || tree.root["part"])
       pr.fail(prog, "program", "a scenario simulates either a program or a part's sections, not both");
     v.program_file = dir / prog.Scalar();
+    std::error_code ec;
+    if (std::filesystem::exists(v.program_file, ec) && !std::filesystem::is_regular_file(v.program_file, ec))
+      pr.fail(prog, "program", fmt::format("'{}' is not a regular file", v.program_file.string()));
     std::ifstream in(v.program_file, std::ios::binary);
     if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
     slicer::ReadStats stats;
@@ -1374,7 +1394,8 @@ Scenario load_scenario_text(const std::string& text, const std::string& file,
 Scenario load_scenario(const std::filesystem::path& path, const std::vector<Setting>& settings) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError({path.string(), 0, 0}, {}, "no such scenario file");
+    throw InputError({path.string(), 0, 0}, {},
+                     std::filesystem::exists(path, ec) ? "not a regular file" : "no such scenario file");
   return load_scenario_text(read_text_file(path, {path.string(), 0, 0}, {}), path.string(), settings);
 }
 
@@ -1402,6 +1423,9 @@ Scenario load_default_scenario(const std::vector<Setting>& settings) {
 namespace beadtwin::scenarios {
 
 std::string infer_machine(const std::filesystem::path& program, std::string* why) {
+  std::error_code ec;
+  if (std::filesystem::exists(program, ec) && !std::filesystem::is_regular_file(program, ec))
+    throw InputError({program.string(), 0, 0}, "program", "not a regular file");
   std::ifstream in(program, std::ios::binary);
   if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
   std::string text(std::size_t{1} << 20, '\0');

@@ -11,10 +11,10 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
+#include "core/memory.hpp"
 #include "core/units.hpp"
 #include "sim/bead_sweep.hpp"
 #include "sim/fill_writer.hpp"
@@ -464,12 +464,6 @@ constexpr double kBytesPerVoxel = 50.0;
 // Active voxels per voxel of material: the partly filled skin and the material pushed aside.
 constexpr double kActivePerMaterialVoxel = 1.3;
 
-double physical_memory_bytes() {
-  const long pages = ::sysconf(_SC_PHYS_PAGES);
-  const long page = ::sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 8e9;
-}
-
 // The memory the deposit will take at a voxel size, against the budget.
 struct MemoryCheck {
   double estimate_bytes = 0.0, budget_bytes = 0.0, voxels = 0.0;
@@ -481,8 +475,7 @@ MemoryCheck check_memory(const Toolpath& toolpath, const DepositOptions& options
   MemoryCheck c;
   c.voxels = toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
   c.estimate_bytes = c.voxels * kBytesPerVoxel;
-  c.budget_bytes =
-      options.memory_budget_bytes > 0.0 ? options.memory_budget_bytes : 0.75 * physical_memory_bytes();
+  c.budget_bytes = memory_budget_bytes(options.memory_budget_bytes);
   // Memory goes as the inverse cube of the voxel size.
   c.fitting_voxel_mm =
       c.fits() ? voxel_size_mm

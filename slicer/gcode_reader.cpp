@@ -556,7 +556,9 @@ class GcodeReader::State {
 
   void emit(Move m) {
     if (builder_.size() >= opt_.max_moves)
-      fail(0, fmt::format("the program makes more than {} moves (ReaderOptions::max_moves)", opt_.max_moves));
+      fail(0, fmt::format("the program makes more than {} moves, the most beadtwin reads in one program "
+                          "(their toolpath alone would take {:.2g} GB); split it into shorter programs",
+                          opt_.max_moves, static_cast<double>(opt_.max_moves * sizeof(Move)) / 1e9));
     builder_.add(std::move(m));
   }
 

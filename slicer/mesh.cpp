@@ -20,6 +20,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "slicer/mesh_repair.hpp"
 
 namespace beadtwin::slicer {
@@ -352,8 +353,35 @@ void check_ply(const std::filesystem::path& path, std::uintmax_t bytes) {
                        : fmt::format("not a PLY: no end_header line in its first {} KB", kMaxHeader / 1024));
 }
 
+// Stops before reading a mesh that would not fit in memory (read_mesh says how it is estimated).
+void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, double budget_bytes) {
+  constexpr double kBytesPerStlTriangle = 300.0, kBytesPerFileByte = 24.0;
+  double estimate = static_cast<double>(bytes) * kBytesPerFileByte;
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::min<std::uintmax_t>(bytes, 84), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (ext == ".stl" && head.size() == 84 && !head.starts_with("solid")) {
+    std::uint32_t count = 0;
+    for (int i = 0; i < 4; ++i) count |= std::uint32_t{static_cast<unsigned char>(head[80 + i])} << (8 * i);
+    estimate = count * kBytesPerStlTriangle;
+  }
+  const double budget = memory_budget_bytes(budget_bytes);
+  if (estimate <= budget) return;
+  throw InputError(
+      {path.string(), 0, 0}, {},
+      fmt::format(
+          "the mesh file is {:.3g} MB; reading it would take about {:.3g} GB of memory, more than the "
+          "{:.3g} GB budget (output.memory_budget, or three quarters of this machine's memory). "
+          "Decimate it first (for example MeshLab's quadric edge collapse): beads millimetres wide "
+          "need no triangles smaller than a millimetre",
+          static_cast<double>(bytes) / 1e6, estimate / 1e9, budget / 1e9));
+}
+
 // The file's triangles as assimp reads them, polygons triangulated, before any repair.
-TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, MeshReport& report) {
+TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, double budget_bytes,
+                          MeshReport& report) {
   const std::string file = path.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
@@ -363,6 +391,7 @@ TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, 
   if (bytes == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
   check_stl(path, bytes);
   check_ply(path, bytes);
+  check_memory(path, bytes, budget_bytes);
   // No post-processing: polygons are cut by SceneReader (triangulate_polygon says why), and joining
   // vertices, dropping degenerates and fixing normals are done (and counted) by repair_mesh, which assimp's
   // own steps would do silently.
@@ -387,7 +416,8 @@ void check_size(const TriangleMesh& mesh, const std::string& file) {
 
 }  // namespace
 
-TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale, MeshReport* report) {
+TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale, MeshReport* report,
+                       double budget_bytes) {
   const std::string file = path.string();
   if (!(unit_scale > 0) || !std::isfinite(unit_scale))
     throw InputError({file, 0, 0}, {},
@@ -395,7 +425,7 @@ TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale, Mes
   MeshReport local;
   MeshReport& r = report ? *report : local;
   r = MeshReport{};
-  const TriangleMesh raw = import_scene(path, unit_scale, r);
+  const TriangleMesh raw = import_scene(path, unit_scale, budget_bytes, r);
   if (raw.triangles.empty())
     throw InputError({file, 0, 0}, {},
                      r.ignored_primitives > 0 ? "the file holds points or lines but no triangles"

@@ -52,9 +52,13 @@ struct MeshReport {
 // nested inside another shell of the same body: a cavity). Each of the file's meshes/objects is a body,
 // named after its node or mesh (or the file's stem). Fills `report`, when given, with what was repaired.
 // Throws InputError naming the file when it cannot be read (with assimp's message), has a coordinate that
-// is not finite, is larger than 100 m, or has no triangles left after repair.
+// is not finite, is larger than 100 m, or has no triangles left after repair; and, before reading it, when
+// reading it would take more memory than `memory_budget_bytes` (core/memory.hpp; 0: three quarters of the
+// machine's). The estimate: 300 bytes a triangle for binary STL, whose header counts them (measured peak:
+// 232 for a 2-million-triangle sphere), else 24 bytes a byte of file (measured: 7.7 for the same sphere as
+// OBJ; denser files hold more triangles per byte).
 TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale = 1.0,
-                       MeshReport* report = nullptr);
+                       MeshReport* report = nullptr, double memory_budget_bytes = 0.0);
 
 // Writes a binary STL of all bodies (used by tests and to hand generated parts to other slicers).
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path);

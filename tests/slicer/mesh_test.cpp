@@ -489,6 +489,27 @@ TEST(Mesh, APlyHeaderMustEnd) {
   EXPECT_NE(read_error(temp_file("notply.ply")).find("its first line is not \"ply\""), std::string::npos);
 }
 
+TEST(Mesh, AMeshBeyondTheMemoryBudgetIsRefusedBeforeReading) {
+  // 12 triangles of binary STL at 300 bytes each need 3,600 bytes; the same box as OBJ (about 300 bytes of
+  // text) is estimated at 24 bytes a byte.
+  write_stl(test_box(), temp_file("box.stl"));
+  EXPECT_EQ(read_mesh(temp_file("box.stl"), 1.0, nullptr, 3600).triangles.size(), 12u);
+  std::string message;
+  try {
+    (void)read_mesh(temp_file("box.stl"), 1.0, nullptr, 3500);
+  } catch (const InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("reading it would take about 3.6e-06 GB of memory, more than the 3.5e-06 GB budget"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("Decimate it first"), std::string::npos);
+  write_text(temp_file("box.obj"), obj({{"box", test_box()}}));
+  const double bytes = static_cast<double>(std::filesystem::file_size(temp_file("box.obj")));
+  EXPECT_NO_THROW((void)read_mesh(temp_file("box.obj"), 1.0, nullptr, 24 * bytes));
+  EXPECT_THROW((void)read_mesh(temp_file("box.obj"), 1.0, nullptr, 23 * bytes), InputError);
+}
+
 TEST(Mesh, ANestedShellInOneBodyIsACavity) {
   // The outer and the inner box in one object, both wound outward in the file: the inner one is a cavity.
   TriangleMesh both = make_box({100, 100, 50});

@@ -1,6 +1,8 @@
 // The bad-input corpus (tests/bad/cases.yaml): every case ends with its exit code and its message, within a
 // time limit, never with an internal error, and a case that stops with exit code 2 leaves no report and no
 // half-written file behind.
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -37,6 +39,18 @@ TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
         << "docs/RELIABILITY.md has no row for this case";
     const fs::path out = fs::temp_directory_path() / ("bt_bad_" + std::to_string(n++));
     fs::remove_all(out);
+    // An input made for the case in {out}: a file of `bytes` comment characters, or a named pipe.
+    std::string made;
+    if (const YAML::Node make = c["make"]) {
+      fs::create_directories(out);
+      if (make["fifo"]) {
+        made = make["fifo"].as<std::string>();
+        ASSERT_EQ(::mkfifo((out / made).c_str(), 0600), 0);
+      } else {
+        made = make["file"].as<std::string>();
+        std::ofstream(out / made, std::ios::binary) << std::string(make["bytes"].as<std::size_t>(), '#');
+      }
+    }
     std::string args = c["run"].as<std::string>();
     for (std::size_t at; (at = args.find("{out}")) != std::string::npos;) args.replace(at, 5, out.string());
     const beadtwin::testing::ShellResult r = run_case(args);
@@ -49,6 +63,7 @@ TEST(BadInput, EveryCaseEndsWithItsExitCodeAndMessage) {
     if (r.code == 2 && fs::exists(out)) {
       for (const auto& e : fs::recursive_directory_iterator(out)) {
         const std::string file = e.path().filename().string();
+        if (file == made) continue;
         EXPECT_NE(file, "report.json") << e.path();
         EXPECT_EQ(file.rfind(".tmp-", 0), std::string::npos) << e.path();
         if (args.starts_with("slice")) ADD_FAILURE() << "slice stopped but wrote " << e.path();

@@ -1,5 +1,6 @@
 #include "core/atomic_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <fstream>
@@ -62,6 +63,47 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     if (!f) throw std::runtime_error("error while writing " + out.temp().string());
   }
   out.commit();
+}
+
+StagedDir::StagedDir(std::filesystem::path target)
+    : target_(std::move(target)), stage_(target_ / fmt::format(".tmp-{}-run", ::getpid())) {
+  std::error_code ec;
+  std::filesystem::remove_all(stage_, ec);
+  std::filesystem::create_directories(stage_, ec);
+  if (ec) throw std::runtime_error("cannot make " + stage_.string() + ": " + ec.message());
+}
+
+StagedDir::~StagedDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(stage_, ec);
+}
+
+void StagedDir::commit(const std::vector<std::string>& last) {
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (auto it = std::filesystem::recursive_directory_iterator(stage_, ec);
+       !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
+    if (it->is_regular_file()) files.push_back(std::filesystem::relative(it->path(), stage_));
+  if (ec) throw std::runtime_error("cannot list " + stage_.string() + ": " + ec.message());
+  const auto is_last = [&](const std::filesystem::path& f) {
+    return std::find(last.begin(), last.end(), f.generic_string()) != last.end();
+  };
+  std::sort(files.begin(), files.end());
+  std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return !is_last(f); });
+  std::sort(std::find_if(files.begin(), files.end(), is_last), files.end(),
+            [&](const auto& a, const auto& b) {
+              return std::find(last.begin(), last.end(), a.generic_string()) <
+                     std::find(last.begin(), last.end(), b.generic_string());
+            });
+  for (const std::filesystem::path& f : files) {
+    const std::filesystem::path to = target_ / f;
+    std::filesystem::create_directories(to.parent_path(), ec);
+    std::filesystem::rename(stage_ / f, to, ec);
+    if (ec)
+      throw std::runtime_error("cannot move " + (stage_ / f).string() + " to " + to.string() + ": " +
+                               ec.message());
+  }
+  committed_ = true;
 }
 
 void prepare_output_dir(const std::filesystem::path& dir, const std::string& option) {

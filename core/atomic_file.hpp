@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace beadtwin {
 
@@ -51,6 +52,29 @@ class AtomicStream {
  private:
   AtomicPath path_;
   std::ofstream out_;
+};
+
+// A run's outputs, written into a hidden folder inside `target` (.tmp-PID-run) and moved into place together
+// by commit(), so that a run stopped part-way (bad input found late, an internal error, Ctrl-C) leaves the
+// previous run's files as they were rather than a new program beside an old report. Without commit() the
+// folder is removed; one a killed process left is removed by the next prepare_output_dir on `target`.
+class StagedDir {
+ public:
+  explicit StagedDir(std::filesystem::path target);
+  ~StagedDir();
+  StagedDir(const StagedDir&) = delete;
+  StagedDir& operator=(const StagedDir&) = delete;
+
+  const std::filesystem::path& dir() const { return stage_; }
+  // Moves every staged file to the same place under the target, making folders as needed: first all but
+  // those named in `last` (paths relative to the folder), then those in the order given, so the reports
+  // arrive after what they describe. Throws std::runtime_error naming a file that cannot be moved.
+  void commit(const std::vector<std::string>& last);
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path stage_;
+  bool committed_ = false;
 };
 
 }  // namespace beadtwin

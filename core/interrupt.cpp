@@ -78,8 +78,8 @@ int remove_stale_temporaries(const std::filesystem::path& dir) {
       }
       // A process that is still running (another run into the same folder) keeps its files.
       if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM)) continue;
-      std::error_code rm;
-      if (std::filesystem::remove(e.path(), rm)) ++removed;
+      std::error_code rm;  // a file, or a run's staging folder (StagedDir)
+      if (std::filesystem::remove_all(e.path(), rm) > 0) ++removed;
     }
   };
   sweep(dir);

@@ -15,8 +15,8 @@ void install_interrupt_handler();
 // What the program is doing, for the handler's message ("baseline: thermal"). Cut to 200 bytes.
 void set_interrupt_context(std::string_view what);
 
-// Removes the temporary files (.tmp-PID-...) that processes no longer running left in `dir` and the
-// folders directly in it. Returns how many.
+// Removes the temporary files and staging folders (.tmp-PID-...) that processes no longer running left in
+// `dir` and the folders directly in it. Returns how many.
 int remove_stale_temporaries(const std::filesystem::path& dir);
 
 }  // namespace beadtwin

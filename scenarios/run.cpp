@@ -537,6 +537,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   }
   check_gate_sections(sc);
   prepare_output_dir(options.out_dir, "--out");
+  // Everything is written into a staging folder and moved into place once the run is complete (the reports
+  // last): a run that stops part-way leaves the previous run's files as they were.
+  StagedDir staged(options.out_dir);
+  const std::filesystem::path& stage = staged.dir();
   RunResult result;
   result.scenario = &sc;
   // Every variant sliced first: the pictures of all of them share one frame (camera box, colour scales).
@@ -557,7 +561,7 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   for (const Sliced& s : sliced) toolpaths.push_back(&s.toolpath);
   const PictureFrame frame = picture_frame(chosen, toolpaths, sc.inches);
   for (std::size_t i = 0; i < chosen.size(); ++i) {
-    result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, options.out_dir, options));
+    result.variants.push_back(run_variant(sc, *chosen[i], sliced[i], frame, stage, options));
   }
   // The gates, once every variant has run: some compare with the baseline variant.
   if (!result.variants.empty()) {
@@ -568,9 +572,10 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
       result.passed = result.passed && v.passed;
     }
   }
-  result.sheets = write_sheets(result, options.out_dir);
+  result.sheets = write_sheets(result, stage);
   result.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_reports(result, options.out_dir);
+  write_reports(result, stage);
+  staged.commit({"summary.md", "junit.xml", "report.html", "report.json"});
   return result;
 }
 

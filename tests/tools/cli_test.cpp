@@ -314,4 +314,41 @@ TEST(Cli, InterruptedRunKeepsThePreviousReport) {
   EXPECT_FALSE(std::filesystem::exists(out / "baseline" / ".tmp-4999999-fusion.png"));
 }
 
+TEST(Cli, ARunThatStopsPartWayLeavesThePreviousRunsFiles) {
+  namespace fs = std::filesystem;
+  const fs::path out = fs::temp_directory_path() / "bt_cli_staged";
+  fs::remove_all(out);
+  const std::string part = std::string(BEADTWIN_SOURCE_DIR) + "/tests/bad/part.yaml";
+  ASSERT_EQ(run("run " + part + " -q -o " + out.string()).code, 0);
+  const std::string report = read_file(out / "report.json");
+  const std::string program = read_file(out / "baseline" / "program.nc");
+  // A staging folder a killed run left (no process has this id).
+  fs::create_directories(out / ".tmp-4999999-run" / "baseline");
+  std::ofstream(out / ".tmp-4999999-run" / "baseline" / "program.nc") << "half a run";
+
+  // The same part in two variants: the baseline now at 4 mm layers (a different program), then one whose
+  // voxels cannot fit in memory, found in its deposit stage after the baseline has run and written its files.
+  const fs::path scenario = fs::temp_directory_path() / "bt_cli_staged.yaml";
+  std::ofstream(scenario)
+      << "name: staged\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+      << "part: {mesh: " << BEADTWIN_SOURCE_DIR << "/tests/bad/part.stl}\n"
+      << "output: {voxel_size: 5 mm}\n"
+      << "sections:\n  - {name: all, z: part, layer_height: 4, bead_width: 20, "
+         "boundary: {passes: 1}, fill: none}\n"
+      << "variants:\n  - name: baseline\n  - name: fine\n    set: {output.voxel_size: 0.01}\n";
+  const Result r = run("run " + scenario.string() + " -q -o " + out.string());
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("over the memory budget"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out / "report.json"), report);
+  EXPECT_EQ(read_file(out / "baseline" / "program.nc"), program);
+  EXPECT_FALSE(fs::exists(out / "fine"));
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_FALSE(e.path().filename().string().starts_with(".tmp-")) << e.path();
+
+  // The same scenario without the bad variant completes: every file moves into place.
+  ASSERT_EQ(run("run " + scenario.string() + " --variant baseline -q -o " + out.string()).code, 0);
+  EXPECT_NE(read_file(out / "baseline" / "program.nc"), program);
+  EXPECT_NE(read_file(out / "report.json"), report);
+}
+
 }  // namespace

@@ -85,17 +85,15 @@ void StagedDir::commit(const std::vector<std::string>& last) {
        !ec && it != std::filesystem::recursive_directory_iterator(); it.increment(ec))
     if (it->is_regular_file()) files.push_back(std::filesystem::relative(it->path(), stage_));
   if (ec) throw std::runtime_error("cannot list " + stage_.string() + ": " + ec.message());
-  const auto is_last = [&](const std::filesystem::path& f) {
-    return std::find(last.begin(), last.end(), f.generic_string()) != last.end();
-  };
+  // Every file not named in `last`, in name order; then those named, in the order given.
   std::sort(files.begin(), files.end());
-  std::stable_partition(files.begin(), files.end(), [&](const auto& f) { return !is_last(f); });
-  std::sort(std::find_if(files.begin(), files.end(), is_last), files.end(),
-            [&](const auto& a, const auto& b) {
-              return std::find(last.begin(), last.end(), a.generic_string()) <
-                     std::find(last.begin(), last.end(), b.generic_string());
-            });
-  for (const std::filesystem::path& f : files) {
+  std::vector<std::filesystem::path> order;
+  for (const auto& f : files)
+    if (std::find(last.begin(), last.end(), f.generic_string()) == last.end()) order.push_back(f);
+  for (const std::string& name : last)
+    if (std::find(files.begin(), files.end(), std::filesystem::path(name)) != files.end())
+      order.emplace_back(name);
+  for (const std::filesystem::path& f : order) {
     const std::filesystem::path to = target_ / f;
     std::filesystem::create_directories(to.parent_path(), ec);
     std::filesystem::rename(stage_ / f, to, ec);
@@ -103,7 +101,6 @@ void StagedDir::commit(const std::vector<std::string>& last) {
       throw std::runtime_error("cannot move " + (stage_ / f).string() + " to " + to.string() + ": " +
                                ec.message());
   }
-  committed_ = true;
 }
 
 void prepare_output_dir(const std::filesystem::path& dir, const std::string& option) {

@@ -56,8 +56,9 @@ class AtomicStream {
 
 // A run's outputs, written into a hidden folder inside `target` (.tmp-PID-run) and moved into place together
 // by commit(), so that a run stopped part-way (bad input found late, an internal error, Ctrl-C) leaves the
-// previous run's files as they were rather than a new program beside an old report. Without commit() the
-// folder is removed; one a killed process left is removed by the next prepare_output_dir on `target`.
+// previous run's files as they were rather than a new program beside an old report. The folder is removed
+// when the StagedDir goes (empty after commit(), with what it holds without); one a killed process left is
+// removed by the next prepare_output_dir on `target`.
 class StagedDir {
  public:
   explicit StagedDir(std::filesystem::path target);
@@ -74,7 +75,6 @@ class StagedDir {
  private:
   std::filesystem::path target_;
   std::filesystem::path stage_;
-  bool committed_ = false;
 };
 
 }  // namespace beadtwin

@@ -231,12 +231,26 @@ std::string assimp_message(const Assimp::Importer& importer) {
   return message;
 }
 
+// The file's extension in lower case, with its dot: ".stl".
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+// The triangle count of a binary STL: the little-endian 32-bit word after the 80-byte header in `head`
+// (at least 84 bytes).
+std::uint32_t binary_stl_count(const std::string& head) {
+  std::uint32_t count = 0;
+  for (int i = 0; i < 4; ++i) count |= std::uint32_t{static_cast<unsigned char>(head[80 + i])} << (8 * i);
+  return count;
+}
+
 // An STL file's own account of itself, checked before assimp reads it (whose messages for a broken STL
 // speak of its "storage representation"): ASCII begins "solid" and has facets; binary is an 80-byte
 // header, a triangle count and 50 bytes per triangle.
 void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   if (ext != ".stl") return;
   std::ifstream in(path, std::ios::binary);
   std::string head(std::min<std::uintmax_t>(bytes, 4096), '\0');
@@ -248,8 +262,7 @@ void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
                      fmt::format("not an STL: {} bytes, shorter than a binary STL's 84-byte header, and not "
                                  "ASCII STL (\"solid\" and facets)",
                                  bytes));
-  std::uint32_t count = 0;
-  for (int i = 0; i < 4; ++i) count |= std::uint32_t{static_cast<unsigned char>(head[80 + i])} << (8 * i);
+  const std::uint32_t count = binary_stl_count(head);
   const std::uintmax_t expected = 84 + 50 * std::uintmax_t{count};
   if (count == 0) throw InputError({file, 0, 0}, {}, "the binary STL holds no triangles");
   if (bytes < expected && expected / 64 > bytes)  // far beyond the file: a count read from other data
@@ -279,8 +292,7 @@ void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
 // "ply", as assimp also picks its PLY importer by that signature.
 void check_ply(const std::filesystem::path& path, std::uintmax_t bytes) {
   constexpr std::size_t kMaxHeader = 64 * 1024;
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   std::ifstream in(path, std::ios::binary);
   std::string head(std::min<std::uintmax_t>(bytes, kMaxHeader), '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
@@ -357,15 +369,12 @@ void check_ply(const std::filesystem::path& path, std::uintmax_t bytes) {
 void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, double budget_bytes) {
   constexpr double kBytesPerStlTriangle = 300.0, kBytesPerFileByte = 24.0;
   double estimate = static_cast<double>(bytes) * kBytesPerFileByte;
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string ext = lower_extension(path);
   std::ifstream in(path, std::ios::binary);
   std::string head(std::min<std::uintmax_t>(bytes, 84), '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   if (ext == ".stl" && head.size() == 84 && !head.starts_with("solid")) {
-    std::uint32_t count = 0;
-    for (int i = 0; i < 4; ++i) count |= std::uint32_t{static_cast<unsigned char>(head[80 + i])} << (8 * i);
-    estimate = count * kBytesPerStlTriangle;
+    estimate = binary_stl_count(head) * kBytesPerStlTriangle;
   }
   const double budget = memory_budget_bytes(budget_bytes);
   if (estimate <= budget) return;

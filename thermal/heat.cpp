@@ -1,6 +1,7 @@
 #include "thermal/heat.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -321,6 +322,27 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     by_cell[link.b].push_back(static_cast<std::uint32_t>(result.interfaces.size()));
     result.interfaces.push_back(r);
   }
+  // The same lists flat, each entry with the interface's cells beside it: the scan for healing interfaces
+  // after every step then reads memory in order rather than chasing per-cell lists and interface records
+  // (that was most of its time).
+  struct CellInterface {
+    std::uint32_t interface, other, younger;
+  };
+  std::vector<std::size_t> cell_first(n + 1, 0);
+  std::vector<CellInterface> cell_interfaces;
+  cell_interfaces.reserve(2 * result.interfaces.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    cell_first[i] = cell_interfaces.size();
+    for (const std::uint32_t k : by_cell[i]) {
+      const InterfaceResult& r = result.interfaces[k];
+      cell_interfaces.push_back({k, r.older == i ? r.younger : r.older, r.younger});
+    }
+  }
+  cell_first[n] = cell_interfaces.size();
+  by_cell = {};
+  std::vector<std::array<std::uint32_t, 2>> cells_of(result.interfaces.size());
+  for (std::size_t k = 0; k < cells_of.size(); ++k)
+    cells_of[k] = {result.interfaces[k].older, result.interfaces[k].younger};
   std::vector<double> integral(result.interfaces.size(), 0.0);  // ∫ dt / t_w so far
   const Reptation reptation(material);
   // A cell is warm when it may be above the healing threshold during a step: at either end (with a margin
@@ -401,8 +423,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   long steps = 0, rhs = 0, linear = 0;  // of the integrators replaced
   double t = t0;
   const auto healing_rate = [&](std::span<const double> state, std::uint32_t k) {
-    const InterfaceResult& r = result.interfaces[k];
-    return reptation.rate_per_s(0.5 * (state[r.older] + state[r.younger]));
+    return reptation.rate_per_s(0.5 * (state[cells_of[k][0]] + state[cells_of[k][1]]));
   };
   // The interfaces that heal over the step now ending: born (both cells) and with a warm cell; each once.
   // The integral goes on past 1 (full healing): how far past says how much colder the interface could be.
@@ -412,12 +433,11 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     healing_now.clear();
     for (std::size_t i = 0; i < born; ++i) {
       if (!warm[i]) continue;
-      for (const std::uint32_t k : by_cell[i]) {
-        const InterfaceResult& r = result.interfaces[k];
-        const std::uint32_t other = r.older == i ? r.younger : r.older;
-        if (r.younger >= born) continue;
-        if (other < i && warm[other]) continue;  // counted from the other cell
-        healing_now.push_back(k);
+      for (std::size_t e = cell_first[i]; e < cell_first[i + 1]; ++e) {
+        const CellInterface& c = cell_interfaces[e];
+        if (c.younger >= born) continue;
+        if (c.other < i && warm[c.other]) continue;  // counted from the other cell
+        healing_now.push_back(c.interface);
       }
     }
   };

@@ -46,6 +46,7 @@ struct Geometry {
   double voxel_mm = 0.0;
   double spacing_mm = 0.0;
   double band_mm = 0.0;
+  double print_outside_mm = 0.0;  // the print's band outside it
 };
 
 void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
@@ -59,6 +60,7 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
     throw InputError({}, "voxel_size",
                      fmt::format("the deposit's voxel size must be positive, got {}", g.voxel_mm));
   g.band_mm = o.band_mm;
+  g.print_outside_mm = std::min(o.band_mm, std::max(0.5 * o.band_mm, kPrintOutsideBandVoxels * g.voxel_mm));
   g.spacing_mm = o.sample_spacing_mm > 0 ? o.sample_spacing_mm : g.voxel_mm;
   if (!(o.band_mm >= 2 * g.voxel_mm && o.band_mm <= kMaxBandVoxels * g.voxel_mm))
     add(fmt::format("band_mm must be 2 to {} voxels ({:.6g} to {:.6g} mm), got {}", kMaxBandVoxels,
@@ -172,7 +174,8 @@ openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::
 // the eikonal equation to first order, with errors around corners that a stock measured a bead width deep
 // would feel. Inside and outside come from the surface (meshToVolume ignores the winding), so the fill
 // grid's convention (inside is above the isovalue, the opposite of a level set's) needs no negation.
-openvdb::FloatGrid::Ptr print_distance_grid(const openvdb::FloatGrid& solid, float band_voxels) {
+openvdb::FloatGrid::Ptr print_distance_grid(const openvdb::FloatGrid& solid, float outside_voxels,
+                                            float band_voxels) {
   constexpr double kAdaptivity = 0.01;
   openvdb::tools::VolumeToMesh mesher(kPrintedFill, kAdaptivity);
   mesher(solid);
@@ -190,7 +193,7 @@ openvdb::FloatGrid::Ptr print_distance_grid(const openvdb::FloatGrid& solid, flo
     }
   }
   const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec4I> mesh(points, polygons);
-  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, band_voxels, band_voxels,
+  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, outside_voxels, band_voxels,
                                                                openvdb::tools::DISABLE_RENORMALIZATION);
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
   return grid;
@@ -412,7 +415,7 @@ void measure_stock(const CadSurface& cad, const openvdb::FloatGrid& print, const
   out.below_requested_stock_fraction = below / area;
   // Within a voxel of the band's edge the grid's values mix in the band's width: the truth is further out.
   const double edge = g.band_mm - g.voxel_mm;
-  out.min_stock_clamped = out.min_stock_mm <= -edge;
+  out.min_stock_clamped = out.min_stock_mm <= -(g.print_outside_mm - g.voxel_mm);
   out.max_stock_clamped = out.max_stock_mm >= edge;
 }
 
@@ -540,7 +543,8 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   const openvdb::FloatGrid::Ptr cad_grid = cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
   const openvdb::FloatGrid::Ptr print =
-      print_distance_grid(*solid_print(*deposit.fill, plate_k, options.exclude_plate, depth), band_voxels);
+      print_distance_grid(*solid_print(*deposit.fill, plate_k, options.exclude_plate, depth),
+                          static_cast<float>(g.print_outside_mm / g.voxel_mm), band_voxels);
   measure_stock(cad, *print, *cad_grid, g, options, out);
   measure_skin(*print, *cad_grid, g, options, out);
   measure_outside(*deposit.fill, *cad_grid, g, out);

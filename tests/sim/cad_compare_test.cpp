@@ -178,6 +178,17 @@ TEST(CadCompare, TooLittleOuterStockIsUndercut) {
   EXPECT_LT(c.deviation_min_mm, 0.0);
 }
 
+TEST(CadCompare, AnUndercutDeeperThanTheOutsideBandIsReportedAsAtLeastIt) {
+  // The outline shrunk by 15 mm: the sides lie 15 mm and more outside the print, beyond the print's band
+  // outside it (half the 20 mm band: 10 mm). The least stock is the band's edge, flagged; the sign, and so
+  // the undercut, is still known everywhere.
+  const Printed p = print_bar(-15.0, 1);
+  const CadComparison c = compare(p, options(0.0));
+  EXPECT_TRUE(c.min_stock_clamped);
+  EXPECT_NEAR(c.min_stock_mm, -0.5 * kBand, kVoxel);
+  EXPECT_GE(c.undercut_fraction, 2 * kLength * kHeight / c.cad_area_mm2);
+}
+
 TEST(CadCompare, BottomOnThePlateDoesNotCount) {
   // The box's bottom is flush with the print's (both on the table): counted, it brings the least stock down
   // to nothing (and the sides' too, at their foot, with the print's bottom no longer the table's).

@@ -188,7 +188,7 @@ class SceneReader {
                           m.mName.C_Str(), v, m.mNumVertices));
         if (!used_[v]) check_finite(m, v, mesh_.vertices[static_cast<std::size_t>(base) + v]);
         used_[v] = true;
-        if (face.mNumIndices > 3) corners.push_back(mesh_.vertices[static_cast<std::size_t>(base) + v]);
+        corners.push_back(mesh_.vertices[static_cast<std::size_t>(base) + v]);
       }
       const auto corner = [&](int c) { return base + static_cast<int>(face.mIndices[c]); };
       if (face.mNumIndices == 3) {
@@ -246,40 +246,23 @@ std::uint32_t binary_stl_count(const std::string& head) {
   return count;
 }
 
-// What the checks below read of a mesh file before assimp does: its size, its extension in lower case and
-// its first 64 KB (a PLY header's most), read once.
-struct FileStart {
-  std::string file;
-  std::string ext;
-  std::uintmax_t bytes = 0;
-  std::string head;
-};
-
-FileStart read_file_start(const std::filesystem::path& path, std::uintmax_t bytes) {
-  constexpr std::uintmax_t kHead = 64 * 1024;
-  FileStart f{path.string(), lower_extension(path), bytes, std::string(std::min(bytes, kHead), '\0')};
-  std::ifstream in(path, std::ios::binary);
-  in.read(f.head.data(), static_cast<std::streamsize>(f.head.size()));
-  f.head.resize(static_cast<std::size_t>(in.gcount()));
-  return f;
-}
-
 // An STL file's own account of itself, checked before assimp reads it (whose messages for a broken STL
 // speak of its "storage representation"): ASCII begins "solid" and has facets; binary is an 80-byte
 // header, a triangle count and 50 bytes per triangle.
-void check_stl(const FileStart& f) {
-  if (f.ext != ".stl") return;
-  const std::string_view head(f.head);
-  if (head.starts_with("solid") && head.substr(0, 4096).find("facet") != std::string_view::npos)
-    return;  // ASCII
-  const std::string& file = f.file;
-  const std::uintmax_t bytes = f.bytes;
+void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".stl") return;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::min<std::uintmax_t>(bytes, 4096), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (head.starts_with("solid") && head.find("facet") != std::string::npos) return;  // ASCII
+  const std::string file = path.string();
   if (bytes < 84)
     throw InputError({file, 0, 0}, {},
                      fmt::format("not an STL: {} bytes, shorter than a binary STL's 84-byte header, and not "
                                  "ASCII STL (\"solid\" and facets)",
                                  bytes));
-  const std::uint32_t count = binary_stl_count(f.head);
+  const std::uint32_t count = binary_stl_count(head);
   const std::uintmax_t expected = 84 + 50 * std::uintmax_t{count};
   if (count == 0) throw InputError({file, 0, 0}, {}, "the binary STL holds no triangles");
   if (bytes < expected && expected / 64 > bytes)  // far beyond the file: a count read from other data
@@ -307,10 +290,14 @@ void check_stl(const FileStart& f) {
 // "ply", then lines of words (separated by spaces or tabs) each starting comment, obj_info, format, element,
 // property, and last "end_header", before any data. Checked for files named .ply and for any that start
 // "ply", as assimp also picks its PLY importer by that signature.
-void check_ply(const FileStart& f) {
-  const std::string& head = f.head;
-  if (f.ext != ".ply" && !head.starts_with("ply")) return;
-  const std::string& file = f.file;
+void check_ply(const std::filesystem::path& path, std::uintmax_t bytes) {
+  constexpr std::size_t kMaxHeader = 64 * 1024;
+  const std::string ext = lower_extension(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::min<std::uintmax_t>(bytes, kMaxHeader), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (ext != ".ply" && !head.starts_with("ply")) return;
+  const std::string file = path.string();
   static const std::set<std::string, std::less<>> kTypes = {
       "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
       "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
@@ -373,27 +360,32 @@ void check_ply(const FileStart& f) {
     }
   }
   throw InputError({file, 0, 0}, {},
-                   head.size() == f.bytes
+                   head.size() < kMaxHeader
                        ? std::string("not a PLY: its header has no end_header line")
-                       : fmt::format("not a PLY: no end_header line in its first {} KB", head.size() / 1024));
+                       : fmt::format("not a PLY: no end_header line in its first {} KB", kMaxHeader / 1024));
 }
 
 // Stops before reading a mesh that would not fit in memory (read_mesh says how it is estimated).
-void check_memory(const FileStart& f, double budget_bytes) {
+void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, double budget_bytes) {
   constexpr double kBytesPerStlTriangle = 300.0, kBytesPerFileByte = 24.0;
-  double estimate = static_cast<double>(f.bytes) * kBytesPerFileByte;
-  if (f.ext == ".stl" && f.head.size() >= 84 && !f.head.starts_with("solid"))
-    estimate = binary_stl_count(f.head) * kBytesPerStlTriangle;
+  double estimate = static_cast<double>(bytes) * kBytesPerFileByte;
+  const std::string ext = lower_extension(path);
+  std::ifstream in(path, std::ios::binary);
+  std::string head(std::min<std::uintmax_t>(bytes, 84), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  if (ext == ".stl" && head.size() == 84 && !head.starts_with("solid")) {
+    estimate = binary_stl_count(head) * kBytesPerStlTriangle;
+  }
   const double budget = memory_budget_bytes(budget_bytes);
   if (estimate <= budget) return;
   throw InputError(
-      {f.file, 0, 0}, {},
+      {path.string(), 0, 0}, {},
       fmt::format(
           "the mesh file is {:.3g} MB; reading it would take about {:.3g} GB of memory, more than the "
           "{:.3g} GB budget (output.memory_budget, or three quarters of this machine's memory). "
           "Decimate it first (for example MeshLab's quadric edge collapse): beads millimetres wide "
           "need no triangles smaller than a millimetre",
-          static_cast<double>(f.bytes) / 1e6, estimate / 1e9, budget / 1e9));
+          static_cast<double>(bytes) / 1e6, estimate / 1e9, budget / 1e9));
 }
 
 // The file's triangles as assimp reads them, polygons triangulated, before any repair.
@@ -406,10 +398,9 @@ TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, 
                      std::filesystem::exists(path, ec) ? "not a regular file" : "no such mesh file");
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (bytes == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
-  const FileStart start = read_file_start(path, bytes);
-  check_stl(start);
-  check_ply(start);
-  check_memory(start, budget_bytes);
+  check_stl(path, bytes);
+  check_ply(path, bytes);
+  check_memory(path, bytes, budget_bytes);
   // No post-processing: polygons are cut by SceneReader (triangulate_polygon says why), and joining
   // vertices, dropping degenerates and fixing normals are done (and counted) by repair_mesh, which assimp's
   // own steps would do silently.

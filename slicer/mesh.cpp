@@ -22,6 +22,8 @@
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "slicer/mesh_repair.hpp"
+#include "slicer/ply.hpp"
+#include "slicer/triangulate.hpp"
 
 namespace beadtwin::slicer {
 
@@ -59,62 +61,6 @@ Eigen::Affine3d to_eigen(const aiMatrix4x4& m) {
   for (unsigned r = 0; r < 4; ++r)
     for (unsigned c = 0; c < 4; ++c) e(r, c) = static_cast<double>(m[r][c]);
   return Eigen::Affine3d(e);
-}
-
-// Triangles covering the planar polygon `corners` (indices into the result are positions in `corners`), by
-// ear clipping in the polygon's own plane, so concave polygons (an L-shaped face of a CAD export) are cut
-// inside their outline. A polygon that has no area, or that crosses itself so that no ear is left, is cut as
-// a fan from its first corner for what remains: repair drops what is degenerate. Ear clipping takes up to
-// n³ steps, so a polygon of more than 256 corners (no CAD export writes one; a fuzzer does) is cut as a fan.
-//
-// Polygons are cut here rather than by assimp's aiProcess_Triangulate, which asserts (aborting the program,
-// in Debian's build of assimp 5.2) on a face with no corners, as a PLY may hold (found by tests/fuzz).
-std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Eigen::Vector3d>& corners) {
-  const int n = static_cast<int>(corners.size());
-  std::vector<std::array<int, 3>> out;
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // Newell's normal: twice the area, along the normal
-  for (int i = 0; i < n; ++i) normal += corners[i].cross(corners[(i + 1) % n]);
-  std::vector<int> left(n);
-  for (int i = 0; i < n; ++i) left[i] = i;
-  const auto fan = [&] {
-    for (std::size_t i = 1; i + 1 < left.size(); ++i) out.push_back({left[0], left[i], left[i + 1]});
-  };
-  constexpr int kMaxEarClipping = 256;
-  if (!(normal.norm() > 0.0) || !normal.allFinite() || n > kMaxEarClipping) {
-    fan();
-    return out;
-  }
-  // The plane's 2-D coordinates, turned so that the polygon runs counter-clockwise in them.
-  const Eigen::Vector3d z = normal.normalized();
-  const Eigen::Vector3d x = z.unitOrthogonal();
-  const Eigen::Vector3d y = z.cross(x);
-  std::vector<Eigen::Vector2d> p(n);
-  for (int i = 0; i < n; ++i) p[i] = {corners[i].dot(x), corners[i].dot(y)};
-  const auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
-    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-  };
-  while (left.size() > 3) {
-    const std::size_t m = left.size();
-    bool clipped = false;
-    for (std::size_t i = 0; i < m && !clipped; ++i) {
-      const int a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-      if (cross(p[a], p[b], p[c]) <= 0.0) continue;  // a reflex or straight corner is no ear
-      bool empty = true;
-      for (std::size_t j = 0; j < m && empty; ++j) {
-        const int q = left[j];
-        if (q == a || q == b || q == c) continue;
-        empty = !(cross(p[a], p[b], p[q]) >= 0.0 && cross(p[b], p[c], p[q]) >= 0.0 &&
-                  cross(p[c], p[a], p[q]) >= 0.0);
-      }
-      if (!empty) continue;
-      out.push_back({a, b, c});
-      left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
-      clipped = true;
-    }
-    if (!clipped) break;
-  }
-  fan();
-  return out;
 }
 
 // Gathers an assimp scene's triangles into one mesh with a body per node that holds meshes, node transforms
@@ -238,6 +184,15 @@ std::string lower_extension(const std::filesystem::path& path) {
   return ext;
 }
 
+// The first `bytes` bytes of the file (fewer if it is shorter).
+std::string read_start(const std::filesystem::path& path, std::uintmax_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string data(bytes, '\0');
+  in.read(data.data(), static_cast<std::streamsize>(data.size()));
+  data.resize(static_cast<std::size_t>(in.gcount()));
+  return data;
+}
+
 // The triangle count of a binary STL: the little-endian 32-bit word after the 80-byte header in `head`
 // (at least 84 bytes).
 std::uint32_t binary_stl_count(const std::string& head) {
@@ -252,9 +207,7 @@ std::uint32_t binary_stl_count(const std::string& head) {
 void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
   const std::string ext = lower_extension(path);
   if (ext != ".stl") return;
-  std::ifstream in(path, std::ios::binary);
-  std::string head(std::min<std::uintmax_t>(bytes, 4096), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  const std::string head = read_start(path, std::min<std::uintmax_t>(bytes, 4096));
   if (head.starts_with("solid") && head.find("facet") != std::string::npos) return;  // ASCII
   const std::string file = path.string();
   if (bytes < 84)
@@ -285,94 +238,12 @@ void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
                     count, expected, bytes));
 }
 
-// A PLY file's header, checked line by line before assimp reads it: assimp 5.2 (Debian 12) reads for ever
-// a PLY header that does not end, or whose lines it does not know (found by tests/fuzz). The header is text:
-// "ply", then lines of words (separated by spaces or tabs) each starting comment, obj_info, format, element,
-// property, and last "end_header", before any data. Checked for files named .ply and for any that start
-// "ply", as assimp also picks its PLY importer by that signature.
-void check_ply(const std::filesystem::path& path, std::uintmax_t bytes) {
-  constexpr std::size_t kMaxHeader = 64 * 1024;
-  const std::string ext = lower_extension(path);
-  std::ifstream in(path, std::ios::binary);
-  std::string head(std::min<std::uintmax_t>(bytes, kMaxHeader), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  if (ext != ".ply" && !head.starts_with("ply")) return;
-  const std::string file = path.string();
-  static const std::set<std::string, std::less<>> kTypes = {
-      "char", "uchar", "short", "ushort", "int",   "uint",   "float",   "double",
-      "int8", "uint8", "int16", "uint16", "int32", "uint32", "float32", "float64"};
-  const auto words_of = [](std::string_view line) {
-    std::vector<std::string_view> words;
-    std::size_t i = 0;
-    while (i < line.size()) {
-      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-      const std::size_t start = i;
-      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-      if (i > start) words.push_back(line.substr(start, i - start));
-    }
-    return words;
-  };
-  const auto is_count = [](std::string_view w) {
-    return !w.empty() && w.size() <= 10 &&
-           std::all_of(w.begin(), w.end(), [](char c) { return c >= '0' && c <= '9'; });
-  };
-  bool format = false;
-  std::size_t pos = 0;
-  for (int number = 1; pos < head.size(); ++number) {
-    const std::size_t eol = head.find('\n', pos);
-    if (eol == std::string::npos) break;  // the header's last line is cut off
-    std::string_view line(head.data() + pos, eol - pos);
-    pos = eol + 1;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    const auto fail = [&](const std::string& what) { throw InputError({file, number, 1}, {}, what); };
-    if (number == 1) {
-      if (line != "ply") fail("not a PLY: its first line is not \"ply\"");
-      continue;
-    }
-    const std::vector<std::string_view> w = words_of(line);
-    if (w.empty()) fail("an empty line in the PLY header");
-    if (w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "format") {
-      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
-        fail(
-            fmt::format("PLY format '{}': expected format ascii, binary_little_endian or binary_big_endian "
-                        "and a version",
-                        w.size() > 1 ? w[1] : ""));
-      format = true;
-    } else if (w[0] == "element") {
-      if (w.size() != 3 || !is_count(w[2])) fail("a PLY element line: expected element NAME COUNT");
-    } else if (w[0] == "property") {
-      const bool list = w.size() == 5 && w[1] == "list" && kTypes.contains(w[2]) && kTypes.contains(w[3]);
-      if (!list && !(w.size() == 3 && kTypes.contains(w[1])))
-        fail(
-            "a PLY property line: expected property TYPE NAME or property list TYPE TYPE NAME, with the "
-            "types "
-            "char, uchar, short, ushort, int, uint, float, double (or int8 ... float64)");
-    } else if (w[0] == "end_header") {
-      if (w.size() != 1) fail("the PLY end_header line has more on it");
-      if (!format) fail("the PLY header has no format line");
-      return;
-    } else {
-      fail(
-          fmt::format("PLY header: '{}' is not a header line; expected comment, format, element, property or "
-                      "end_header",
-                      std::string(w[0]).substr(0, 40)));
-    }
-  }
-  throw InputError({file, 0, 0}, {},
-                   head.size() < kMaxHeader
-                       ? std::string("not a PLY: its header has no end_header line")
-                       : fmt::format("not a PLY: no end_header line in its first {} KB", kMaxHeader / 1024));
-}
-
 // Stops before reading a mesh that would not fit in memory (read_mesh says how it is estimated).
 void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, double budget_bytes) {
   constexpr double kBytesPerStlTriangle = 300.0, kBytesPerFileByte = 24.0;
   double estimate = static_cast<double>(bytes) * kBytesPerFileByte;
   const std::string ext = lower_extension(path);
-  std::ifstream in(path, std::ios::binary);
-  std::string head(std::min<std::uintmax_t>(bytes, 84), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  const std::string head = read_start(path, std::min<std::uintmax_t>(bytes, 84));
   if (ext == ".stl" && head.size() == 84 && !head.starts_with("solid")) {
     estimate = binary_stl_count(head) * kBytesPerStlTriangle;
   }
@@ -388,7 +259,8 @@ void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, doubl
           static_cast<double>(bytes) / 1e6, estimate / 1e9, budget / 1e9));
 }
 
-// The file's triangles as assimp reads them, polygons triangulated, before any repair.
+// The file's triangles as it gives them, polygons triangulated, before any repair: PLY by read_ply, every
+// other format by assimp.
 TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, double budget_bytes,
                           MeshReport& report) {
   const std::string file = path.string();
@@ -399,8 +271,14 @@ TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, 
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (bytes == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
   check_stl(path, bytes);
-  check_ply(path, bytes);
   check_memory(path, bytes, budget_bytes);
+  if (std::string data = read_start(path, 3); is_ply(path, data)) {
+    data = read_start(path, bytes);
+    PlyMesh ply = read_ply(file, data, unit_scale);
+    report.ignored_primitives = ply.ignored_faces;
+    if (!ply.mesh.body_names.empty()) ply.mesh.body_names[0] = path.stem().string();
+    return std::move(ply.mesh);
+  }
   // No post-processing: polygons are cut by SceneReader (triangulate_polygon says why), and joining
   // vertices, dropping degenerates and fixing normals are done (and counted) by repair_mesh, which assimp's
   // own steps would do silently.

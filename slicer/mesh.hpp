@@ -1,6 +1,6 @@
-// Part meshes: read from STL, OBJ, 3MF, AMF, PLY (through assimp) and repaired, or made from built-in
-// primitives. A part may hold several bodies (the outside shape plus interior structures), each a set of
-// triangles tagged with its body index.
+// Part meshes: read from STL, OBJ, 3MF, AMF (through assimp) or PLY (slicer/ply.hpp) and repaired, or made
+// from built-in primitives. A part may hold several bodies (the outside shape plus interior structures),
+// each a set of triangles tagged with its body index.
 #pragma once
 
 #include <array>
@@ -45,7 +45,7 @@ struct MeshReport {
   std::vector<std::string> warnings;  // one line per kind of problem, "file: what, how many", for the user
 };
 
-// Reads a part mesh in any format assimp knows (STL binary and ASCII, OBJ, 3MF, AMF, PLY, ...), bakes the
+// Reads a part mesh in any format assimp knows (STL binary and ASCII, OBJ, 3MF, AMF, ...) or PLY, bakes the
 // file's node transforms, scales by `unit_scale` (file units to mm: 1 for mm, 25.4 for inches) and repairs
 // it: welds vertices within 1e-6 of the bounding-box diagonal, drops degenerate and duplicate faces, makes
 // the winding consistent over each connected shell and orients closed shells outward (inward for a shell

@@ -1,6 +1,6 @@
-// libFuzzer target: the mesh reader (read_mesh: our STL header check, assimp's importers, then our repair:
-// welding, duplicate and degenerate faces, winding, shells, cavities). Any bytes give a mesh or an
-// InputError, nothing else.
+// libFuzzer target: the mesh reader (read_mesh: our STL header check, assimp's importers, our PLY reader,
+// then our repair: welding, duplicate and degenerate faces, winding, shells, cavities). Any bytes give a mesh
+// or an InputError, nothing else.
 //
 // read_mesh reads a file, as a run does, and picks the importer by the file's extension. The bytes are
 // written as part.ply when they start with "ply", part.obj when a line starts with "v " or "f ", part.stl

@@ -29,18 +29,6 @@ log="$work/log.txt"
 say() { echo "$*" | tee -a "$log" >&2; }
 # json FILE EXPR: a value from a report.json (python3's json; no other tool needed).
 json() { python3 -c "import json,sys; r=json.load(open(sys.argv[1])); print($2)" "$1"; }
-# timed OUT CMD...: runs CMD, appends "seconds peak_MB" to OUT. Exit code 1 (a gate failed: the default
-# scenario's own gates do, by design) is a finished run.
-timed() {
-  local out="$1" rc=0
-  shift
-  /usr/bin/time -f "%e %M" -o "$work/time.txt" "$@" > /dev/null 2> "$work/stderr.txt" || rc=$?
-  if [ "$rc" -gt 1 ]; then
-    cat "$work/stderr.txt" >&2
-    return 1
-  fi
-  tail -1 "$work/time.txt" | awk '{printf "%s %.0f\n", $1, $2 / 1024}' >> "$out"
-}
 col() { awk -v c="$2" '{print $c}' "$1" | median; }
 ratio() { echo "$1 / $2" | bc -l | xargs printf "%.${3:-2}f"; }
 
@@ -85,7 +73,7 @@ mesh_s=$(grep -m1 "^mesh-to-volume" "$work/deposit.txt" | sed 's/.*: \([0-9.]*\)
 render_s=$(grep -m1 "^full" "$work/render.txt" | sed 's/.*frame \([0-9.]*\) s.*/\1/')
 
 machine="$(nproc) cores ($(grep -m1 "model name" /proc/cpuinfo | sed 's/.*: //')), $(free -g | awk '/Mem:/ {print $2}') GiB, $(. /etc/os-release && echo "$PRETTY_NAME")"
-commit="$(git -C "$root" rev-parse --short HEAD)$(git -C "$root" diff --quiet || echo "+changes")"
+commit="$(commit_id)"
 mark() { if [ "$(echo "$1" | bc -l)" = 1 ]; then echo "met"; else echo "**not met**"; fi; }
 
 {

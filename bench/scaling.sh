@@ -2,7 +2,7 @@
 # How a run grows with the part and the voxel size (issue 11, item 5), so a user can predict a run before
 # starting it: the LSAM hull-mould shell (bench/make_hull_mould.py, the wall kept at 41 mm) scaled to half,
 # 0.71 and full size at 2 mm voxels, and the full size at 4 and 3 mm voxels, each run end to end once
-# (`beadtwin run`, wall time and peak memory from /usr/bin/time). Writes the table into docs/PERFORMANCE.md
+# (`beadtwin run`, wall time and peak memory from /usr/bin/time, bench/common.sh's timed). Writes the table into docs/PERFORMANCE.md
 # between the "scaling:begin" and "scaling:end" markers.
 #
 #   bash bench/scaling.sh [BUILD_DIR]
@@ -16,23 +16,20 @@ grep -q "scaling:begin" "$doc" && grep -q "scaling:end" "$doc" || { echo "$doc l
 
 : > "$work/rows"
 run() {  # run SCALE VOXEL_MM
-  local scale="$1" voxel="$2" dir="$work/s$1-v$2" rc=0
-  mkdir -p "$dir"
-  python3 "$root/bench/make_hull_mould.py" "$dir/hull.stl" \
-    "$(echo "1500 * $scale" | bc -l)" "$(echo "600 * $scale" | bc -l)" "$(echo "500 * $scale" | bc -l)" 41 > /dev/null
-  cp "$root/bench/hull-mould.yaml" "$dir/"
+  local scale="$1" voxel="$2" dir="$work/s$1-v$2"
+  write_hull_mould "$dir" "$(echo "1500 * $scale" | bc -l)" "$(echo "600 * $scale" | bc -l)" \
+    "$(echo "500 * $scale" | bc -l)" 41 > /dev/null
   echo "scale $scale, voxels $voxel mm" >&2
-  /usr/bin/time -f "%e %M" -o "$dir/time.txt" "$bin" run "$dir/hull-mould.yaml" --set "output.voxel_size=$voxel" \
-    -q -o "$dir/out" > /dev/null 2> "$dir/stderr.txt" || rc=$?
-  [ "$rc" -le 1 ] || { cat "$dir/stderr.txt" >&2; exit 1; }
-  python3 - "$dir/out/report.json" "$(tail -1 "$dir/time.txt")" "$scale" "$voxel" >> "$work/rows" <<'PY'
+  : > "$dir/run.txt"
+  timed "$dir/run.txt" "$bin" run "$dir/hull-mould.yaml" --set "output.voxel_size=$voxel" -q -o "$dir/out"
+  python3 - "$dir/out/report.json" "$(cat "$dir/run.txt")" "$scale" "$voxel" >> "$work/rows" <<'PY'
 import json, sys
 r = json.load(open(sys.argv[1]))["variants"][0]
 m = r["metrics"]
-seconds, kb = map(float, sys.argv[2].split())
+seconds, mb = map(float, sys.argv[2].split())
 st = r["stage_seconds"]
 print(sys.argv[3], sys.argv[4], m["print_length_mm"] / 1000, m["deposit"]["voxels"] / 1e6, m["interfaces"]["count"],
-      m["print_time_s"], seconds, kb / 1024, st.get("deposit", 0), st.get("compare", 0), st.get("thermal", 0),
+      m["print_time_s"], seconds, mb, st.get("deposit", 0), st.get("compare", 0), st.get("thermal", 0),
       st.get("render", 0))
 PY
 }
@@ -42,7 +39,7 @@ run 1 2
 run 1 3
 run 1 4
 
-python3 - "$work/rows" "$doc" "$(date -u +%Y-%m-%d)" "$(git -C "$root" rev-parse --short HEAD)" <<'PY'
+python3 - "$work/rows" "$doc" "$(date -u +%Y-%m-%d)" "$(commit_id)" <<'PY'
 import math, re, sys
 rows = [list(map(float, l.split())) for l in open(sys.argv[1])]
 out = ["<!-- scaling:begin: written by bench/scaling.sh; do not edit by hand -->", "",

@@ -15,11 +15,18 @@
 #include "core/interrupt.hpp"
 
 namespace beadtwin {
+namespace {
+
+// This process's temporary name for `what`: ".tmp-PID-what", the form remove_stale_temporaries recognises.
+std::string temporary_name(const std::string& what) {
+  return fmt::format(".tmp-{}-{}", ::getpid(), what);
+}
+
+}  // namespace
 
 AtomicPath::AtomicPath(std::filesystem::path target) : target_(std::move(target)) {
   // Keep the extension last: image writers choose the format from it.
-  temp_ = target_.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target_.stem().string() +
-                                   target_.extension().string());
+  temp_ = target_.parent_path() / temporary_name(target_.filename().string());
 }
 
 AtomicPath::~AtomicPath() {
@@ -66,7 +73,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 }
 
 StagedDir::StagedDir(std::filesystem::path target)
-    : target_(std::move(target)), stage_(target_ / fmt::format(".tmp-{}-run", ::getpid())) {
+    : target_(std::move(target)), stage_(target_ / temporary_name("run")) {
   std::error_code ec;
   std::filesystem::remove_all(stage_, ec);
   std::filesystem::create_directories(stage_, ec);
@@ -114,7 +121,7 @@ void prepare_output_dir(const std::filesystem::path& dir, const std::string& opt
   if (ec) refuse(ec.message());
   if (!std::filesystem::is_directory(dir, ec)) refuse("not a directory");
   // Whether files can be made here (permissions, a read-only file system): a probe, removed at once.
-  const std::filesystem::path probe = dir / fmt::format(".tmp-{}-probe", ::getpid());
+  const std::filesystem::path probe = dir / temporary_name("probe");
   {
     std::ofstream f(probe, std::ios::binary | std::ios::trunc);
     if (!f) refuse(std::error_code(errno, std::generic_category()).message());

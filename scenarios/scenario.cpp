@@ -43,15 +43,22 @@ std::optional<std::string> item_name(const YAML::Node& item) {
   return name.Scalar();
 }
 
+// A path that exists but is no regular file (a named pipe, a device, a folder): reading it could wait for
+// ever or mean nothing, so it is refused rather than opened.
+bool is_special_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec);
+}
+
 // Scenario, machine, material and gate files are text people write: a few kB. One far larger is not one of
 // them (a mesh or a program named by mistake), and yaml-cpp takes some fifty times a file's size to hold it.
 constexpr std::uintmax_t kMaxTextFileBytes = 16u << 20;
 
 std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
                            const std::string& key) {
-  std::error_code ec;
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+  if (is_special_file(path))
     throw InputError(from, key, fmt::format("'{}' is not a regular file", path.string()));
+  std::error_code ec;
   if (const std::uintmax_t bytes = std::filesystem::file_size(path, ec); !ec && bytes > kMaxTextFileBytes)
     throw InputError(
         from, key,
@@ -1148,8 +1155,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     if (tree.root["sections"] || tree.root["part"])
       pr.fail(prog, "program", "a scenario simulates either a program or a part's sections, not both");
     v.program_file = dir / prog.Scalar();
-    std::error_code ec;
-    if (std::filesystem::exists(v.program_file, ec) && !std::filesystem::is_regular_file(v.program_file, ec))
+    if (is_special_file(v.program_file))
       pr.fail(prog, "program", fmt::format("'{}' is not a regular file", v.program_file.string()));
     std::ifstream in(v.program_file, std::ios::binary);
     if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
@@ -1423,9 +1429,7 @@ Scenario load_default_scenario(const std::vector<Setting>& settings) {
 namespace beadtwin::scenarios {
 
 std::string infer_machine(const std::filesystem::path& program, std::string* why) {
-  std::error_code ec;
-  if (std::filesystem::exists(program, ec) && !std::filesystem::is_regular_file(program, ec))
-    throw InputError({program.string(), 0, 0}, "program", "not a regular file");
+  if (is_special_file(program)) throw InputError({program.string(), 0, 0}, "program", "not a regular file");
   std::ifstream in(program, std::ios::binary);
   if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
   std::string text(std::size_t{1} << 20, '\0');

@@ -134,7 +134,7 @@ class SceneReader {
                           m.mName.C_Str(), v, m.mNumVertices));
         if (!used_[v]) check_finite(m, v, mesh_.vertices[static_cast<std::size_t>(base) + v]);
         used_[v] = true;
-        corners.push_back(mesh_.vertices[static_cast<std::size_t>(base) + v]);
+        if (face.mNumIndices > 3) corners.push_back(mesh_.vertices[static_cast<std::size_t>(base) + v]);
       }
       const auto corner = [&](int c) { return base + static_cast<int>(face.mIndices[c]); };
       if (face.mNumIndices == 3) {

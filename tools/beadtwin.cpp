@@ -110,7 +110,6 @@ class ProgressBar {
 // Runs a loaded scenario and prints the verdict, the report and the images.
 int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
                    const std::vector<std::string>& variants, bool quiet) {
-  beadtwin::prepare_output_dir(out_dir, "--out");  // before the work, not after it
   beadtwin::scenarios::RunOptions options;
   options.out_dir = out_dir;
   options.variants = variants;

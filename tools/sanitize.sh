@@ -22,6 +22,6 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Re
 cmake --build "$build"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp"
+# LSAN_OPTIONS (the suppressions) is set per test by tests/CMakeLists.txt.
 cd "$build"
 ctest --output-on-failure -j "$(nproc)"

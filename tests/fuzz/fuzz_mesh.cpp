@@ -8,6 +8,7 @@
 // at exit.
 #include <unistd.h>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -23,19 +24,22 @@ using namespace beadtwin;
 
 namespace {
 
+// This process's folder for the file read, removed at exit.
+const std::filesystem::path& work_dir() {
+  static const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("beadtwin-fuzz-mesh-" + std::to_string(getpid()));
+  return dir;
+}
+
 const std::filesystem::path& file_for(int format) {
-  static const std::filesystem::path dir = [] {
-    const std::filesystem::path d =
-        std::filesystem::temp_directory_path() / ("beadtwin-fuzz-mesh-" + std::to_string(getpid()));
-    std::filesystem::create_directories(d);
+  static const std::array<std::filesystem::path, 3> files = [] {
+    std::filesystem::create_directories(work_dir());
     std::atexit([] {
       std::error_code ec;
-      std::filesystem::remove_all(
-          std::filesystem::temp_directory_path() / ("beadtwin-fuzz-mesh-" + std::to_string(getpid())), ec);
+      std::filesystem::remove_all(work_dir(), ec);
     });
-    return d;
+    return std::array{work_dir() / "part.stl", work_dir() / "part.obj", work_dir() / "part.ply"};
   }();
-  static const std::filesystem::path files[] = {dir / "part.stl", dir / "part.obj", dir / "part.ply"};
   return files[format];
 }
 

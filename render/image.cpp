@@ -8,10 +8,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "render/image_codec.hpp"
 
 namespace beadtwin::render {
 
@@ -67,21 +68,44 @@ void check_not_empty(const Image& image, const std::filesystem::path& path) {
   BT_CHECK_OP(image.pixels.size(), ==, static_cast<std::size_t>(image.width) * image.height * 3);
 }
 
-// Writes `pixels` (of `type`, laid out as `spec` says) in OpenImageIO's `format` ("png", "openexr") to a
-// temporary file beside `path`, renamed into place when complete. The format is named, not taken from the
-// temporary name's extension. `label` names the format in messages.
+// The codec module, loaded the first time (render/image_codec.hpp says why): from beside the running
+// program, else from where the build put it.
+const codec::Api& image_codec() {
+  static const codec::Api* api = [] {
+    constexpr const char* kName = "libbeadtwin_image_codec.so";
+    std::vector<std::filesystem::path> tried;
+    std::error_code ec;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) tried.push_back(self.parent_path() / kName);
+    tried.emplace_back(BEADTWIN_IMAGE_CODEC);
+    std::string errors;
+    for (const std::filesystem::path& path : tried) {
+      if (!std::filesystem::exists(path, ec)) continue;
+      void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!module) {
+        errors += std::string("; ") + dlerror();
+        continue;
+      }
+      using Entry = const codec::Api* (*)();
+      if (auto entry = reinterpret_cast<Entry>(dlsym(module, "beadtwin_image_codec"))) return entry();
+      errors += "; " + path.string() + " has no beadtwin_image_codec";
+    }
+    std::string where;
+    for (const std::filesystem::path& path : tried) where += (where.empty() ? "" : ", ") + path.string();
+    throw InternalError("cannot load the image module " + std::string(kName) + " (looked for " + where + ")" +
+                        errors);
+  }();
+  return *api;
+}
+
+// Writes `pixels` in the codec's `format` ("png", "openexr") to a temporary file beside `path`, renamed into
+// place when complete. `label` names the format in messages.
 void write_atomically(const char* format, const std::string& label, const std::filesystem::path& path,
-                      const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* pixels) {
+                      codec::Pixels pixels) {
   AtomicPath out(path);
-  auto writer = OIIO::ImageOutput::create(format);
-  if (!writer) fail("cannot write " + label, path, OIIO::geterror());
-  if (!writer->open(out.temp().string(), spec)) fail("cannot write " + label, path, writer->geterror());
-  if (!writer->write_image(type, pixels)) {
-    const std::string why = writer->geterror();
-    writer->close();
-    fail("error while writing " + label, path, why);
-  }
-  if (!writer->close()) fail("error while writing " + label, path, writer->geterror());
+  pixels.software = "beadtwin " BEADTWIN_VERSION;
+  const std::string why = image_codec().write(format, out.temp().string(), pixels);
+  if (!why.empty()) fail("cannot write " + label, path, why);
   out.commit();
 }
 
@@ -91,10 +115,13 @@ void write_png(const Image& image, const std::filesystem::path& path) {
   check_not_empty(image, path);
   std::vector<std::uint8_t> bytes(image.pixels.size());
   std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
-  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
-  write_atomically("png", "PNG", path, spec, OIIO::TypeDesc::UINT8, bytes.data());
+  codec::Pixels pixels;
+  pixels.width = image.width;
+  pixels.height = image.height;
+  pixels.channels = 3;
+  pixels.data = bytes.data();
+  pixels.colour_space = "sRGB";
+  write_atomically("png", "PNG", path, std::move(pixels));
 }
 
 namespace {
@@ -132,17 +159,20 @@ void write_exr(const Image& image, const std::filesystem::path& path,
     for (std::size_t e = 0; e < extra.size(); ++e) dst[3 + e] = extra[e].values[i];
   }
 
-  OIIO::ImageSpec spec(image.width, image.height, channels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames = {"R", "G", "B"};
+  codec::Pixels pixels;
+  pixels.width = image.width;
+  pixels.height = image.height;
+  pixels.channels = channels;
+  pixels.is_float = true;
+  pixels.data = interleaved.data();
+  pixels.channel_names = {"R", "G", "B"};
   for (const ExtraChannel& channel : extra) {
-    if (channel.name == "Z") spec.z_channel = static_cast<int>(spec.channelnames.size());
-    spec.channelnames.push_back(channel.name);
+    if (channel.name == "Z") pixels.z_channel = static_cast<int>(pixels.channel_names.size());
+    pixels.channel_names.push_back(channel.name);
   }
-  spec.alpha_channel = -1;
-  spec.attribute("oiio:ColorSpace", "Linear");
-  spec.attribute("compression", "zip");
-  spec.attribute("Software", "beadtwin " BEADTWIN_VERSION);
-  write_atomically("openexr", "EXR", path, spec, OIIO::TypeDesc::FLOAT, interleaved.data());
+  pixels.colour_space = "Linear";
+  pixels.compression = "zip";
+  write_atomically("openexr", "EXR", path, std::move(pixels));
 }
 
 void write_image(const Image& image, const std::filesystem::path& path,
@@ -156,23 +186,16 @@ void write_image(const Image& image, const std::filesystem::path& path,
 }
 
 Image read_image(const std::filesystem::path& path) {
-  auto reader = OIIO::ImageInput::open(path.string());
-  if (!reader) fail("cannot read image", path, OIIO::geterror());
-  const OIIO::ImageSpec& spec = reader->spec();
-  const int channels = spec.nchannels;
-  if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
-    fail("cannot read image", path, "it has no pixels");
-
-  std::vector<float> raw(static_cast<std::size_t>(spec.width) * spec.height * channels);
-  if (!reader->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, raw.data()))
-    fail("cannot read image", path, reader->geterror());
-  reader->close();
-
-  Image image(spec.width, spec.height);
-  const std::size_t count = static_cast<std::size_t>(spec.width) * spec.height;
+  codec::ReadPixels raw;
+  const std::string why = image_codec().read(path.string(), raw);
+  if (!why.empty()) fail("cannot read image", path, why);
+  const int channels = raw.channels;
+  Image image(raw.width, raw.height);
+  const std::size_t count = static_cast<std::size_t>(raw.width) * static_cast<std::size_t>(raw.height);
   for (std::size_t i = 0; i < count; ++i) {
-    const float* src = &raw[i * channels];
-    for (int c = 0; c < 3; ++c) image.pixels[i * 3 + c] = src[channels >= 3 ? c : 0];
+    const float* src = &raw.data[i * static_cast<std::size_t>(channels)];
+    for (int c = 0; c < 3; ++c)
+      image.pixels[i * 3 + static_cast<std::size_t>(c)] = src[channels >= 3 ? c : 0];
   }
   return image;
 }

@@ -2,8 +2,9 @@
 //
 // An Image holds display-encoded sRGB (what a screen shows and a PNG stores), 0..1 per channel, three
 // channels interleaved, row 0 at the top. Shading happens in linear light; srgb_to_linear and
-// linear_to_srgb convert at the two ends. Files go through OpenImageIO and are written atomically,
-// so an interrupted run never leaves half an image behind.
+// linear_to_srgb convert at the two ends. Files go through OpenImageIO (in a module loaded on first use,
+// render/image_codec.hpp) and are written atomically, so an interrupted run never leaves half an image
+// behind.
 #pragma once
 
 #include <filesystem>

@@ -40,6 +40,15 @@ TEST(Cli, HelpDocumentsTheCommands) {
   EXPECT_NE(sub.output.find("--out"), std::string::npos);
 }
 
+TEST(Cli, TheProgramLoadsOpenImageIOOnlyToWritePictures) {
+  // OpenImageIO brings 260 shared libraries, 0.2 s of every start when linked (render/image_codec.hpp);
+  // it lives in a module that the program loads when it writes an image.
+  const Result libraries = beadtwin::testing::shell(std::string("ldd ") + BEADTWIN_BINARY + " 2>&1");
+  ASSERT_EQ(libraries.code, 0) << libraries.output;
+  EXPECT_NE(libraries.output.find("libopenvdb"), std::string::npos) << libraries.output;
+  EXPECT_EQ(libraries.output.find("libOpenImageIO"), std::string::npos) << libraries.output;
+}
+
 TEST(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run("").code, 2);
   EXPECT_EQ(run("frobnicate").code, 2);

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <unordered_map>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -159,23 +162,40 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   const double voxel_volume = vs * vs * vs;
   const double face_area = vs * vs;
 
-  // 1. Which cells there are, and their volume, centroid, birth and direction.
-  std::unordered_map<CellKey, CellSums> sums;
-  const auto placement_of = [&](const openvdb::Coord& ijk, int move) {
-    return place(toolpath, chains, options, static_cast<std::size_t>(move), sim::voxel_center_mm(ijk, vs));
-  };
+  // 1. Which cells there are, and their volume, centroid, birth and direction. Each voxel's cell is kept,
+  // by its number in the order cells are met, for step 2 (in the same order: the cell grid has the fill's
+  // topology), so that each voxel is placed once.
+  std::unordered_map<CellKey, std::uint32_t> met;
+  std::vector<CellSums> sums;
+  std::vector<CellKey> sum_keys;
+  std::vector<std::uint32_t> voxel_cell;
+  voxel_cell.reserve(static_cast<std::size_t>(fill.activeVoxelCount()));
   {
     openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
     openvdb::tree::ValueAccessor<const openvdb::FloatTree> time_at(times);
+    CellKey last_key = 0;
+    std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
     for (auto it = fill.cbeginValueOn(); it; ++it) {
       const openvdb::Coord ijk = it.getCoord();
       const int move = move_at.getValue(ijk);
       BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
-      const Placement pl = placement_of(ijk, move);
-      CellSums& c = sums[pl.key];
+      const Eigen::Vector3d centre = sim::voxel_center_mm(ijk, vs);
+      const Placement pl = place(toolpath, chains, options, static_cast<std::size_t>(move), centre);
+      if (last == std::numeric_limits<std::uint32_t>::max() ||
+          pl.key != last_key) {  // neighbours mostly share
+        const auto [entry, added] = met.try_emplace(pl.key, static_cast<std::uint32_t>(sums.size()));
+        if (added) {
+          sums.emplace_back();
+          sum_keys.push_back(pl.key);
+        }
+        last = entry->second;
+        last_key = pl.key;
+      }
+      voxel_cell.push_back(last);
+      CellSums& c = sums[last];
       const double f = *it;
       c.fill += f;
-      c.moment += f * sim::voxel_center_mm(ijk, vs);
+      c.moment += f * centre;
       c.time += f * time_at.getValue(ijk);
       c.cos2 += f * pl.cos2;
       c.sin2 += f * pl.sin2;
@@ -183,9 +203,16 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
       c.any = true;
     }
   }
-  std::vector<std::pair<CellKey, ThermalCell>> cells;
+  met.clear();
+  struct Met {
+    CellKey key;
+    ThermalCell cell;
+    std::uint32_t number;  // in the order met
+  };
+  std::vector<Met> cells;
   cells.reserve(sums.size());
-  for (const auto& [key, c] : sums) {
+  for (std::size_t m = 0; m < sums.size(); ++m) {
+    const CellSums& c = sums[m];
     ThermalCell cell;
     cell.volume_mm3 = c.fill * voxel_volume;
     cell.centroid_mm = c.fill > 0.0 ? Eigen::Vector3d(c.moment / c.fill) : Eigen::Vector3d::Zero();
@@ -194,19 +221,20 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     cell.along = Eigen::Vector2d(std::cos(angle), std::sin(angle));
     cell.move = c.move;
     cell.layer = toolpath.moves[c.move].layer;
-    cells.emplace_back(key, cell);
+    cells.push_back({sum_keys[m], cell, static_cast<std::uint32_t>(m)});
   }
   sums.clear();
-  std::sort(cells.begin(), cells.end(), [](const auto& x, const auto& y) {
-    return x.second.birth_s != y.second.birth_s ? x.second.birth_s < y.second.birth_s : x.first < y.first;
+  std::sort(cells.begin(), cells.end(), [](const Met& x, const Met& y) {
+    return x.cell.birth_s != y.cell.birth_s ? x.cell.birth_s < y.cell.birth_s : x.key < y.key;
   });
-  std::unordered_map<CellKey, std::int32_t> index;
-  index.reserve(cells.size());
-  std::vector<CellKey> keys;
+  std::vector<CellKey> keys;                             // by index (birth order)
+  std::vector<std::int32_t> index_of_met(cells.size());  // the index of each cell by its number met
+  keys.reserve(cells.size());
+  mesh.cells.reserve(cells.size());
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    index.emplace(cells[i].first, static_cast<std::int32_t>(i));
-    keys.push_back(cells[i].first);
-    mesh.cells.push_back(cells[i].second);
+    index_of_met[cells[i].number] = static_cast<std::int32_t>(i);
+    keys.push_back(cells[i].key);
+    mesh.cells.push_back(cells[i].cell);
   }
   cells.clear();
 
@@ -216,11 +244,12 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   mesh.cell_grid->setTransform(deposit.fill->transform().copy());
   mesh.cell_grid->setName("cell");
   {
-    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
+    std::size_t j = 0;
     for (auto it = mesh.cell_grid->tree().beginValueOn(); it; ++it) {
-      const openvdb::Coord ijk = it.getCoord();
-      it.setValue(index.at(placement_of(ijk, move_at.getValue(ijk)).key));
+      BT_CHECK(j < voxel_cell.size());
+      it.setValue(index_of_met[voxel_cell[j++]]);
     }
+    BT_CHECK_OP(j, ==, voxel_cell.size());
   }
 
   // 3. Faces: contacts between cells, open surface, the table.

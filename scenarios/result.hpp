@@ -172,7 +172,8 @@ struct VariantResult {
   std::string program;                       // relative path of the print program
   std::string deposit_file;                  // relative path of the .vdb
   ExportedFiles exported;
-  std::vector<StageTime> stage_times;
+  std::vector<StageTime> stage_times;  // may overlap: the CAD comparison runs beside the thermal stage
+  double wall_time_s = 0;              // of the variant's stages, slicing included
   std::vector<sim::Defect> defects;  // what the deposit found, in toolpath order (voids last, largest first)
   std::vector<std::string> notes;    // what the stages chose for the user (a coarser voxel size, ...)
   bool passed = true;

@@ -72,8 +72,9 @@ struct DepositOptions {
   double ooze_time_s = 0.0;
   // The build table's height, mm; NaN: the lowest nominal bead bottom of the toolpath.
   double table_z_mm = std::numeric_limits<double>::quiet_NaN();
-  // Memory the deposit may use, bytes; 0: three quarters of the machine's physical memory. An estimate
-  // above it stops the run before any voxel is written, with a voxel size that would fit.
+  // Memory the run may use, bytes; 0: three quarters of the machine's physical memory. The estimate counts
+  // the deposit and what the later stages build from it (3.5 times the deposit's own grids); above it the
+  // run stops before any voxel is written, with a voxel size that would fit.
   double memory_budget_bytes = 0.0;
   // Called on the calling thread as the layers are laid, with the fraction of the beads laid so far (0..1);
   // empty: no reports.
@@ -140,7 +141,7 @@ struct Deposit {
   double plough_volume_mm3 = 0.0;
   double unsupported_length_mm = 0.0;
   double ooze_volume_mm3 = 0.0;  // laid after melt offs (on dwells and travels), part of the commanded volume
-  double memory_estimate_bytes = 0.0;  // what the deposit was estimated to need before it started
+  double memory_estimate_bytes = 0.0;  // what the run was estimated to need before the deposit started
   std::vector<std::string> notes;      // what the deposit chose for the user (a coarser voxel, ...)
   std::size_t void_count = 0;  // voids of at least a voxel's volume (the largest are listed in defects)
 };

@@ -526,7 +526,9 @@ constexpr ParamSpec kThermal[] = {
     {"cells_through", T::kInteger, D::kDimensionless, "1", 1, 15, false,
      "thermal cells through a bead's height", "thermal/mesh.hpp"},
     {"cell_length", T::kQuantity, D::kLength, "", 0, 1e5, true,
-     "thermal cell length along a bead; absent: two bead widths", "thermal/mesh.hpp", true},
+     "thermal cell length along a bead; absent: two bead widths, made longer (with a note) where that would "
+     "be more than 250,000 cells",
+     "thermal/mesh.hpp", true},
     {"birth_interval", T::kQuantity, D::kTime, "", 0, 1e4, true,
      "cells laid within this time are born together; absent: a fifth of the cells' median conduction time "
      "constant",

@@ -24,13 +24,15 @@ struct Chains {
   std::vector<double> offset_mm;       // plan length of the chain before the move
   std::vector<double> piece_mm;        // per chain: the length of one piece
   std::vector<std::uint32_t> pieces;   // per chain: how many pieces
+  double length_factor = 1.0;          // automatic pieces made this many times longer (MeshOptions)
 };
 
 double plan_length(const Move& m) {
   return (m.end - m.start).head<2>().norm();
 }
 
-Chains find_chains(const Toolpath& tp, double cell_length_mm) {
+Chains find_chains(const Toolpath& tp, const MeshOptions& o) {
+  const double cell_length_mm = o.cell_length_mm;
   Chains c;
   c.of_move.assign(tp.moves.size(), 0);
   c.offset_mm.assign(tp.moves.size(), 0.0);
@@ -56,8 +58,15 @@ Chains find_chains(const Toolpath& tp, double cell_length_mm) {
     last_end = m.end;
     open = true;
   }
+  if (cell_length_mm <= 0.0) {  // two bead widths, unless that makes too many cells
+    double pieces = 0.0;
+    for (std::size_t k = 0; k < length.size(); ++k) pieces += std::max(1.0, length[k] / (2.0 * widest[k]));
+    const double cells = pieces * o.cells_across * o.cells_through;
+    if (cells > static_cast<double>(o.max_automatic_cells))
+      c.length_factor = cells / static_cast<double>(o.max_automatic_cells);
+  }
   for (std::size_t k = 0; k < length.size(); ++k) {
-    const double target = cell_length_mm > 0.0 ? cell_length_mm : 2.0 * widest[k];
+    const double target = cell_length_mm > 0.0 ? cell_length_mm : 2.0 * widest[k] * c.length_factor;
     const auto n = static_cast<std::uint32_t>(std::max(1.0, std::round(length[k] / target)));
     c.pieces.push_back(n);
     c.piece_mm.push_back(length[k] > 0.0 ? length[k] / n : 1.0);
@@ -154,8 +163,9 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   mesh.voxel_size_mm = vs;
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return mesh;
   BT_CHECK(deposit.move && deposit.time);
-  const Chains chains = find_chains(toolpath, options.cell_length_mm);
+  const Chains chains = find_chains(toolpath, options);
   mesh.chains = chains.pieces.size();
+  mesh.cell_length_factor = chains.length_factor;
   const openvdb::FloatTree& fill = deposit.fill->tree();
   const openvdb::Int32Tree& moves = deposit.move->tree();
   const openvdb::FloatTree& times = deposit.time->tree();

@@ -37,7 +37,11 @@ namespace beadtwin::thermal {
 struct MeshOptions {
   int cells_across = 3;         // strips across a bead, odd, 1..15
   int cells_through = 1;        // slices through a bead's height, 1..15
-  double cell_length_mm = 0.0;  // piece length along a bead; 0: two bead widths
+  double cell_length_mm = 0.0;  // piece length along a bead; 0: two bead widths, longer when needed (below)
+  // With cell_length_mm 0: pieces are made longer, all by one factor, so that the mesh has at most about
+  // this many cells. A desktop print's beads are half a millimetre wide and kilometres long: at two bead
+  // widths a 16-hour print would be millions of cells, and the heat solve's cost grows with them.
+  std::size_t max_automatic_cells = 250'000;
 };
 
 struct ThermalCell {
@@ -73,6 +77,8 @@ struct ThermalMesh {
   std::vector<ThermalLink> links;     // by (a, b)
   openvdb::Int32Grid::Ptr cell_grid;  // index of the cell each material voxel belongs to; -1 elsewhere
   std::size_t chains = 0;
+  // With an automatic cell length: how many times two bead widths the pieces were made (1: not longer).
+  double cell_length_factor = 1.0;
 };
 
 // Builds the mesh of `deposit` (made from `toolpath`). Throws InputError for options out of range (naming the

@@ -230,6 +230,24 @@ TEST(ThermalMeshTest, SingleBeadIsCutIntoPiecesAndThreeStrips) {
 // table (the supersampled fill of the flank voxels; measured 0.03 %), 2 % on the open surface (each voxel's
 // faces summed as a vector are exact for a plane but not where the surface turns within the voxel, as it does
 // all round the semicircles, 5 voxels in radius; measured 0.7 %).
+TEST(ThermalMeshTest, AnAutomaticCellLengthIsMadeLongerWhenItWouldMakeTooManyCells) {
+  // 299.72 / 42.16 = 7.11 pieces of two bead widths, three strips: 21.3 cells. Allowed 9, the pieces are
+  // made 21.3 / 9 = 2.37 times longer: round(299.72 / (42.16 * 2.37)) = 3 pieces, 9 cells. A length asked
+  // for is kept.
+  const Toolpath toolpath = single_bead();
+  const sim::Deposit deposit = deposit_of(toolpath);
+  MeshOptions o;
+  o.max_automatic_cells = 9;
+  const ThermalMesh mesh = build_thermal_mesh(toolpath, deposit, o);
+  EXPECT_NEAR(mesh.cell_length_factor, kLength / (2.0 * kBeadWidth) * 3.0 / 9.0, 1e-12);
+  EXPECT_EQ(mesh.cells.size(), 9u);
+  o.cell_length_mm = 2.0 * kBeadWidth;
+  const ThermalMesh asked = build_thermal_mesh(toolpath, deposit, o);
+  EXPECT_EQ(asked.cell_length_factor, 1.0);
+  EXPECT_EQ(asked.cells.size(), 21u);
+  EXPECT_EQ(build_thermal_mesh(toolpath, deposit).cell_length_factor, 1.0);  // 21 cells are few
+}
+
 TEST(ThermalMeshTest, SingleBeadOpenAreaIsItsFreePerimeterAndTableAreaItsFootprint) {
   const Toolpath toolpath = single_bead();
   const sim::Deposit deposit = deposit_of(toolpath);

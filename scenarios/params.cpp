@@ -531,7 +531,7 @@ constexpr ParamSpec kThermal[] = {
      "thermal/mesh.hpp", true},
     {"birth_interval", T::kQuantity, D::kTime, "", 0, 1e4, true,
      "cells laid within this time are born together; absent: a fifth of the cells' median conduction time "
-     "constant",
+     "constant, made longer (with a note) where the print would need more than 5,000 birth events",
      "thermal/heat.hpp", true},
     {"cooldown", T::kQuantity, D::kTime, "10 min", 0, 1e7, false,
      "time simulated after the last layer (interfaces keep healing)", ""},

@@ -288,7 +288,13 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     if (std::isfinite(tau[n / 2])) median_tau = tau[n / 2];
   }
   // The birth interval and the groups of cells born together.
-  const double interval = options.birth_interval_s > 0.0 ? options.birth_interval_s : 0.2 * median_tau;
+  result.automatic_interval_s = 0.2 * median_tau;
+  double interval = options.birth_interval_s > 0.0 ? options.birth_interval_s : result.automatic_interval_s;
+  if (options.birth_interval_s <= 0.0) {  // at most about max_automatic_birth_events: each group spans one
+    const double span = mesh.cells.back().birth_s - mesh.cells.front().birth_s;
+    interval = std::max(
+        interval, span / static_cast<double>(std::max<std::size_t>(options.max_automatic_birth_events, 1)));
+  }
   result.birth_interval_s = interval;
   struct Group {
     std::size_t end = 0;  // cells [previous end, end)

@@ -37,8 +37,11 @@ struct HeatOptions {
   double rel_tol = 1e-3;    // CVODE relative tolerance
   double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
   // Cells laid within this time are born together, s; 0: a fifth of the cells' median conduction time
-  // constant (C / ΣG), which keeps the births' grouping well inside how fast a cell's temperature can move.
+  // constant (C / ΣG), which keeps the births' grouping well inside how fast a cell's temperature can move,
+  // made longer where that would be more than max_automatic_birth_events: each event restarts the
+  // integrator, and a long print of small beads (a desktop program) would be tens of thousands of them.
   double birth_interval_s = 0.0;
+  std::size_t max_automatic_birth_events = 5000;
   double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
@@ -72,6 +75,7 @@ struct InterfaceResult {
 struct HeatResult {
   std::vector<InterfaceResult> interfaces;  // one per interface link, in link order
   double birth_interval_s = 0.0;            // the one used
+  double automatic_interval_s = 0.0;        // a fifth of the median time constant (before any lengthening)
   std::size_t birth_events = 0;
   std::vector<double> sample_times_s;  // from the first birth to the end, every sample interval
   // [toolpath layer][sample]: volume-weighted mean temperature of the layer's born cells, °C; NaN before any.

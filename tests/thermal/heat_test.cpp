@@ -476,6 +476,37 @@ TEST(HeatEnergy, BalanceClosesWithBirthsRadiationAndAHeatedBed) {
   EXPECT_LT(result.energy_lost_J, in_J);
 }
 
+TEST(HeatBirths, AnAutomaticIntervalIsMadeLongerWhenThePrintWouldNeedTooManyEvents) {
+  // Twelve stacked cells born 30 s apart (330 s). The automatic interval (a fifth of C/ΣG, under 30 s for
+  // these cells) is used as it is when few events follow: twelve. Allowed 3 events, it becomes 330 / 3 =
+  // 110 s, and the twelve cells are born in 3 groups (0-90, 120-210, 240-330 s).
+  const Material material = test_material();
+  const Environment env;
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 1.0;
+  constexpr int kCells = 12;
+  const double section = 100.0 * 20.0;
+  for (int i = 0; i < kCells; ++i)
+    mesh.cells.push_back(cell_at({50.0, 10.0, (i + 0.5) * 5.0}, 1e4, 30.0 * i, i));
+  for (int i = 0; i + 1 < kCells; ++i)
+    mesh.links.push_back(
+        link(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1), {0.0, 0.0, section}, true));
+  HeatOptions options;
+  options.cooldown_s = 10.0;
+  const HeatResult free = solve_heat(mesh, kCells, 330.0, material, env, options);
+  EXPECT_EQ(free.birth_interval_s, free.automatic_interval_s);
+  ASSERT_LT(free.automatic_interval_s, 30.0) << "the cap would not be what lengthens the interval";
+  EXPECT_EQ(free.birth_events, static_cast<std::size_t>(kCells));
+  options.max_automatic_birth_events = 3;
+  const HeatResult capped = solve_heat(mesh, kCells, 330.0, material, env, options);
+  EXPECT_DOUBLE_EQ(capped.birth_interval_s, 110.0);
+  EXPECT_LE(capped.birth_events, 3u);
+  options.birth_interval_s = 1.0;  // asked for: kept
+  const HeatResult asked = solve_heat(mesh, kCells, 330.0, material, env, options);
+  EXPECT_EQ(asked.birth_interval_s, 1.0);
+  EXPECT_EQ(asked.birth_events, static_cast<std::size_t>(kCells));
+}
+
 // ---- healing ---------------------------------------------------------------------------------------------
 
 // An isothermal interface (Yang & Pitchumani 2002, eq. for D_h; at constant temperature it reduces to the

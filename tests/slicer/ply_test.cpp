@@ -121,7 +121,8 @@ TEST(Ply, AListCountThatTheLineDoesNotHoldIsAMessageNotAnAllocation) {
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
   const std::string message = error_of(write("count.ply", head + "4000000000 0 1 2\n"));
   EXPECT_NE(message.find("count.ply:13:"), std::string::npos) << message;
-  EXPECT_NE(message.find("the list 'vertex_indices' counts 4000000000 entries, but the line ends after 3"), std::string::npos)
+  EXPECT_NE(message.find("the list 'vertex_indices' counts 4000000000 entries, but the line ends after 3"),
+            std::string::npos)
       << message;
   EXPECT_NE(error_of(write("neg.ply", head + "-3 0 1 2\n")).find("counts -3 entries: not a whole number"),
             std::string::npos);

@@ -729,6 +729,16 @@ TEST(Scenario, ContainmentSlicePlaneSharedWallSmoothingAndVoids) {
             "sections.walls.boundary.max_overlap");
   EXPECT_EQ(load_error(replace(text, "inside: [[[10, 10]", "inside: [[[10]")).key(),
             "sections.walls.containment.inside");
+  // A point beyond 100 m (found by tests/fuzz: beyond the polygon clipper's range its exception ended the
+  // program).
+  const InputError far =
+      load_error(replace(text, "inside: [[[10, 10]", "inside: [[[3333333333333333333333, 10]"));
+  EXPECT_EQ(far.key(), "sections.walls.containment.inside");
+  EXPECT_NE(std::string(far.what()).find("more than 100 m from the origin; are the units right?"),
+            std::string::npos)
+      << far.what();
+  EXPECT_EQ(load_error(replace(text, "outside: [[0, 0]", "outside: [[0, -1e300]")).key(),
+            "sections.walls.containment.outside");
   EXPECT_EQ(load_error(replace(text, "extension: 10}", "extension: 10, angle: 3}")).key(),
             "sections.walls.pull_back.angle");
 }

@@ -413,19 +413,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
       stages.run("thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal")); });
   const std::optional<CadCheck> cad = comparing.get();
   stages.record("compare", compare_s);
-  if (th.heat.birth_interval_s > th.heat.automatic_interval_s && v.thermal.birth_interval_s <= 0.0)
-    res.notes.push_back(fmt::format(
-        "thermal birth interval {:.3g} s instead of {:.3g} s (a fifth of the cells' median time constant), "
-        "so "
-        "that the print's cells are born in at most about 5,000 events; set thermal.birth_interval to "
-        "choose",
-        th.heat.birth_interval_s, th.heat.automatic_interval_s));
-  if (th.mesh.cell_length_factor > 1.0)
-    res.notes.push_back(fmt::format(
-        "thermal cells made {:.3g} times two bead widths long, {} cells: at two bead widths there would be "
-        "about {:.3g} million, too many to solve in reasonable time; set thermal.cell_length to choose",
-        th.mesh.cell_length_factor, th.mesh.cells.size(),
-        th.mesh.cell_length_factor * static_cast<double>(th.mesh.cells.size()) / 1e6));
+  for (const auto* notes : {&th.heat.notes, &th.mesh.notes})  // the thermal stage's choices
+    res.notes.insert(res.notes.end(), notes->begin(), notes->end());
   if (!v.thermal.snapshot_times_s.empty())
     stages.run("snapshots", [&] {
       for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {

@@ -490,10 +490,10 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
       if (!p.IsSequence() || p.size() != 2) br.fail(p, key, "expected a point [x, y]");
       poly.emplace_back(br.parse(p[0], Dimension::kLength, std::string(key)),
                         br.parse(p[1], Dimension::kLength, std::string(key)));
-      // As for a part (slicer/mesh.hpp): beyond 100 m is a mistake of units, and far beyond it the polygon
-      // clipper's integer range ends (found by tests/fuzz: an exception that ended the program).
-      constexpr double kMaxMm = 100'000.0;
-      if (!(std::abs(poly.back().x()) <= kMaxMm && std::abs(poly.back().y()) <= kMaxMm))
+      // As for a part: beyond 100 m is a mistake of units, and far beyond it the polygon clipper's integer
+      // range ends (found by tests/fuzz: an exception that ended the program).
+      if (!(std::abs(poly.back().x()) <= slicer::kMaxPartSizeMm &&
+            std::abs(poly.back().y()) <= slicer::kMaxPartSizeMm))
         br.fail(p, key,
                 fmt::format("the point ({:.6g}, {:.6g}) mm is more than 100 m from the origin; are the units "
                             "right?",

@@ -49,8 +49,6 @@ double TriangleMesh::volume_mm3() const {
 
 namespace {
 
-constexpr double kMaxPartSizeMm = 100'000.0;  // 100 m: anything larger is a units mistake
-
 // Names assimp's loaders give nodes and meshes when the file names none.
 bool is_placeholder_name(std::string_view name) {
   return name.empty() || name.front() == '<' || name == "defaultobject";
@@ -204,10 +202,8 @@ std::uint32_t binary_stl_count(const std::string& head) {
 // An STL file's own account of itself, checked before assimp reads it (whose messages for a broken STL
 // speak of its "storage representation"): ASCII begins "solid" and has facets; binary is an 80-byte
 // header, a triangle count and 50 bytes per triangle.
-void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
-  const std::string ext = lower_extension(path);
-  if (ext != ".stl") return;
-  const std::string head = read_start(path, std::min<std::uintmax_t>(bytes, 4096));
+void check_stl(const std::filesystem::path& path, std::uintmax_t bytes, const std::string& head) {
+  if (lower_extension(path) != ".stl") return;
   if (head.starts_with("solid") && head.find("facet") != std::string::npos) return;  // ASCII
   const std::string file = path.string();
   if (bytes < 84)
@@ -239,12 +235,11 @@ void check_stl(const std::filesystem::path& path, std::uintmax_t bytes) {
 }
 
 // Stops before reading a mesh that would not fit in memory (read_mesh says how it is estimated).
-void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, double budget_bytes) {
+void check_memory(const std::filesystem::path& path, std::uintmax_t bytes, const std::string& head,
+                  double budget_bytes) {
   constexpr double kBytesPerStlTriangle = 300.0, kBytesPerFileByte = 24.0;
   double estimate = static_cast<double>(bytes) * kBytesPerFileByte;
-  const std::string ext = lower_extension(path);
-  const std::string head = read_start(path, std::min<std::uintmax_t>(bytes, 84));
-  if (ext == ".stl" && head.size() == 84 && !head.starts_with("solid")) {
+  if (lower_extension(path) == ".stl" && head.size() >= 84 && !head.starts_with("solid")) {
     estimate = binary_stl_count(head) * kBytesPerStlTriangle;
   }
   const double budget = memory_budget_bytes(budget_bytes);
@@ -270,11 +265,13 @@ TriangleMesh import_scene(const std::filesystem::path& path, double unit_scale, 
                      std::filesystem::exists(path, ec) ? "not a regular file" : "no such mesh file");
   const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
   if (bytes == 0) throw InputError({file, 0, 0}, {}, "the mesh file is empty");
-  check_stl(path, bytes);
-  check_memory(path, bytes, budget_bytes);
-  if (std::string data = read_start(path, 3); is_ply(path, data)) {
-    data = read_start(path, bytes);
-    PlyMesh ply = read_ply(file, data, unit_scale);
+  // The file's start, read once for the checks: STL's header, and PLY's signature.
+  const std::string head = read_start(path, std::min<std::uintmax_t>(bytes, 4096));
+  check_stl(path, bytes, head);
+  check_memory(path, bytes, head, budget_bytes);
+  // PLY by its name or its first line (as assimp would also take it), read by our own reader.
+  if (lower_extension(path) == ".ply" || head.starts_with("ply")) {
+    PlyMesh ply = read_ply(file, read_start(path, bytes), unit_scale);
     report.ignored_primitives = ply.ignored_faces;
     if (!ply.mesh.body_names.empty()) ply.mesh.body_names[0] = path.stem().string();
     return std::move(ply.mesh);

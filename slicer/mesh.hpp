@@ -45,6 +45,10 @@ struct MeshReport {
   std::vector<std::string> warnings;  // one line per kind of problem, "file: what, how many", for the user
 };
 
+// The largest part, mm (100 m): anything larger, a mesh or a section's outline, is taken as a mistake of
+// units.
+inline constexpr double kMaxPartSizeMm = 100'000.0;
+
 // Reads a part mesh in any format assimp knows (STL binary and ASCII, OBJ, 3MF, AMF, ...) or PLY, bakes the
 // file's node transforms, scales by `unit_scale` (file units to mm: 1 for mm, 25.4 for inches) and repairs
 // it: welds vertices within 1e-6 of the bounding-box diagonal, drops degenerate and duplicate faces, makes

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
@@ -189,7 +188,6 @@ class TextData {
   // Moves to instance `i` of `e` (counted from 0): the next line that is not blank.
   void begin(const Element& e, std::uint64_t i) {
     element_ = &e;
-    index_ = i;
     for (;;) {
       if (pos_ >= data_.size())
         throw InputError({file_, line_number_ + 1, 0}, {},
@@ -259,7 +257,6 @@ class TextData {
   std::string_view line_;
   std::size_t column_ = 0, token_column_ = 0;
   const Element* element_ = nullptr;
-  std::uint64_t index_ = 0;
   std::uint64_t list_entries_ = 0;  // of the list being read
 };
 
@@ -462,12 +459,6 @@ PlyMesh read_body(const std::string& file, const Header& h, Data& data, double s
 }
 
 }  // namespace
-
-bool is_ply(const std::filesystem::path& path, std::string_view head) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".ply" || head.starts_with("ply");
-}
 
 PlyMesh read_ply(const std::string& file, std::string_view data, double scale) {
   const Header h = read_header(file, data);

@@ -12,16 +12,12 @@
 // every fault is a message with its line (text) or byte offset (binary).
 #pragma once
 
-#include <filesystem>
 #include <string>
 #include <string_view>
 
 #include "slicer/mesh.hpp"
 
 namespace beadtwin::slicer {
-
-// Whether the file is read as PLY: it is named .ply, or its first bytes (`head`) are "ply".
-bool is_ply(const std::filesystem::path& path, std::string_view head);
 
 struct PlyMesh {
   TriangleMesh mesh;      // one body, unnamed; polygons cut into triangles; coordinates scaled

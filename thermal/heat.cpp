@@ -294,6 +294,12 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     const double span = mesh.cells.back().birth_s - mesh.cells.front().birth_s;
     interval = std::max(
         interval, span / static_cast<double>(std::max<std::size_t>(options.max_automatic_birth_events, 1)));
+    if (interval > result.automatic_interval_s)
+      result.notes.push_back(fmt::format(
+          "thermal birth interval {:.3g} s instead of {:.3g} s (a fifth of the cells' median time constant), "
+          "so that the print's cells are born in at most about {} events; set thermal.birth_interval to "
+          "choose",
+          interval, result.automatic_interval_s, options.max_automatic_birth_events));
   }
   result.birth_interval_s = interval;
   struct Group {

@@ -76,6 +76,7 @@ struct HeatResult {
   std::vector<InterfaceResult> interfaces;  // one per interface link, in link order
   double birth_interval_s = 0.0;            // the one used
   double automatic_interval_s = 0.0;        // a fifth of the median time constant (before any lengthening)
+  std::vector<std::string> notes;           // what the solve chose for the user (a longer birth interval)
   std::size_t birth_events = 0;
   std::vector<double> sample_times_s;  // from the first birth to the end, every sample interval
   // [toolpath layer][sample]: volume-weighted mean temperature of the layer's born cells, °C; NaN before any.

@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -79,6 +80,7 @@ struct ThermalMesh {
   std::size_t chains = 0;
   // With an automatic cell length: how many times two bead widths the pieces were made (1: not longer).
   double cell_length_factor = 1.0;
+  std::vector<std::string> notes;  // what the mesh chose for the user (longer cells, ...)
 };
 
 // Builds the mesh of `deposit` (made from `toolpath`). Throws InputError for options out of range (naming the

@@ -49,6 +49,68 @@ struct Geometry {
   double print_outside_mm = 0.0;  // the print's band outside it
 };
 
+// A triangle is sampled as the centroids of n² equal triangles of a uniform subdivision, n = ceil(longest
+// edge / spacing) ("up" ones at barycentric ((i + 1/3)/n, (j + 1/3)/n), "down" ones at ((i + 2/3)/n,
+// (j + 2/3)/n)), each of area A/n². A long thin triangle (its longest edge squared more than 8 times its
+// area) is first cut in two across the midpoint of its longest edge, again and again until it is not thin
+// or no longer than the spacing: n² slivers would put (length / spacing)² samples on it, most of a thin
+// CAD's samples (17 million on the LSAM mould's 26,000 triangles), where its length needs length / spacing.
+constexpr double kThin = 8.0;
+
+// Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
+template <class Sample>
+void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  const double longest_sq = std::max({ab, bc, ca});
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  if (longest_sq > kThin * area && longest_sq > spacing * spacing) {
+    if (ab >= bc && ab >= ca) {
+      const Vec3 m = 0.5 * (a + b);
+      sample_points(a, m, c, spacing, sample);
+      sample_points(m, b, c, spacing, sample);
+    } else if (bc >= ca) {
+      const Vec3 m = 0.5 * (b + c);
+      sample_points(b, m, a, spacing, sample);
+      sample_points(m, c, a, spacing, sample);
+    } else {
+      const Vec3 m = 0.5 * (c + a);
+      sample_points(c, m, b, spacing, sample);
+      sample_points(m, a, b, spacing, sample);
+    }
+    return;
+  }
+  const int n = std::max(1, static_cast<int>(std::ceil(std::sqrt(longest_sq) / spacing)));
+  const double piece = area / (static_cast<double>(n) * n);
+  const auto put = [&](double u, double v) { sample(a + u * (b - a) + v * (c - a), piece); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      put((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);
+      if (i + j < n - 1) put((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);
+    }
+}
+
+// How many samples sample_points takes of (a, b, c), counting no further than `limit` (then more).
+std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::size_t limit) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  const double longest_sq = std::max({ab, bc, ca});
+  const double area = 0.5 * (b - a).cross(c - a).norm();
+  if (!(longest_sq > kThin * area && longest_sq > spacing * spacing)) {
+    const double n = std::max(1.0, std::ceil(std::sqrt(longest_sq) / spacing));
+    return n * n > static_cast<double>(limit) ? limit + 1 : static_cast<std::size_t>(n * n);
+  }
+  Vec3 p, q, r;  // the longest edge pq, r opposite; halves (p, m, r) and (m, q, r)
+  if (ab >= bc && ab >= ca)
+    p = a, q = b, r = c;
+  else if (bc >= ca)
+    p = b, q = c, r = a;
+  else
+    p = c, q = a, r = b;
+  const Vec3 m = 0.5 * (p + q);
+  const std::size_t first = count_samples(p, m, r, spacing, limit);
+  if (first > limit) return first;
+  return first + count_samples(m, q, r, spacing, limit - first);
+}
+
 void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0)
     throw InputError("nothing was deposited: there is no printed part to compare with the CAD");
@@ -100,15 +162,15 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
   if (!problems.empty()) throw InputError({}, "cad", problems);
 
   // Budget, now that every number is known good.
-  double area = 0.0, samples = 0.0;
+  double area = 0.0;
+  std::size_t samples = 0;
+  const auto limit = static_cast<std::size_t>(kMaxSamples);
   for (const auto& tri : cad.triangles) {
     const Vec3& a = cad.vertices[static_cast<std::size_t>(tri[0])];
     const Vec3& b = cad.vertices[static_cast<std::size_t>(tri[1])];
     const Vec3& c = cad.vertices[static_cast<std::size_t>(tri[2])];
     area += 0.5 * (b - a).cross(c - a).norm();
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const double cuts = std::max(1.0, std::ceil(longest / g.spacing_mm));
-    samples += cuts * cuts;
+    if (samples <= limit) samples += count_samples(a, b, c, g.spacing_mm, limit - samples);
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
@@ -126,12 +188,11 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
         fmt::format("the print's bounding box holds {:.3g} voxels of {} mm, more than the comparison "
                     "with the CAD takes ({:.3g}); use a larger voxel size",
                     box, g.voxel_mm, kMaxDenseVoxels));
-  if (samples > kMaxSamples)
-    throw InputError(
-        {}, "cad",
-        fmt::format("sampling the CAD every {} mm takes {:.3g} samples (limit {:.3g}): use a larger "
-                    "spacing",
-                    g.spacing_mm, samples, kMaxSamples));
+  if (samples > limit)
+    throw InputError({}, "cad",
+                     fmt::format("sampling the CAD every {} mm takes more than {:.3g} samples: use a larger "
+                                 "spacing",
+                                 g.spacing_mm, kMaxSamples));
 }
 
 // The lowest row of printed voxels (fill >= 0.5): the plate is at its bottom. Throws when none is printed.
@@ -289,24 +350,30 @@ double sample(const Accessor& acc, const openvdb::math::Transform& transform, co
 struct CadTriangle {
   Vec3 a, b, c;
   std::size_t first_sample = 0;
-  int cuts = 1;           // the triangle is cut into cuts² equal triangles, one sample each
-  bool on_plate = false;  // faces down and may touch the plate: its samples near the plate are left out
+  std::size_t samples = 1;  // sample_points' samples of it
+  bool on_plate = false;    // faces down and may touch the plate: its samples near the plate are left out
 };
 
 std::vector<CadTriangle> cad_triangles(const CadSurface& cad, double spacing_mm) {
   std::vector<CadTriangle> out;
   out.reserve(cad.triangles.size());
-  std::size_t samples = 0;
   for (const auto& t : cad.triangles) {
     CadTriangle tri{cad.vertices[static_cast<std::size_t>(t[0])],
                     cad.vertices[static_cast<std::size_t>(t[1])],
                     cad.vertices[static_cast<std::size_t>(t[2])]};
     if ((tri.b - tri.a).cross(tri.c - tri.a).norm() <= 0) continue;  // degenerate: no area to sample
-    const double longest = std::max({(tri.b - tri.a).norm(), (tri.c - tri.b).norm(), (tri.a - tri.c).norm()});
-    tri.cuts = std::max(1, static_cast<int>(std::ceil(longest / spacing_mm)));
-    tri.first_sample = samples;
-    samples += static_cast<std::size_t>(tri.cuts) * static_cast<std::size_t>(tri.cuts);
     out.push_back(tri);
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, out.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+        for (std::size_t i = r.begin(); i < r.end(); ++i)
+          out[i].samples =
+              count_samples(out[i].a, out[i].b, out[i].c, spacing_mm, static_cast<std::size_t>(kMaxSamples));
+      });
+  std::size_t samples = 0;
+  for (CadTriangle& tri : out) {
+    tri.first_sample = samples;
+    samples += tri.samples;
   }
   return out;
 }
@@ -330,26 +397,17 @@ struct Sample {
   bool on_plate = false;
 };
 
-// The samples of one triangle: the centroids of the cuts² triangles of a uniform subdivision ("up" ones at
-// barycentric ((i + 1/3)/n, (j + 1/3)/n), "down" ones at ((i + 2/3)/n, (j + 2/3)/n)), each of area A/n².
+// The samples of one triangle (sample_points), each weighted by the area it stands for.
 template <class Accessor>
 void sample_triangle(const CadTriangle& tri, const Accessor& print, const openvdb::math::Transform& transform,
-                     double plate_top_mm, std::vector<Sample>& out) {
-  const int n = tri.cuts;
-  const double area = 0.5 * (tri.b - tri.a).cross(tri.c - tri.a).norm() / (static_cast<double>(n) * n);
+                     double spacing_mm, double plate_top_mm, std::vector<Sample>& out) {
   std::size_t k = tri.first_sample;
-  const auto put = [&](double u, double v) {
-    const Vec3 p = tri.a + u * (tri.b - tri.a) + v * (tri.c - tri.a);
+  sample_points(tri.a, tri.b, tri.c, spacing_mm, [&](const Vec3& p, double area) {
     Sample& s = out[k++];
     s.stock_mm = -sample(print, transform, p);
     s.area_mm2 = area;
     s.on_plate = tri.on_plate && p.z() <= plate_top_mm;
-  };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; i + j < n; ++j) {
-      put((i + 1.0 / 3.0) / n, (j + 1.0 / 3.0) / n);
-      if (i + j < n - 1) put((i + 2.0 / 3.0) / n, (j + 2.0 / 3.0) / n);
-    }
+  });
 }
 
 // The area-weighted value below which `fraction` of the area lies, from samples sorted by value.
@@ -372,7 +430,7 @@ void measure_stock(const CadSurface& cad, const openvdb::FloatGrid& print, const
       t.on_plate =
           lowest <= out.plate_z_mm + kPlateVoxels * g.voxel_mm && faces_down(t, cad_grid, g.voxel_mm);
     }
-    total = t.first_sample + static_cast<std::size_t>(t.cuts) * static_cast<std::size_t>(t.cuts);
+    total = t.first_sample + t.samples;
   }
   std::vector<Sample> samples(total);
   const double plate_top = out.plate_z_mm + kPlateVoxels * g.voxel_mm;
@@ -380,7 +438,8 @@ void measure_stock(const CadSurface& cad, const openvdb::FloatGrid& print, const
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       const auto acc = print.getConstUnsafeAccessor();
                       for (std::size_t i = range.begin(); i < range.end(); ++i)
-                        sample_triangle(triangles[i], acc, print.transform(), plate_top, samples);
+                        sample_triangle(triangles[i], acc, print.transform(), g.spacing_mm, plate_top,
+                                        samples);
                     });
 
   // Reduced in sample order, on one thread: the same sums for any number of threads.

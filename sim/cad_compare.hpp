@@ -13,7 +13,8 @@
 //    nearest-distance allowance a machinist means: at a convex corner it is the distance to the print's
 //    nearest surface, not along any one normal. The CAD surface is sampled deterministically, each triangle
 //    cut into n² equal triangles (n from its longest edge and the sample spacing) and sampled at their
-//    centroids, each sample weighted by its area.
+//    centroids, each sample weighted by its area; a long thin triangle is first halved across its longest
+//    edge until it is not (so its samples go with its length, not its length squared).
 //  - deviation of the printed skin is the CAD's signed distance at points of the print's surface (positive:
 //    the skin lies outside the CAD, negative: inside it), sampled where the surface crosses the edges between
 //    voxel centres, each point weighted by the surface area it stands for.

@@ -33,6 +33,8 @@ constexpr double kMaxSamples = 5e7;       // samples on the CAD surface
 constexpr double kMaxDenseVoxels = 4e9;   // the print's bounding box, a bit each, to find its closed voids
 constexpr double kMaxVoxelIndex = 1e9;    // voxel indices are 32-bit: keep well inside them
 constexpr double kMinSpacingVoxels = 1.0 / 16.0;
+// The print's distance grid inside it is built this deep first (voxels; see compare_with_cad).
+constexpr double kPrintInsideFirstVoxels = 4.0;
 
 using Vec3 = Eigen::Vector3d;
 
@@ -601,10 +603,21 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   const auto band_voxels = static_cast<float>(g.band_mm / g.voxel_mm);
   const openvdb::FloatGrid::Ptr cad_grid = cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
-  const openvdb::FloatGrid::Ptr print =
-      print_distance_grid(*solid_print(*deposit.fill, plate_k, options.exclude_plate, depth),
-                          static_cast<float>(g.print_outside_mm / g.voxel_mm), band_voxels);
-  measure_stock(cad, *print, *cad_grid, g, options, out);
+  const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
+  const auto outside_voxels = static_cast<float>(g.print_outside_mm / g.voxel_mm);
+  // The print's band inside it is built kPrintInsideFirstVoxels deep first, and again at the whole band
+  // only when a stock reaches within a voxel of that depth: the grid's values inside the first depth are
+  // the same either way, so the figures are too.
+  const float inside_first = std::min(band_voxels, static_cast<float>(kPrintInsideFirstVoxels));
+  openvdb::FloatGrid::Ptr print = print_distance_grid(*solid, outside_voxels, inside_first);
+  CadComparison first = out;
+  measure_stock(cad, *print, *cad_grid, g, options, first);
+  if (inside_first < band_voxels && first.max_stock_mm >= (inside_first - 1.0) * g.voxel_mm) {
+    print = print_distance_grid(*solid, outside_voxels, band_voxels);
+    measure_stock(cad, *print, *cad_grid, g, options, out);
+  } else {
+    out = first;
+  }
   measure_skin(*print, *cad_grid, g, options, out);
   measure_outside(*deposit.fill, *cad_grid, g, out);
   out.cad_distance = cad_grid;

@@ -1,5 +1,6 @@
 #include "sim/skin.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <fmt/format.h>
 #include <meshoptimizer.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/parallel_for.h>
 
 #include "core/atomic_file.hpp"
 
@@ -94,6 +96,15 @@ void drop_void_shells(SkinMesh& mesh) {
   mesh = outward_triangles(mesh.points_mm, kept, {}, false);
 }
 
+// A large mesh is simplified in slabs at once (up to kSimplifyPieces, one for every kTrianglesPerPiece
+// triangles), cut across its longest side by the triangles' centroids, each with the vertices on its cut
+// edges held where they are (so the slabs still meet): meshoptimizer's simplification runs on one thread,
+// and on the LSAM mould (3.3 million triangles) it was most of the skin's time. The cuts are at fixed
+// fractions of the box, so the result does not depend on the threads; a mesh below kTrianglesPerPiece is
+// simplified whole, as before.
+constexpr std::size_t kSimplifyPieces = 4;
+constexpr std::size_t kTrianglesPerPiece = 500'000;
+
 // Collapses edges (quadric error metric, meshoptimizer) while the surface moves less than `tolerance_mm`:
 // flat and gently curved stretches become a few long triangles, the ridges between beads stay.
 void simplify(SkinMesh& mesh, double tolerance_mm) {
@@ -101,17 +112,36 @@ void simplify(SkinMesh& mesh, double tolerance_mm) {
   static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) &&
                 sizeof(openvdb::Vec3I) == 3 * sizeof(unsigned));
   const float* positions = mesh.points_mm[0].asPointer();
-  const auto* indices = reinterpret_cast<const unsigned*>(mesh.triangles[0].asPointer());
-  const std::size_t index_count = 3 * mesh.triangles.size();
   const float scale = meshopt_simplifyScale(positions, mesh.points_mm.size(), sizeof(openvdb::Vec3s));
   if (!(scale > 0.0f)) return;
-  std::vector<unsigned> out(index_count);
-  const std::size_t kept =
-      meshopt_simplify(out.data(), indices, index_count, positions, mesh.points_mm.size(),
-                       sizeof(openvdb::Vec3s), 0, static_cast<float>(tolerance_mm) / scale);
+  openvdb::BBoxd box;
+  for (const openvdb::Vec3s& p : mesh.points_mm) box.expand(openvdb::Vec3d(p));
+  const std::size_t axis = box.maxExtent();
+  const double low = box.min()[axis], extent = box.extents()[axis];
+  const std::size_t count =
+      std::clamp<std::size_t>(mesh.triangles.size() / kTrianglesPerPiece, 1, kSimplifyPieces);
+  std::vector<std::vector<unsigned>> pieces(count);
+  for (const openvdb::Vec3I& t : mesh.triangles) {
+    const double centre =
+        (mesh.points_mm[t[0]][axis] + mesh.points_mm[t[1]][axis] + mesh.points_mm[t[2]][axis]) / 3.0;
+    const double at = extent > 0 ? (centre - low) / extent * static_cast<double>(count) : 0.0;
+    std::vector<unsigned>& piece = pieces[std::min(count - 1, static_cast<std::size_t>(std::max(0.0, at)))];
+    piece.insert(piece.end(), {t[0], t[1], t[2]});
+  }
+  const unsigned options = count > 1 ? meshopt_SimplifyLockBorder : 0;
+  tbb::parallel_for(std::size_t{0}, count, [&](std::size_t k) {
+    std::vector<unsigned>& indices = pieces[k];
+    if (indices.empty()) return;
+    std::vector<unsigned> out(indices.size());
+    out.resize(meshopt_simplify(out.data(), indices.data(), indices.size(), positions, mesh.points_mm.size(),
+                                sizeof(openvdb::Vec3s), 0, static_cast<float>(tolerance_mm) / scale,
+                                options));
+    indices.swap(out);
+  });
   std::vector<openvdb::Vec3I> triangles;
-  triangles.reserve(kept / 3);
-  for (std::size_t i = 0; i + 2 < kept; i += 3) triangles.emplace_back(out[i], out[i + 1], out[i + 2]);
+  for (const std::vector<unsigned>& indices : pieces)
+    for (std::size_t i = 0; i + 2 < indices.size(); i += 3)
+      triangles.emplace_back(indices[i], indices[i + 1], indices[i + 2]);
   mesh = outward_triangles(mesh.points_mm, triangles, {}, false);
 }
 

@@ -59,30 +59,39 @@ struct Geometry {
 // CAD's samples (17 million on the LSAM mould's 26,000 triangles), where its length needs length / spacing.
 constexpr double kThin = 8.0;
 
+// (a, b, c) turned so that its first two corners end its longest edge; whether it is thin (its longest edge
+// squared more than kThin times its area) and longer than the spacing, and so to be halved.
+struct Turned {
+  Vec3 p, q, r;
+  double longest_sq = 0.0, area = 0.0;
+  bool halve = false;
+};
+Turned turn(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  Turned t = ab >= bc && ab >= ca ? Turned{a, b, c} : bc >= ca ? Turned{b, c, a} : Turned{c, a, b};
+  t.longest_sq = std::max({ab, bc, ca});
+  t.area = 0.5 * (b - a).cross(c - a).norm();
+  t.halve = t.longest_sq > kThin * t.area && t.longest_sq > spacing * spacing;
+  return t;
+}
+
+// n for a triangle sampled whole: its longest edge over the spacing, rounded up.
+double cuts(const Turned& t, double spacing) {
+  return std::max(1.0, std::ceil(std::sqrt(t.longest_sq) / spacing));
+}
+
 // Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
 template <class Sample>
 void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
-  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
-  const double longest_sq = std::max({ab, bc, ca});
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  if (longest_sq > kThin * area && longest_sq > spacing * spacing) {
-    if (ab >= bc && ab >= ca) {
-      const Vec3 m = 0.5 * (a + b);
-      sample_points(a, m, c, spacing, sample);
-      sample_points(m, b, c, spacing, sample);
-    } else if (bc >= ca) {
-      const Vec3 m = 0.5 * (b + c);
-      sample_points(b, m, a, spacing, sample);
-      sample_points(m, c, a, spacing, sample);
-    } else {
-      const Vec3 m = 0.5 * (c + a);
-      sample_points(c, m, b, spacing, sample);
-      sample_points(m, a, b, spacing, sample);
-    }
+  const Turned t = turn(a, b, c, spacing);
+  if (t.halve) {
+    const Vec3 m = 0.5 * (t.p + t.q);
+    sample_points(t.p, m, t.r, spacing, sample);
+    sample_points(m, t.q, t.r, spacing, sample);
     return;
   }
-  const int n = std::max(1, static_cast<int>(std::ceil(std::sqrt(longest_sq) / spacing)));
-  const double piece = area / (static_cast<double>(n) * n);
+  const int n = static_cast<int>(cuts(t, spacing));
+  const double piece = t.area / (static_cast<double>(n) * n);
   const auto put = [&](double u, double v) { sample(a + u * (b - a) + v * (c - a), piece); };
   for (int i = 0; i < n; ++i)
     for (int j = 0; i + j < n; ++j) {
@@ -93,24 +102,15 @@ void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, 
 
 // How many samples sample_points takes of (a, b, c), counting no further than `limit` (then more).
 std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::size_t limit) {
-  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
-  const double longest_sq = std::max({ab, bc, ca});
-  const double area = 0.5 * (b - a).cross(c - a).norm();
-  if (!(longest_sq > kThin * area && longest_sq > spacing * spacing)) {
-    const double n = std::max(1.0, std::ceil(std::sqrt(longest_sq) / spacing));
+  const Turned t = turn(a, b, c, spacing);
+  if (!t.halve) {
+    const double n = cuts(t, spacing);
     return n * n > static_cast<double>(limit) ? limit + 1 : static_cast<std::size_t>(n * n);
   }
-  Vec3 p, q, r;  // the longest edge pq, r opposite; halves (p, m, r) and (m, q, r)
-  if (ab >= bc && ab >= ca)
-    p = a, q = b, r = c;
-  else if (bc >= ca)
-    p = b, q = c, r = a;
-  else
-    p = c, q = a, r = b;
-  const Vec3 m = 0.5 * (p + q);
-  const std::size_t first = count_samples(p, m, r, spacing, limit);
+  const Vec3 m = 0.5 * (t.p + t.q);
+  const std::size_t first = count_samples(t.p, m, t.r, spacing, limit);
   if (first > limit) return first;
-  return first + count_samples(m, q, r, spacing, limit - first);
+  return first + count_samples(m, t.q, t.r, spacing, limit - first);
 }
 
 void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {

@@ -129,6 +129,9 @@ class GcodeReader::State {
   SortedBlock& sort(const Block& b) {
     SortedBlock& s = sorted_;
     s.clear();
+    // A tool change, T with or without M6 on its line, is one warning: one extruder is modelled.
+    const Word* tool = nullptr;
+    const Word* m6 = nullptr;
     for (const Word& w : b.words) {
       if (w.letter == 'G') {
         const int g = code_tenths(w.value);
@@ -149,6 +152,8 @@ class GcodeReader::State {
       } else if (w.letter == 'M') {
         if (codes_.acts_on(w))
           s.m.push_back(w);
+        else if (code_tenths(w.value) == 60)
+          m6 = &w;
         else if (codes_.ignored.matches(w))
           s.unhandled.push_back(w);
         else
@@ -156,13 +161,16 @@ class GcodeReader::State {
       } else if (w.letter == 'O' || w.letter == 'N') {
         // program and line numbers
       } else if (w.letter == 'T') {
-        if (w.value != 0.0)
-          warn("tool change", w.column,
-               fmt::format("tool change T{} ignored: one extruder is modelled", w.value));
+        if (w.value != 0.0) tool = &w;
       } else {
         s.params.add(w);
       }
     }
+    if (tool)
+      warn("tool change", tool->column,
+           fmt::format("tool change T{} ignored: one extruder is modelled", tool->value));
+    else if (m6)
+      warn("tool change", m6->column, "tool change (M6) ignored: one extruder is modelled");
     for (const Word& w : s.unknown) {
       const std::string code = fmt::format("{}{}", w.letter, w.value);
       warn("unknown code " + code, w.column,

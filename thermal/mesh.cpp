@@ -327,12 +327,15 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
     mesh.links.push_back(link);
   }
-  if (mesh.cell_length_factor > 1.0)
+  if (mesh.cell_length_factor > 1.0) {
+    const double at_two_widths = mesh.cell_length_factor * static_cast<double>(mesh.cells.size());
     mesh.notes.push_back(fmt::format(
         "thermal cells made {:.3g} times two bead widths long, {} cells: at two bead widths there would be "
-        "about {:.3g} million, too many to solve in reasonable time; set thermal.cell_length to choose",
+        "about {}, too many to solve in reasonable time; set thermal.cell_length to choose",
         mesh.cell_length_factor, mesh.cells.size(),
-        mesh.cell_length_factor * static_cast<double>(mesh.cells.size()) / 1e6));
+        at_two_widths >= 1e6 ? fmt::format("{:.3g} million", at_two_widths / 1e6)
+                             : fmt::format("{:.0f}", at_two_widths)));
+  }
   return mesh;
 }
 

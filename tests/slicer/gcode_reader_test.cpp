@@ -570,6 +570,16 @@ TEST(GcodeReaderBadInput, UnknownWordsAreCountedWarningsNeverSpam) {
   EXPECT_EQ(st.lines, 105u);
 }
 
+TEST(GcodeReaderBadInput, AToolChangeIsOneWarningWithOrWithoutM6) {
+  // T2 M06 on one line is one tool change, not a tool change and an unknown M6; M6 alone is one too.
+  ReadStats st;
+  (void)read("G1 X1 F600\nT2 M06\nG1 X2\nM6 T3\nM6\nG1 X3\n", {}, &st);
+  EXPECT_EQ(st.count("tool change"), 3u);
+  EXPECT_EQ(st.count("unknown code M6"), 0u);
+  ASSERT_EQ(st.messages.size(), 1u);
+  EXPECT_EQ(st.messages[0], "test.gcode:2:1: gcode: tool change T2 ignored: one extruder is modelled");
+}
+
 TEST(GcodeReaderBadInput, ProgramEndAndBlockDelete) {
   ReadStats st;
   const Toolpath tp = read("G1 X1 F600\n/G1 X5\nM30\nG1 X100\nG1 Xjunk\n", {}, &st);

@@ -494,10 +494,11 @@ slicer::SectionParams read_section(BlockReader& r, const Machine& machine, const
       // range ends (found by tests/fuzz: an exception that ended the program).
       if (!(std::abs(poly.back().x()) <= slicer::kMaxPartSizeMm &&
             std::abs(poly.back().y()) <= slicer::kMaxPartSizeMm))
-        br.fail(p, key,
-                fmt::format("the point ({:.6g}, {:.6g}) mm is more than 100 m from the origin; are the units "
-                            "right?",
-                            poly.back().x(), poly.back().y()));
+        br.fail(
+            p, key,
+            fmt::format("the point ({:.6g}, {:.6g}) mm is more than {:g} m from the origin; are the units "
+                        "right?",
+                        poly.back().x(), poly.back().y(), slicer::kMaxPartSizeMm / 1000));
     }
     return poly;
   };

@@ -165,14 +165,11 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
 
   // Budget, now that every number is known good.
   double area = 0.0;
-  std::size_t samples = 0;
-  const auto limit = static_cast<std::size_t>(kMaxSamples);
   for (const auto& tri : cad.triangles) {
     const Vec3& a = cad.vertices[static_cast<std::size_t>(tri[0])];
     const Vec3& b = cad.vertices[static_cast<std::size_t>(tri[1])];
     const Vec3& c = cad.vertices[static_cast<std::size_t>(tri[2])];
     area += 0.5 * (b - a).cross(c - a).norm();
-    if (samples <= limit) samples += count_samples(a, b, c, g.spacing_mm, limit - samples);
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
@@ -190,11 +187,6 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
         fmt::format("the print's bounding box holds {:.3g} voxels of {} mm, more than the comparison "
                     "with the CAD takes ({:.3g}); use a larger voxel size",
                     box, g.voxel_mm, kMaxDenseVoxels));
-  if (samples > limit)
-    throw InputError({}, "cad",
-                     fmt::format("sampling the CAD every {} mm takes more than {:.3g} samples: use a larger "
-                                 "spacing",
-                                 g.spacing_mm, kMaxSamples));
 }
 
 // The lowest row of printed voxels (fill >= 0.5): the plate is at its bottom. Throws when none is printed.
@@ -356,26 +348,28 @@ struct CadTriangle {
   bool on_plate = false;    // faces down and may touch the plate: its samples near the plate are left out
 };
 
+// The CAD's triangles with area, each with its samples' place in the list of all samples. Throws InputError
+// when they would take more than kMaxSamples samples.
 std::vector<CadTriangle> cad_triangles(const CadSurface& cad, double spacing_mm) {
+  const auto limit = static_cast<std::size_t>(kMaxSamples);
   std::vector<CadTriangle> out;
   out.reserve(cad.triangles.size());
+  std::size_t samples = 0;
   for (const auto& t : cad.triangles) {
     CadTriangle tri{cad.vertices[static_cast<std::size_t>(t[0])],
                     cad.vertices[static_cast<std::size_t>(t[1])],
                     cad.vertices[static_cast<std::size_t>(t[2])]};
     if ((tri.b - tri.a).cross(tri.c - tri.a).norm() <= 0) continue;  // degenerate: no area to sample
-    out.push_back(tri);
-  }
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, out.size()), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i < r.end(); ++i)
-          out[i].samples =
-              count_samples(out[i].a, out[i].b, out[i].c, spacing_mm, static_cast<std::size_t>(kMaxSamples));
-      });
-  std::size_t samples = 0;
-  for (CadTriangle& tri : out) {
     tri.first_sample = samples;
+    tri.samples = count_samples(tri.a, tri.b, tri.c, spacing_mm, limit - samples);
     samples += tri.samples;
+    if (samples > limit)
+      throw InputError(
+          {}, "cad",
+          fmt::format("sampling the CAD every {} mm takes more than {:.3g} samples: use a larger "
+                      "spacing",
+                      spacing_mm, kMaxSamples));
+    out.push_back(tri);
   }
   return out;
 }
@@ -422,18 +416,18 @@ double percentile(const std::vector<const Sample*>& sorted, double total_area, d
   return sorted.back()->stock_mm;
 }
 
-void measure_stock(const CadSurface& cad, const openvdb::FloatGrid& print, const openvdb::FloatGrid& cad_grid,
-                   const Geometry& g, const CadCompareOptions& o, CadComparison& out) {
-  std::vector<CadTriangle> triangles = cad_triangles(cad, g.spacing_mm);
-  std::size_t total = 0;
+// Marks the triangles that may stand on the plate (faces down, within kPlateVoxels of it).
+void mark_plate(std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& cad_grid, const Geometry& g,
+                double plate_z_mm) {
   for (CadTriangle& t : triangles) {
-    if (o.exclude_plate) {
-      const double lowest = std::min({t.a.z(), t.b.z(), t.c.z()});
-      t.on_plate =
-          lowest <= out.plate_z_mm + kPlateVoxels * g.voxel_mm && faces_down(t, cad_grid, g.voxel_mm);
-    }
-    total = t.first_sample + t.samples;
+    const double lowest = std::min({t.a.z(), t.b.z(), t.c.z()});
+    t.on_plate = lowest <= plate_z_mm + kPlateVoxels * g.voxel_mm && faces_down(t, cad_grid, g.voxel_mm);
   }
+}
+
+void measure_stock(const std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& print,
+                   const Geometry& g, const CadCompareOptions& o, CadComparison& out) {
+  const std::size_t total = triangles.empty() ? 0 : triangles.back().first_sample + triangles.back().samples;
   std::vector<Sample> samples(total);
   const double plate_top = out.plate_z_mm + kPlateVoxels * g.voxel_mm;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size()),
@@ -595,6 +589,7 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   openvdb::initialize();
   Geometry g;
   validate(deposit, cad, options, g);
+  std::vector<CadTriangle> triangles = cad_triangles(cad, g.spacing_mm);
   CadComparison out;
   out.band_mm = g.band_mm;
   const int plate_k = plate_row(*deposit.fill);
@@ -602,6 +597,7 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
 
   const auto band_voxels = static_cast<float>(g.band_mm / g.voxel_mm);
   const openvdb::FloatGrid::Ptr cad_grid = cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
+  if (options.exclude_plate) mark_plate(triangles, *cad_grid, g, out.plate_z_mm);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
   const auto outside_voxels = static_cast<float>(g.print_outside_mm / g.voxel_mm);
@@ -611,10 +607,10 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   const float inside_first = std::min(band_voxels, static_cast<float>(kPrintInsideFirstVoxels));
   openvdb::FloatGrid::Ptr print = print_distance_grid(*solid, outside_voxels, inside_first);
   CadComparison first = out;
-  measure_stock(cad, *print, *cad_grid, g, options, first);
+  measure_stock(triangles, *print, g, options, first);
   if (inside_first < band_voxels && first.max_stock_mm >= (inside_first - 1.0) * g.voxel_mm) {
     print = print_distance_grid(*solid, outside_voxels, band_voxels);
-    measure_stock(cad, *print, *cad_grid, g, options, out);
+    measure_stock(triangles, *print, g, options, out);
   } else {
     out = first;
   }

@@ -114,12 +114,13 @@ void simplify(SkinMesh& mesh, double tolerance_mm) {
   const float* positions = mesh.points_mm[0].asPointer();
   const float scale = meshopt_simplifyScale(positions, mesh.points_mm.size(), sizeof(openvdb::Vec3s));
   if (!(scale > 0.0f)) return;
-  openvdb::BBoxd box;
-  for (const openvdb::Vec3s& p : mesh.points_mm) box.expand(openvdb::Vec3d(p));
-  const std::size_t axis = box.maxExtent();
-  const double low = box.min()[axis], extent = box.extents()[axis];
   const std::size_t count =
       std::clamp<std::size_t>(mesh.triangles.size() / kTrianglesPerPiece, 1, kSimplifyPieces);
+  openvdb::BBoxd box;
+  if (count > 1)
+    for (const openvdb::Vec3s& p : mesh.points_mm) box.expand(openvdb::Vec3d(p));
+  const std::size_t axis = count > 1 ? box.maxExtent() : 0;
+  const double low = box.min()[axis], extent = count > 1 ? box.extents()[axis] : 0.0;
   std::vector<std::vector<unsigned>> pieces(count);
   for (const openvdb::Vec3I& t : mesh.triangles) {
     const double centre =

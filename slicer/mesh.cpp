@@ -294,8 +294,8 @@ void check_size(const TriangleMesh& mesh, const std::string& file) {
   if (size.maxCoeff() > kMaxPartSizeMm)
     throw InputError(
         {file, 0, 0}, {},
-        fmt::format("the part is {:.4g} x {:.4g} x {:.4g} m, larger than 100 m; are the mesh units right?",
-                    size.x() / 1000, size.y() / 1000, size.z() / 1000));
+        fmt::format("the part is {:.4g} x {:.4g} x {:.4g} m, larger than {:g} m; are the mesh units right?",
+                    size.x() / 1000, size.y() / 1000, size.z() / 1000, kMaxPartSizeMm / 1000));
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 #include <openvdb/openvdb.h>
@@ -44,6 +45,11 @@ int main(int argc, char** argv) {
     std::printf("mesh %.2f s, %zu chains, %zu cells, %zu links, %zu interfaces\n", seconds_since(t0),
                 mesh.chains, mesh.cells.size(), mesh.links.size(), interfaces);
     thermal::HeatOptions o;
+    o.lump = v.thermal.lump;
+    // The lumping's settings, to measure what they cost and gain: THERMAL_BENCH_LUMP="DEPTH TOLERANCE_K".
+    if (const char* lump = std::getenv("THERMAL_BENCH_LUMP"))
+      if (std::sscanf(lump, "%d %lf", &o.lump_depth, &o.lump_tolerance_k) != 2)
+        throw std::runtime_error("THERMAL_BENCH_LUMP: expected \"DEPTH TOLERANCE_K\"");
     if (argc >= 3) o.birth_interval_s = std::atof(argv[2]);
     if (argc == 5) {
       o.rel_tol = std::atof(argv[3]);
@@ -68,6 +74,20 @@ int main(int argc, char** argv) {
         h.energy_in_J, h.energy_lost_J, h.energy_stored_J, h.energy_balance_rel_error);
     std::printf("interfaces %zu: too hot %zu, too cold %zu, min healing %.3f\n", h.interfaces.size(), hot,
                 cold, min_healing);
+    std::printf("lumping %s: %zu events, %zu cells lumped, %zu model cells at the end\n",
+                o.lump ? "on" : "off", h.lump_events, h.lumped_cells, h.model_cells);
+    // THERMAL_BENCH_DUMP=FILE: every interface's substrate temperature and healing integral, then every
+    // cell's final temperature, one per line, to compare two runs (bench/compare_thermal.py).
+    if (const char* dump = std::getenv("THERMAL_BENCH_DUMP")) {
+      std::FILE* f = std::fopen(dump, "w");
+      if (f == nullptr) throw std::runtime_error(std::string("cannot write ") + dump);
+      for (const thermal::InterfaceResult& r : h.interfaces)
+        std::fprintf(f, "i %.6g %.6g %d\n", r.substrate_c, r.healing_integral, static_cast<int>(r.verdict));
+      for (const float t : h.final_temp_c) std::fprintf(f, "c %.6g\n", t);
+      for (const auto& layer : h.layer_temp_c)
+        for (const float t : layer) std::fprintf(f, "l %.6g\n", t);
+      std::fclose(f);
+    }
     std::printf("simulated %.0f s (print %.0f s) in %.2f s: real-time factor %.0f (print only %.0f)\n",
                 simulated, tp.total_time_s(), solve_s, simulated / solve_s, tp.total_time_s() / solve_s);
   } catch (const std::exception& e) {

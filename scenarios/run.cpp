@@ -82,6 +82,7 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   thermal::HeatOptions ho;
   ho.rel_tol = v.thermal.rel_tol;
   ho.abs_tol_k = v.thermal.abs_tol_k;
+  ho.lump = v.thermal.lump;
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;

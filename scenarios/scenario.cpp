@@ -1155,6 +1155,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
   v.thermal.cooldown_s = th_r.quantity(spec(thermal_params(), "cooldown"));
   v.thermal.rel_tol = th_r.quantity(spec(thermal_params(), "rel_tol"));
   v.thermal.abs_tol_k = th_r.quantity(spec(thermal_params(), "abs_tol"));
+  v.thermal.lump = th_r.boolean(spec(thermal_params(), "lump"));
   th_r.finish(thermal_params());
 
   // A print program instead of sections: read it with the machine's dialect.

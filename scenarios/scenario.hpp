@@ -131,6 +131,7 @@ struct ThermalSpec {
   double cooldown_s = 600.0;
   double rel_tol = 1e-3;
   double abs_tol_k = 0.05;
+  bool lump = true;  // settled cells lumped (thermal::HeatOptions::lump)
   // Temperature snapshots, s; +infinity: the end of the print.
   std::vector<double> snapshot_times_s;
 };

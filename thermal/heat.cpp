@@ -135,6 +135,101 @@ class PartModel final : public OdeSystem {
     born_ = end;
   }
 
+  std::size_t size_of_model() const { return n_; }
+  double mass_kg(std::size_t i) const { return mass_kg_[i]; }
+  // Whether every neighbour of cell i is born: no face of it will be closed by a later birth.
+  bool covered(std::size_t i) const {
+    return first_[i] == first_[i + 1] || nb_cell_[first_[i + 1] - 1] < born_;
+  }
+  // Whether cell i has a neighbour not yet born.
+  bool on_top(std::size_t i) const { return !covered(i); }
+  std::span<const std::uint32_t> neighbours(std::size_t i) const {
+    return {nb_cell_.data() + first_[i], nb_cell_.data() + first_[i + 1]};
+  }
+
+  // Lumps runs of born cells into one cell each (thermal/heat.hpp, settled cells): `to[i]`, for every cell,
+  // is its cell afterwards, non-decreasing, equal only within a run, one to one for the cells not yet born.
+  // A lumped cell has its members' mass, open and table surface and contacts (summed per neighbour; the
+  // contacts between members go); its temperature is the one at which it holds its members' enthalpy, so the
+  // energy stored does not change. `y` (the first capacity() cells) becomes the new cells' state; the energy
+  // lost, after it, is carried over.
+  void lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
+    const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
+    std::vector<double> mass(m, 0.0), exposed(m, 0.0), table(m, 0.0), h_area(m, 0.0), h_sum(m, 0.0),
+        count(m, 0.0), enthalpy(m, 0.0);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::size_t g = to[i];
+      mass[g] += mass_kg_[i];
+      exposed[g] += exposed_m2_[i];
+      table[g] += table_W_K_[i];
+      h_area[g] += h_[i] * exposed_m2_[i];
+      h_sum[g] += h_[i];
+      count[g] += 1.0;
+      if (i < cap_) enthalpy[g] += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, y[i]);
+    }
+    std::vector<double> h(m);
+    for (std::size_t g = 0; g < m; ++g)
+      h[g] = exposed[g] > 0.0 ? h_area[g] / exposed[g] : h_sum[g] / count[g];
+    // Contacts: the members' lists, renumbered (still in order, as `to` keeps order), merged per neighbour.
+    std::vector<std::size_t> first(m + 1, 0);
+    std::vector<std::uint32_t> nb_cell;
+    std::vector<double> nb_g, nb_area;
+    nb_cell.reserve(nb_cell_.size());
+    nb_g.reserve(nb_cell_.size());
+    nb_area.reserve(nb_cell_.size());
+    std::vector<std::pair<std::uint32_t, std::size_t>> entries;  // (new neighbour, old entry)
+    for (std::size_t i = 0; i < n_;) {
+      const std::uint32_t g = to[i];
+      std::size_t j = i;
+      entries.clear();
+      for (; j < n_ && to[j] == g; ++j)
+        for (std::size_t k = first_[j]; k < first_[j + 1]; ++k)
+          if (to[nb_cell_[k]] != g) entries.emplace_back(to[nb_cell_[k]], k);
+      std::sort(entries.begin(), entries.end());
+      for (std::size_t e = 0; e < entries.size(); ++e) {
+        if (e == 0 || entries[e].first != entries[e - 1].first) {
+          nb_cell.push_back(entries[e].first);
+          nb_g.push_back(0.0);
+          nb_area.push_back(0.0);
+        }
+        nb_g.back() += nb_g_[entries[e].second];
+        nb_area.back() += nb_area_m2_[entries[e].second];
+      }
+      first[g + 1] = nb_cell.size();
+      i = j;
+    }
+    // The state: each new cell at the temperature that holds its enthalpy (Newton on m h(T) = H from the
+    // mass-weighted mean; c_p changes slowly with T, so a few steps reach round-off).
+    const std::size_t cap = cap_ == 0 ? 0 : std::size_t{to[cap_ - 1]} + 1;
+    std::vector<double> state(cap + 1, 0.0), weighted(cap, 0.0);
+    for (std::size_t i = 0; i < cap_; ++i) weighted[to[i]] += mass_kg_[i] * y[i];
+    for (std::size_t g = 0; g < cap; ++g) {
+      double t = weighted[g] / mass[g];
+      for (int it = 0; it < 8; ++it) {
+        const double f = mass[g] * material_.enthalpy_J_kg(ambient_c_, t) - enthalpy[g];
+        const double step = f / (mass[g] * material_.specific_heat_at(t));
+        t -= step;
+        if (std::abs(step) < 1e-9) break;
+      }
+      state[g] = t;
+    }
+    state[cap] = y[cap_];
+    const std::size_t born = born_ == 0 ? 0 : std::size_t{to[born_ - 1]} + 1;
+    n_ = m;
+    mass_kg_ = std::move(mass);
+    exposed_m2_ = std::move(exposed);
+    table_W_K_ = std::move(table);
+    h_ = std::move(h);
+    first_ = std::move(first);
+    nb_cell_ = std::move(nb_cell);
+    nb_g_ = std::move(nb_g);
+    nb_area_m2_ = std::move(nb_area);
+    loss_.assign(n_, 0.0);
+    born_ = born;
+    cap_ = cap;
+    y = std::move(state);
+  }
+
   double energy_in_J() const { return energy_in_J_; }
   double energy_stored_J(std::span<const double> y) const {
     double e = 0.0;
@@ -262,6 +357,11 @@ void check_options(const HeatOptions& o) {
     throw InputError({}, "thermal.cooldown", fmt::format("must be 0 or more, got {}", o.cooldown_s));
   if (!positive(o.sample_interval_s))
     throw InputError({}, "thermal.sample_interval", fmt::format("must be > 0, got {}", o.sample_interval_s));
+  if (o.lump_depth < 1 || o.lump_depth > 100)
+    throw InputError({}, "thermal.lump_depth", fmt::format("must be 1..100, got {}", o.lump_depth));
+  if (!(o.lump_tolerance_k >= 0.0) || !std::isfinite(o.lump_tolerance_k))
+    throw InputError({}, "thermal.lump_tolerance",
+                     fmt::format("must be 0 or more, got {}", o.lump_tolerance_k));
   if (o.krylov_dimension < 1 || o.krylov_dimension > 200)
     throw InputError({}, "thermal.krylov_dimension",
                      fmt::format("must be 1..200, got {}", o.krylov_dimension));
@@ -330,35 +430,100 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     by_younger[link.b].push_back(result.interfaces.size());
     result.interfaces.push_back(r);
   }
-  // And by both cells (the healing integral is advanced only where a cell is warm enough to heal), flat, each
-  // entry with the interface's cells beside it: the scan for healing interfaces after every step reads
-  // memory in order rather than chasing per-cell lists and interface records (that was most of its time).
+
+  // The model's cells: the mesh's cells until some are lumped (settled cells, below), after which
+  // model_of[i] is mesh cell i's model cell (non-decreasing; model_of[n] is the model's cell count).
+  // Everything the integrator reads per step is kept by model cell and rebuilt at each lumping.
+  std::vector<std::uint32_t> model_of(n + 1);
+  for (std::size_t i = 0; i <= n; ++i) model_of[i] = static_cast<std::uint32_t>(i);
+  std::size_t mesh_born = 0;  // mesh cells born so far: [0, mesh_born)
+
+  // Interfaces by both model cells (the healing integral is advanced only where a cell is warm enough to
+  // heal), flat, each entry with the interface's cells beside it: the scan for healing interfaces after every
+  // step reads memory in order rather than chasing per-cell lists and interface records (that was most of its
+  // time). An interface inside one lumped cell is not listed: its two sides are at the lumped cell's
+  // temperature, so it heals at the lumped cell's rate, integrated once per lumped cell (lump_integral) and
+  // handed to each of its inner interfaces when the cell is lumped again or at the end.
   struct CellInterface {
     std::uint32_t interface, other, younger;
   };
-  std::vector<std::size_t> cell_first(n + 1, 0);  // cell i's entries: [cell_first[i], cell_first[i + 1])
-  for (const InterfaceResult& r : result.interfaces) ++cell_first[r.older + 1], ++cell_first[r.younger + 1];
-  for (std::size_t i = 0; i < n; ++i) cell_first[i + 1] += cell_first[i];
-  std::vector<CellInterface> cell_interfaces(cell_first[n]);
-  std::vector<std::size_t> next_entry(cell_first.begin(), cell_first.end() - 1);
-  for (std::uint32_t k = 0; k < result.interfaces.size(); ++k) {
-    const InterfaceResult& r = result.interfaces[k];
-    cell_interfaces[next_entry[r.older]++] = {k, r.younger, r.younger};
-    cell_interfaces[next_entry[r.younger]++] = {k, r.older, r.younger};
-  }
-  // Each interface's two cells, packed: the healing rate reads them for every healing interface twice a
+  std::vector<std::size_t> cell_first;
+  std::vector<CellInterface> cell_interfaces;
+  // Each interface's two model cells, packed: the healing rate reads them for every healing interface twice a
   // step, and from the interface records (64 bytes each) the default scenario's thermal stage took 0.3 s
   // longer.
   std::vector<std::array<std::uint32_t, 2>> cells_of(result.interfaces.size());
-  for (std::size_t k = 0; k < cells_of.size(); ++k)
-    cells_of[k] = {result.interfaces[k].older, result.interfaces[k].younger};
+  std::vector<std::size_t> inner_first;  // model cell g's inner interfaces: [inner_first[g], [g + 1])
+  std::vector<std::uint32_t> inner;      // interfaces
+  std::vector<double> lump_integral;     // per model cell: ∫ dt / t_w at its temperature since lumped
   std::vector<double> integral(result.interfaces.size(), 0.0);  // ∫ dt / t_w so far
+  // The layers' share of each model cell, for the history: (layer, volume), by model cell.
+  std::vector<std::size_t> part_first;
+  std::vector<std::pair<std::uint32_t, double>> parts;
+  const auto index_model = [&] {
+    const std::size_t m = model_of[n];
+    cell_first.assign(m + 1, 0);
+    inner_first.assign(m + 1, 0);
+    for (std::size_t k = 0; k < result.interfaces.size(); ++k) {
+      const std::uint32_t a = model_of[result.interfaces[k].older],
+                          b = model_of[result.interfaces[k].younger];
+      cells_of[k] = {a, b};
+      if (a == b) {
+        ++inner_first[a + 1];
+      } else {
+        ++cell_first[a + 1];
+        ++cell_first[b + 1];
+      }
+    }
+    for (std::size_t g = 0; g < m; ++g)
+      cell_first[g + 1] += cell_first[g], inner_first[g + 1] += inner_first[g];
+    cell_interfaces.resize(cell_first[m]);
+    inner.resize(inner_first[m]);
+    std::vector<std::size_t> next(cell_first.begin(), cell_first.end() - 1);
+    std::vector<std::size_t> next_inner(inner_first.begin(), inner_first.end() - 1);
+    for (std::uint32_t k = 0; k < result.interfaces.size(); ++k) {
+      const auto [a, b] = cells_of[k];
+      if (a == b) {
+        inner[next_inner[a]++] = k;
+        continue;
+      }
+      cell_interfaces[next[a]++] = {k, b, b};
+      cell_interfaces[next[b]++] = {k, a, b};
+    }
+    lump_integral.assign(m, 0.0);
+    part_first.assign(m + 1, 0);
+    parts.clear();
+    std::uint32_t last = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int layer = mesh.cells[i].layer;
+      if (layer < 0 || static_cast<std::size_t>(layer) >= layer_count) continue;
+      const std::uint32_t g = model_of[i];
+      // A model cell's mesh cells are consecutive: its entries of one layer (most have one) are merged.
+      if (!parts.empty() && last == g && parts.back().first == static_cast<std::uint32_t>(layer)) {
+        parts.back().second += mesh.cells[i].volume_mm3;
+      } else {
+        parts.emplace_back(static_cast<std::uint32_t>(layer), mesh.cells[i].volume_mm3);
+        ++part_first[g + 1];
+      }
+      last = g;
+    }
+    for (std::size_t g = 0; g < m; ++g) part_first[g + 1] += part_first[g];
+  };
+  // Hands each lumped cell's healing to its inner interfaces.
+  const auto flush_lumps = [&] {
+    for (std::size_t g = 0; g + 1 < inner_first.size(); ++g)
+      for (std::size_t e = inner_first[g]; e < inner_first[g + 1]; ++e)
+        integral[inner[e]] += lump_integral[g];
+    std::fill(lump_integral.begin(), lump_integral.end(), 0.0);
+  };
+  index_model();
+
   const Reptation reptation(material);
   // A cell is warm when it may be above the healing threshold during a step: at either end (with a margin
   // for what the interpolant does between them). An interface heals only while one of its cells is warm.
   const double warm_c = reptation.min_temp_c() - 1.0;
   std::vector<char> warm(n, 0);
-  std::vector<std::uint32_t> healing_now;
+  std::vector<std::uint32_t> healing_now, lumps_healing_now;
 
   // History samples.
   const double t0 = groups.front().time_s;
@@ -366,7 +531,6 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   result.start_time_s = t0;
   result.end_time_s = t_end;
   result.layer_temp_c.assign(layer_count, {});
-  std::vector<double> layer_volume(layer_count, 0.0);
   double next_sample = t0;
   // (time, index of the request), in time order.
   std::vector<std::pair<double, std::size_t>> snapshot_times;
@@ -379,24 +543,26 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     s.time_s = t;
     s.request = request;
     s.temp_c.assign(n, std::numeric_limits<float>::quiet_NaN());
-    for (std::size_t i = 0; i < model.born(); ++i) s.temp_c[i] = static_cast<float>(y[i]);
+    for (std::size_t i = 0; i < mesh_born; ++i) s.temp_c[i] = static_cast<float>(y[model_of[i]]);
     result.snapshots.push_back(std::move(s));
   };
+  std::vector<double> layer_sum(layer_count), layer_volume(layer_count);
   const auto sample = [&](double t, std::span<const double> y) {
-    std::vector<double> sum(layer_count, 0.0), volume(layer_count, 0.0);
-    for (std::size_t i = 0; i < model.born(); ++i) {
-      const int layer = mesh.cells[i].layer;
-      if (layer < 0 || static_cast<std::size_t>(layer) >= layer_count) continue;
-      sum[static_cast<std::size_t>(layer)] += mesh.cells[i].volume_mm3 * y[i];
-      volume[static_cast<std::size_t>(layer)] += mesh.cells[i].volume_mm3;
-    }
+    std::fill(layer_sum.begin(), layer_sum.end(), 0.0);
+    std::fill(layer_volume.begin(), layer_volume.end(), 0.0);
+    for (std::size_t g = 0; g < model.born(); ++g)
+      for (std::size_t e = part_first[g]; e < part_first[g + 1]; ++e) {
+        layer_sum[parts[e].first] += parts[e].second * y[g];
+        layer_volume[parts[e].first] += parts[e].second;
+      }
     result.sample_times_s.push_back(t);
     for (std::size_t k = 0; k < layer_count; ++k)
-      result.layer_temp_c[k].push_back(volume[k] > 0.0 ? static_cast<float>(sum[k] / volume[k])
-                                                       : std::numeric_limits<float>::quiet_NaN());
+      result.layer_temp_c[k].push_back(layer_volume[k] > 0.0
+                                           ? static_cast<float>(layer_sum[k] / layer_volume[k])
+                                           : std::numeric_limits<float>::quiet_NaN());
   };
 
-  // The integrator's state (PartModel::set_capacity) at the end of the last step; and every cell's
+  // The integrator's state (PartModel::set_capacity) at the end of the last step; and every model cell's
   // temperature for the cells beyond it (unborn: they wait at the deposition temperature).
   std::vector<double> temps(n, material.deposition_temp_c);
   std::size_t cap = std::min(n, std::max<std::size_t>(groups.front().end, 1024));
@@ -404,20 +570,88 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   std::vector<double> before(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(cap));
   before.push_back(0.0);  // energy lost
   const auto born_group = [&](const Group& g, std::span<double> state) {
-    const std::size_t begin = model.born();
-    for (std::size_t i = begin; i < g.end; ++i)
+    for (std::size_t i = mesh_born; i < g.end; ++i)
       for (const std::size_t k : by_younger[i]) {
         InterfaceResult& r = result.interfaces[k];
         r.substrate_c = material.deposition_temp_c;
-        if (r.older < begin) {
+        if (r.older < mesh_born) {
           double loss = 0.0;
-          r.substrate_c = state[r.older];
-          r.substrate_rate_K_s = model.rate(r.older, state, loss);
+          r.substrate_c = state[model_of[r.older]];
+          r.substrate_rate_K_s = model.rate(model_of[r.older], state, loss);
         }
       }
-    model.birth(g.end, state);
+    model.birth(model_of[g.end], state);
+    mesh_born = g.end;
   };
   born_group(groups.front(), before);
+
+  // Settled cells (HeatOptions::lump): lumped where they are far enough below the top and even enough in
+  // temperature that one temperature stands for the run. Checked when enough cells have been born since.
+  double median_mass = 0.0;
+  {
+    std::vector<double> mass(n);
+    for (std::size_t i = 0; i < n; ++i) mass[i] = model.mass_kg(i);
+    std::nth_element(mass.begin(), mass.begin() + static_cast<std::ptrdiff_t>(n / 2), mass.end());
+    median_mass = mass[n / 2];
+  }
+  std::size_t born_at_check = 0;
+  std::size_t lumped_cells = 0;  // mesh cells that went into lumped cells
+  // Lumps the settled cells in `state` (the first `cap` model cells and the energy lost); true if any were.
+  const auto lump_settled = [&](std::vector<double>& state) {
+    const std::size_t born = model.born();
+    if (mesh_born < born_at_check + std::max(options.lump_check_cells, born / 4)) return false;
+    born_at_check = mesh_born;
+    // Distance in contacts from the top (cells with a neighbour not yet born), up to lump_depth.
+    constexpr std::uint8_t kFar = 255;
+    std::vector<std::uint8_t> depth(born, kFar);
+    std::vector<std::uint32_t> front, next_front;
+    for (std::size_t i = 0; i < born; ++i)
+      if (model.on_top(i)) depth[i] = 0, front.push_back(static_cast<std::uint32_t>(i));
+    for (int d = 1; d <= options.lump_depth && !front.empty(); ++d) {
+      next_front.clear();
+      for (const std::uint32_t i : front)
+        for (const std::uint32_t j : model.neighbours(i))
+          if (j < born && depth[j] == kFar) depth[j] = static_cast<std::uint8_t>(d), next_front.push_back(j);
+      std::swap(front, next_front);
+    }
+    // Runs of consecutive settled cells, each touching the run before it, within lump_tolerance_k of one
+    // another and at most kMaxLumpMass median cells' mass.
+    const std::size_t m = model.size_of_model();
+    std::vector<std::uint32_t> to(m);
+    std::uint32_t g = 0;
+    std::size_t i = 0;
+    while (i < m) {
+      std::size_t j = i + 1;
+      if (i < born && depth[i] == kFar) {
+        double lo = state[i], hi = state[i], mass = model.mass_kg(i);
+        for (; j < born && depth[j] == kFar; ++j) {
+          const double t = state[j];
+          if (std::max(hi, t) - std::min(lo, t) > options.lump_tolerance_k) break;
+          if (mass + model.mass_kg(j) > options.lump_max_cells * median_mass) break;
+          const auto nb = model.neighbours(j);
+          const auto it = std::lower_bound(nb.begin(), nb.end(), static_cast<std::uint32_t>(i));
+          if (it == nb.end() || *it >= j) break;  // does not touch the run
+          lo = std::min(lo, t), hi = std::max(hi, t), mass += model.mass_kg(j);
+        }
+      }
+      for (std::size_t k = i; k < j; ++k) to[k] = g;
+      ++g;
+      i = j;
+    }
+    if (m - g < std::max<std::size_t>(64, born / 16)) return false;  // too few to be worth a restart
+    flush_lumps();
+    model.lump(to, state);
+    for (std::uint32_t& c : model_of) c = c < m ? to[c] : g;
+    lumped_cells = 0;  // mesh cells sharing their model cell
+    for (std::size_t c = 0; c < n; ++c)
+      lumped_cells += (c > 0 && model_of[c] == model_of[c - 1]) || model_of[c + 1] == model_of[c];
+    temps.assign(model_of[n], material.deposition_temp_c);
+    warm.assign(model_of[n], 0);
+    cap = model.capacity();
+    index_model();
+    ++result.lump_events;
+    return true;
+  };
 
   CvodeOptions co;
   co.solver = LinearSolver::kGmres;
@@ -436,12 +670,15 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   };
   // The interfaces that heal over the step now ending: born (both cells) and with a warm cell; each once.
   // The integral goes on past 1 (full healing): how far past says how much colder the interface could be.
+  // And the lumped cells warm enough for their inner interfaces to heal.
   const auto find_healing = [&](std::span<const double> start, std::span<const double> end) {
     const std::size_t born = model.born();
     for (std::size_t i = 0; i < born; ++i) warm[i] = std::max(start[i], end[i]) >= warm_c;
     healing_now.clear();
+    lumps_healing_now.clear();
     for (std::size_t i = 0; i < born; ++i) {
       if (!warm[i]) continue;
+      if (inner_first[i] != inner_first[i + 1]) lumps_healing_now.push_back(static_cast<std::uint32_t>(i));
       for (std::size_t e = cell_first[i]; e < cell_first[i + 1]; ++e) {
         const CellInterface& c = cell_interfaces[e];
         if (c.younger >= born) continue;
@@ -461,12 +698,14 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       const double mid = t_prev + half;
       const double offset = half / std::sqrt(3.0);
       find_healing(before, cvode->state());
-      if (!healing_now.empty()) {
+      if (!healing_now.empty() || !lumps_healing_now.empty()) {
         // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
-        const std::span<const double> lo = cvode->interpolate(mid - offset);
-        for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(lo, k);
-        const std::span<const double> hi = cvode->interpolate(mid + offset);
-        for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(hi, k);
+        for (const double at : {mid - offset, mid + offset}) {
+          const std::span<const double> y = cvode->interpolate(at);
+          for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(y, k);
+          for (const std::uint32_t g : lumps_healing_now)
+            lump_integral[g] += half * reptation.rate_per_s(y[g]);
+        }
       }
       const std::span<const double> now = cvode->state();
       std::copy(now.begin(), now.end(), before.begin());
@@ -482,16 +721,17 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   };
   for (std::size_t g = 1; g < groups.size(); ++g) {
     advance(groups[g].time_s);
-    const bool grow = groups[g].end > cap;
+    const bool lumped = options.lump && lump_settled(before);
+    const bool grow = model_of[groups[g].end] > cap;
     if (grow) {  // by half at least, so the integrator is rebuilt a few dozen times in all
       const double lost = before[cap];
       std::copy(before.begin(), before.end() - 1, temps.begin());
-      cap = std::min(n, std::max(groups[g].end, cap + cap / 2));
+      cap = std::min<std::size_t>(model_of[n], std::max<std::size_t>(model_of[groups[g].end], cap + cap / 2));
       before.assign(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(cap));
       before.push_back(lost);
     }
     born_group(groups[g], before);
-    if (grow) {
+    if (grow || lumped) {
       steps += cvode->steps();
       rhs += cvode->rhs_evaluations();
       linear += cvode->linear_iterations();
@@ -507,6 +747,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   }
   advance(t_end);
   if (options.progress) options.progress(1.0);
+  flush_lumps();
   for (std::size_t k = 0; k < integral.size(); ++k) {
     result.interfaces[k].healing_integral = integral[k];
     result.interfaces[k].healing = std::min(1.0, std::pow(integral[k], 0.25));
@@ -515,7 +756,15 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     r.verdict = judge_interface(r.substrate_c, r.on_top, r.healing, material);
 
   std::copy(before.begin(), before.end() - 1, temps.begin());
-  result.final_temp_c.assign(temps.begin(), temps.end());
+  result.final_temp_c.resize(n);
+  for (std::size_t i = 0; i < n; ++i) result.final_temp_c[i] = static_cast<float>(temps[model_of[i]]);
+  result.lumped_cells = lumped_cells;
+  result.model_cells = model_of[n];
+  if (lumped_cells > 0)
+    result.notes.push_back(fmt::format(
+        "thermal: {} of {} cells lumped once settled ({} or more contacts below the top, within {:g} K of "
+        "their neighbours along the bead), {} cells at the end; set thermal.lump: false to keep every cell",
+        lumped_cells, n, options.lump_depth + 1, options.lump_tolerance_k, result.model_cells));
   result.energy_in_J = model.energy_in_J();
   result.energy_lost_J = before[cap];
   result.energy_stored_J = model.energy_stored_J(temps);

@@ -45,6 +45,16 @@ struct HeatOptions {
   double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
+  // Settled cells lumped (docs/physics.md, settled cells): when at least lump_check_cells cells (and a
+  // quarter of the model's) have been born since the last look, runs of consecutive born cells that touch
+  // one another, lie more than lump_depth contacts below the top (cells with a neighbour not yet born) and
+  // are within lump_tolerance_k of one another become one cell each, of at most 64 median cells' mass. A
+  // long print's cells far below the top then cost a fraction of what they did in every step.
+  bool lump = true;
+  int lump_depth = 20;
+  double lump_tolerance_k = 0.5;
+  std::size_t lump_check_cells = 4096;
+  double lump_max_cells = 64.0;  // a lumped cell's most mass, in median cells
   // Times at which every cell's temperature is kept (thermal/snapshot_files.hpp), s; outside the simulated
   // span they are clamped to its ends.
   std::vector<double> snapshot_times_s;
@@ -78,6 +88,9 @@ struct HeatResult {
   double automatic_interval_s = 0.0;        // a fifth of the median time constant (before any lengthening)
   std::vector<std::string> notes;           // what the solve chose for the user (a longer birth interval)
   std::size_t birth_events = 0;
+  std::size_t lump_events = 0;         // times settled cells were lumped
+  std::size_t lumped_cells = 0;        // mesh cells in a lumped cell at the end
+  std::size_t model_cells = 0;         // the model's cells at the end (the mesh's, less what lumping took)
   std::vector<double> sample_times_s;  // from the first birth to the end, every sample interval
   // [toolpath layer][sample]: volume-weighted mean temperature of the layer's born cells, °C; NaN before any.
   std::vector<std::vector<float>> layer_temp_c;

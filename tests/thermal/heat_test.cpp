@@ -597,6 +597,12 @@ TEST(HeatInput, BadOptionsNameTheirKey) {
   o = {};
   o.birth_interval_s = -1.0;
   EXPECT_EQ(key_of(o), "thermal.birth_interval");
+  o = {};
+  o.lump_depth = 0;
+  EXPECT_EQ(key_of(o), "thermal.lump_depth");
+  o = {};
+  o.lump_tolerance_k = -0.1;
+  EXPECT_EQ(key_of(o), "thermal.lump_tolerance");
 }
 
 TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {
@@ -663,6 +669,120 @@ TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
   // Not a trivial run: the part heated and cooled, and the top is well below the deposition temperature.
   EXPECT_LT(one.final_temp_c.back(), material.deposition_temp_c - 50.0);
   EXPECT_GT(one.steps, 100);
+}
+
+// ---- settled cells ---------------------------------------------------------------------------------------
+
+// A thin wall of one bead per layer, 40 layers of 40 cells (1 mm pieces of a 0.5 x 0.2 mm bead), each layer
+// laid over 8 s and the next begun 20 s after it, on a heated table: a small desktop print, long enough that
+// its lower layers settle (docs/physics.md, settled cells). Lumped, those layers become a few cells each; the
+// answer must be the unlumped one's within what the solver's tolerance moves it.
+ThermalMesh thin_wall() {
+  constexpr int kAlong = 40, kLayers = 40;
+  constexpr double kLength = 1.0, kWidth = 0.5, kHeight = 0.2;
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 0.1;
+  for (int z = 0; z < kLayers; ++z)
+    for (int x = 0; x < kAlong; ++x) {
+      ThermalCell c = cell_at({(x + 0.5) * kLength, 0.0, (z + 0.5) * kHeight}, kLength * kWidth * kHeight,
+                              z * 20.0 + x * 0.2, z);
+      c.open_area_mm2 = 2.0 * kLength * kHeight + (x == 0 || x == kAlong - 1 ? kWidth * kHeight : 0.0) +
+                        (z == kLayers - 1 ? kLength * kWidth : 0.0);
+      if (z == 0) c.table_area_mm2 = kLength * kWidth;
+      mesh.cells.push_back(c);
+    }
+  const auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * kAlong + x); };
+  for (int z = 0; z < kLayers; ++z)
+    for (int x = 0; x < kAlong; ++x) {
+      if (x + 1 < kAlong) mesh.links.push_back(link(index(x, z), index(x + 1, z), {kWidth * kHeight, 0, 0}));
+      if (z + 1 < kLayers)
+        mesh.links.push_back(link(index(x, z), index(x, z + 1), {0, 0, kLength * kWidth}, true));
+    }
+  std::sort(mesh.links.begin(), mesh.links.end(), [](const ThermalLink& p, const ThermalLink& q) {
+    return std::pair(p.a, p.b) < std::pair(q.a, q.b);
+  });
+  return mesh;
+}
+
+TEST(HeatSettled, LumpedLayersFarBelowTheTopGiveTheSameInterfacesWithinTheSolversTolerance) {
+  const ThermalMesh mesh = thin_wall();
+  Material material = test_material();
+  material.emissivity = 0.9;
+  material.deposition_temp_c = 240.0;
+  Environment env;
+  env.bed_temp_c = 100.0;
+  HeatOptions options;
+  options.cooldown_s = 120.0;
+  options.lump_check_cells = 80;  // look every two layers (the default waits for 4,096 cells)
+  const double end_s = mesh.cells.back().birth_s;
+  HeatOptions kept = options;
+  kept.lump = false;
+  const HeatResult full = solve_heat(mesh, 40, end_s, material, env, kept);
+  const HeatResult lumped = solve_heat(mesh, 40, end_s, material, env, options);
+  HeatOptions tight = kept;  // how far the solver's own tolerance moves the answer
+  tight.rel_tol = 1e-4;
+  tight.abs_tol_k = 0.005;
+  const HeatResult reference = solve_heat(mesh, 40, end_s, material, env, tight);
+
+  EXPECT_EQ(full.lumped_cells, 0u);
+  EXPECT_EQ(full.model_cells, mesh.cells.size());
+  EXPECT_GT(lumped.lump_events, 0u);
+  EXPECT_GT(lumped.lumped_cells, mesh.cells.size() / 2) << "the lower layers should have settled";
+  EXPECT_LT(lumped.model_cells, mesh.cells.size() / 2);
+  const auto lump_note = [](const HeatResult& r) {
+    return std::count_if(r.notes.begin(), r.notes.end(),
+                         [](const std::string& note) { return note.find("lumped") != std::string::npos; });
+  };
+  EXPECT_EQ(lump_note(lumped), 1);
+  EXPECT_EQ(lump_note(full), 0);
+  // Lumping keeps the enthalpy: the balance closes as well as without it.
+  RecordProperty("balance_full", sci(full.energy_balance_rel_error));
+  RecordProperty("balance_lumped", sci(lumped.energy_balance_rel_error));
+  EXPECT_LT(lumped.energy_balance_rel_error, 1e-3);
+  EXPECT_LE(lumped.energy_balance_rel_error, 2.0 * full.energy_balance_rel_error);
+  EXPECT_NEAR(lumped.energy_in_J, full.energy_in_J, 1e-12 * full.energy_in_J);
+
+  const auto worst = [](const HeatResult& a, const HeatResult& b, auto field) {
+    double d = 0.0;
+    for (std::size_t k = 0; k < a.interfaces.size(); ++k)
+      d = std::max(d, std::abs(field(a.interfaces[k]) - field(b.interfaces[k])));
+    return d;
+  };
+  const auto substrate = [](const InterfaceResult& r) { return r.substrate_c; };
+  const auto healing = [](const InterfaceResult& r) { return r.healing; };
+  const double tolerance_substrate = worst(full, reference, substrate);
+  const double tolerance_healing = worst(full, reference, healing);
+  RecordProperty("substrate_K_tolerance", sci(tolerance_substrate));
+  RecordProperty("substrate_K_lumped", sci(worst(full, lumped, substrate)));
+  RecordProperty("healing_tolerance", sci(tolerance_healing));
+  RecordProperty("healing_lumped", sci(worst(full, lumped, healing)));
+  EXPECT_LE(worst(full, lumped, substrate), std::max(tolerance_substrate, 0.1));
+  EXPECT_LE(worst(full, lumped, healing), std::max(tolerance_healing, 1e-3));
+  // The layers' histories and the final temperatures: a lumped cell holds its run at one temperature.
+  double history = 0.0;
+  for (std::size_t l = 0; l < full.layer_temp_c.size(); ++l)
+    for (std::size_t s = 0; s < full.layer_temp_c[l].size(); ++s)
+      if (!std::isnan(full.layer_temp_c[l][s]))
+        history = std::max(
+            history, static_cast<double>(std::abs(full.layer_temp_c[l][s] - lumped.layer_temp_c[l][s])));
+  RecordProperty("history_K_lumped", sci(history));
+  EXPECT_LT(history, 0.5);
+  for (std::size_t i = 0; i < mesh.cells.size(); ++i)
+    EXPECT_NEAR(lumped.final_temp_c[i], full.final_temp_c[i], 1.0) << i;
+}
+
+TEST(HeatSettled, NothingIsLumpedNearTheTop) {
+  // The same wall with lump_depth beyond its height: no cell is far enough below the top.
+  const ThermalMesh mesh = thin_wall();
+  HeatOptions options;
+  options.cooldown_s = 10.0;
+  options.lump_check_cells = 80;
+  options.lump_depth = 45;
+  const HeatResult r =
+      solve_heat(mesh, 40, mesh.cells.back().birth_s, test_material(), Environment{}, options);
+  EXPECT_EQ(r.lump_events, 0u);
+  EXPECT_EQ(r.model_cells, mesh.cells.size());
+  for (const std::string& note : r.notes) EXPECT_EQ(note.find("lumped"), std::string::npos) << note;
 }
 
 }  // namespace

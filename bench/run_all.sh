@@ -4,7 +4,8 @@
 # sections below them keep the history and the analysis). One command:
 #
 #   bash bench/run_all.sh [BUILD_DIR] [RUNS]      RUNS (default 3) of each short workload; the LSAM-scale
-#                                                 mould end to end runs once (about 5 min here)
+#                                                 mould and the PrusaSlicer program's check run once
+#                                                 (about 40 min in all here)
 #
 # Workloads and their references:
 #   default scenario end to end   `beadtwin run` with no scenario            the print time (real-time factor)
@@ -14,6 +15,8 @@
 #   deposition                    the mould's deposit                        OpenVDB mesh-to-volume of the
 #                                                                            same beads as swept tubes
 #   rendering                     1920x1080 of the mould                     the 2 s goal (no peer here)
+#   a PrusaSlicer program         `beadtwin check` on a 155 MB program       the print time; `beadtwin read`
+#                                 (bench/prusa_program.sh, an hour at most)   against wc -l on it
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
@@ -61,6 +64,8 @@ say "deposition against mesh-to-volume"
 bash "$root/bench/bench_deposit.sh" "$build" 1 > "$work/deposit.txt"
 say "rendering"
 "$build/bench/render_bench" "$work/hull-mould.yaml" 5 1920 1080 > "$work/render.txt"
+say "a PrusaSlicer program through check"
+bash "$root/bench/prusa_program.sh" "$build" "$runs" 3600 > "$work/prusa.txt"
 
 grab() { grep -m1 "$2" "$1" | sed 's/.*: *//'; }
 slice_bt=$(grab "$work/slice.txt" "^beadtwin slice" | awk '{print $1}')
@@ -71,6 +76,19 @@ dep_line=$(grep -m1 "^beadtwin deposit" "$work/deposit.txt")
 dep_s=$(echo "$dep_line" | sed 's/.*: \([0-9.]*\) s.*/\1/')
 mesh_s=$(grep -m1 "^mesh-to-volume" "$work/deposit.txt" | sed 's/.*: \([0-9.]*\) s.*/\1/')
 render_s=$(grep -m1 "^full" "$work/render.txt" | sed 's/.*frame \([0-9.]*\) s.*/\1/')
+prusa_size=$(grep -m1 "^prusa program" "$work/prusa.txt" | sed 's/prusa program: \([0-9]*\) MB, \([0-9]*\) lines.*/\1 MB, \2 lines/')
+prusa_wc=$(grab "$work/prusa.txt" "^wc -l" | awk '{print $1}')
+prusa_read=$(grab "$work/prusa.txt" "^beadtwin read" | awk '{print $1}')
+if grep -q "^beadtwin check: stopped" "$work/prusa.txt"; then
+  prusa_check="did not finish in $(grep -m1 "^beadtwin check" "$work/prusa.txt" | sed 's/.*stopped after \([0-9]*\) s.*/\1/') s"
+  prusa_ratio="-"
+else
+  read -r prusa_s prusa_mb prusa_print < <(grep -m1 "^beadtwin check" "$work/prusa.txt" |
+    sed 's/beadtwin check: \([0-9.]*\) s, peak \([0-9]*\) MB; its print: \([0-9.]*\) s/\1 \2 \3/')
+  prusa_check="$prusa_s s, peak $prusa_mb MB"
+  prusa_ratio="$(ratio "$prusa_print" "$prusa_s" 0) x faster than printing"
+  prusa_print="its print: $prusa_print s"
+fi
 
 machine="$(nproc) cores ($(grep -m1 "model name" /proc/cpuinfo | sed 's/.*: //')), $(free -g | awk '/Mem:/ {print $2}') GiB, $(. /etc/os-release && echo "$PRETTY_NAME")"
 commit="$(commit_id)"
@@ -97,13 +115,17 @@ mark() { if [ "$(echo "$1" | bc -l)" = 1 ]; then echo "met"; else echo "**not me
     "$dep_s" "$mesh_s" "$(ratio "$dep_s" "$mesh_s")"
   printf '| rendering the mould, 1920 x 1080 | %s s a frame | | | under 2 s | %s |\n' \
     "$render_s" "$(mark "$render_s < 2")"
+  printf '| a PrusaSlicer program (%s, a 16-hour print), checked end to end | %s | %s | %s | | |\n' \
+    "$prusa_size" "$prusa_check" "${prusa_print:-its print}" "$prusa_ratio"
+  printf '| reading that program | %s s | wc -l: %s s | %s | at most 5 | %s |\n' \
+    "$prusa_read" "$prusa_wc" "$(ratio "$prusa_read" "$prusa_wc" 0)" "$(mark "$prusa_read <= 5 * $prusa_wc")"
   echo
   echo "Mould stages: $stages."
   echo
   echo "<details><summary>The suite's own output</summary>"
   echo
   echo '```'
-  for f in slice read deposit render; do cat "$work/$f.txt"; done
+  for f in slice read deposit render prusa; do cat "$work/$f.txt"; done
   echo '```'
   echo
   echo "</details>"

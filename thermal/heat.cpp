@@ -137,12 +137,10 @@ class PartModel final : public OdeSystem {
 
   std::size_t size_of_model() const { return n_; }
   double mass_kg(std::size_t i) const { return mass_kg_[i]; }
-  // Whether every neighbour of cell i is born: no face of it will be closed by a later birth.
-  bool covered(std::size_t i) const {
-    return first_[i] == first_[i + 1] || nb_cell_[first_[i + 1] - 1] < born_;
+  // Whether cell i has a neighbour not yet born (neighbours are sorted, so the last tells).
+  bool on_top(std::size_t i) const {
+    return first_[i] != first_[i + 1] && nb_cell_[first_[i + 1] - 1] >= born_;
   }
-  // Whether cell i has a neighbour not yet born.
-  bool on_top(std::size_t i) const { return !covered(i); }
   std::span<const std::uint32_t> neighbours(std::size_t i) const {
     return {nb_cell_.data() + first_[i], nb_cell_.data() + first_[i + 1]};
   }

@@ -544,7 +544,8 @@ constexpr ParamSpec kThermal[] = {
     {"rel_tol", T::kQuantity, D::kDimensionless, "1e-3", 0, 0.1, true, "CVODE relative tolerance", ""},
     {"abs_tol", T::kQuantity, D::kDimensionless, "0.05", 0, 10, true, "CVODE absolute tolerance, kelvin", ""},
     {"lump", T::kBool, D::kDimensionless, "true", 0, 0, false,
-     "lump settled cells (more than 20 contacts below the top, within 0.5 K along the bead) into one cell per "
+     "lump settled cells (more than 20 contacts below the top, within 0.5 K along the bead) into one cell "
+     "per "
      "run, with a note: a long print's old layers then cost little in each step; false: keep every cell",
      "docs/physics.md"},
 };

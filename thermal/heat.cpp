@@ -342,6 +342,15 @@ class PartModel final : public OdeSystem {
   double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
 };
 
+// The median of value(i) over cells [0, n), n > 0.
+template <class F>
+double median_over_cells(std::size_t n, const F& value) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = value(i);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2), v.end());
+  return v[n / 2];
+}
+
 void check_options(const HeatOptions& o) {
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
   if (!positive(o.rel_tol))
@@ -377,14 +386,8 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   model.set_tolerances(options.rel_tol, options.abs_tol_k);
 
   // The cells' median conduction time constant sets the birth interval and the longest step.
-  double median_tau = 5.0;
-  {
-    std::vector<double> tau;
-    tau.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) tau.push_back(model.time_constant_s(i));
-    std::nth_element(tau.begin(), tau.begin() + static_cast<std::ptrdiff_t>(n / 2), tau.end());
-    if (std::isfinite(tau[n / 2])) median_tau = tau[n / 2];
-  }
+  double median_tau = median_over_cells(n, [&](std::size_t i) { return model.time_constant_s(i); });
+  if (!std::isfinite(median_tau)) median_tau = 5.0;
   // The birth interval and the groups of cells born together.
   result.automatic_interval_s = 0.2 * median_tau;
   double interval = options.birth_interval_s > 0.0 ? options.birth_interval_s : result.automatic_interval_s;
@@ -585,15 +588,8 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
 
   // Settled cells (HeatOptions::lump): lumped where they are far enough below the top and even enough in
   // temperature that one temperature stands for the run. Checked when enough cells have been born since.
-  double median_mass = 0.0;
-  {
-    std::vector<double> mass(n);
-    for (std::size_t i = 0; i < n; ++i) mass[i] = model.mass_kg(i);
-    std::nth_element(mass.begin(), mass.begin() + static_cast<std::ptrdiff_t>(n / 2), mass.end());
-    median_mass = mass[n / 2];
-  }
+  const double median_mass = median_over_cells(n, [&](std::size_t i) { return model.mass_kg(i); });
   std::size_t born_at_check = 0;
-  std::size_t lumped_cells = 0;  // mesh cells that went into lumped cells
   // Lumps the settled cells in `state` (the first `cap` model cells and the energy lost); true if any were.
   const auto lump_settled = [&](std::vector<double>& state) {
     const std::size_t born = model.born();
@@ -613,7 +609,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       std::swap(front, next_front);
     }
     // Runs of consecutive settled cells, each touching the run before it, within lump_tolerance_k of one
-    // another and at most kMaxLumpMass median cells' mass.
+    // another and of at most lump_max_cells median cells' mass.
     const std::size_t m = model.size_of_model();
     std::vector<std::uint32_t> to(m);
     std::uint32_t g = 0;
@@ -640,9 +636,6 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
     flush_lumps();
     model.lump(to, state);
     for (std::uint32_t& c : model_of) c = c < m ? to[c] : g;
-    lumped_cells = 0;  // mesh cells sharing their model cell
-    for (std::size_t c = 0; c < n; ++c)
-      lumped_cells += (c > 0 && model_of[c] == model_of[c - 1]) || model_of[c + 1] == model_of[c];
     temps.assign(model_of[n], material.deposition_temp_c);
     warm.assign(model_of[n], 0);
     cap = model.capacity();
@@ -756,13 +749,14 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   std::copy(before.begin(), before.end() - 1, temps.begin());
   result.final_temp_c.resize(n);
   for (std::size_t i = 0; i < n; ++i) result.final_temp_c[i] = static_cast<float>(temps[model_of[i]]);
-  result.lumped_cells = lumped_cells;
+  for (std::size_t c = 0; c < n; ++c)  // mesh cells sharing their model cell
+    result.lumped_cells += (c > 0 && model_of[c] == model_of[c - 1]) || model_of[c + 1] == model_of[c];
   result.model_cells = model_of[n];
-  if (lumped_cells > 0)
+  if (result.lumped_cells > 0)
     result.notes.push_back(fmt::format(
         "thermal: {} of {} cells lumped once settled ({} or more contacts below the top, within {:g} K of "
         "their neighbours along the bead), {} cells at the end; set thermal.lump: false to keep every cell",
-        lumped_cells, n, options.lump_depth + 1, options.lump_tolerance_k, result.model_cells));
+        result.lumped_cells, n, options.lump_depth + 1, options.lump_tolerance_k, result.model_cells));
   result.energy_in_J = model.energy_in_J();
   result.energy_lost_J = before[cap];
   result.energy_stored_J = model.energy_stored_J(temps);

@@ -53,3 +53,10 @@ set_target_properties(assimp::assimp PROPERTIES INTERFACE_LINK_LIBRARIES "")
 # meshoptimizer simplifies the as-printed skin to a tolerance (quadric edge collapse, sim/skin.cpp): a small,
 # well-kept library that does this better than code of our own would.
 find_package(meshoptimizer CONFIG REQUIRED)
+
+# MPI (Open MPI from Debian, which tools/setup.sh installs) for sweeps across machines (tools/CMakeLists.txt):
+# optional; without it `beadtwin sweep` runs on this machine only.
+option(BEADTWIN_MPI "Build beadtwin sweep with MPI when MPI is installed" ON)
+if(BEADTWIN_MPI AND NOT BEADTWIN_READERS_ONLY)
+  find_package(MPI COMPONENTS CXX)
+endif()

@@ -159,4 +159,15 @@ std::optional<double> Metrics::get(const std::string& name) const {
   throw InternalError("unknown metric " + name);
 }
 
+MetricValues Metrics::values() const {
+  MetricValues out;
+  for (const auto& d : kMetrics)
+    if (const std::optional<double> v = d.read(*this)) out.emplace(d.name, *v);
+  for (const SectionRow& s : sections)
+    for (const auto& d : kSectionMetrics)
+      if (const std::optional<double> v = d.read(s))
+        out.emplace(std::string(kSectionPrefix) + s.name + "." + d.name, *v);
+  return out;
+}
+
 }  // namespace beadtwin::scenarios

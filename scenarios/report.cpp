@@ -13,6 +13,7 @@
 #include "render/colormap.hpp"
 #include "scenarios/colours.hpp"
 #include "scenarios/report_scripts.hpp"
+#include "scenarios/report_text.hpp"
 #include "scenarios/run.hpp"
 
 namespace beadtwin::scenarios {
@@ -294,6 +295,7 @@ json variant_json(const VariantResult& r) {
       {"name", r.name},
       {"passed", r.passed},
       {"gates", gates},
+      {"values", m.values()},  // every gate metric measured, by its name: what a sweep gathers
       {"metrics",
        {{"layers", m.layers},
         {"print_time_s", m.print_time_s},
@@ -352,6 +354,8 @@ json variant_json(const VariantResult& r) {
       {"parameters", r.variant ? parameters_json(*r.variant) : json(nullptr)}};
 }
 
+}  // namespace
+
 std::string esc(std::string_view s) {
   std::string out;
   for (char c : s) {
@@ -389,6 +393,8 @@ std::string esc(std::string_view s) {
   }
   return out;
 }
+
+namespace {
 
 // The deposit's defects: how many of each kind, and the first ones with where they are.
 std::string defects_html(const std::vector<sim::Defect>& defects) {
@@ -508,18 +514,19 @@ json finite_or_null(double v) {
   return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-// A plot for report_plots.js: its data as JSON in a script element (with "<" escaped, so no value can end
-// the element), drawn into a canvas after it when the page loads; a line for readers without scripts.
-std::string plot_html(const json& spec) {
+}  // namespace
+
+std::string plot_html(const json& spec, std::string_view where_else) {
   std::string text = spec.dump();
   std::string safe;
   safe.reserve(text.size());
   for (const char c : text) safe += c == '<' ? std::string("\\u003c") : std::string(1, c);
   return "<script type=\"application/json\" class=\"beadtwin-plot\">" + safe +
-         "</script><noscript><p class=muted>This plot is drawn by a script; the same numbers are in the "
-         "layer "
-         "table below and in report.json.</p></noscript>";
+         "</script><noscript><p class=muted>This plot is drawn by a script; the same numbers are in " +
+         esc(where_else) + ".</p></noscript>";
 }
+
+namespace {
 
 // Substrate temperature at deposition per layer (least, mean, most, coloured by the layer's verdict) against
 // the support limit and T_g.
@@ -538,7 +545,7 @@ std::string substrate_plot(const VariantResult& r) {
     p["verdicts"].push_back(thermal::to_string(row.verdict));
     p["colours"].push_back(hex(verdict_colour(row.verdict)));
   }
-  return plot_html(p);
+  return plot_html(p, "the layer table below and in report.json");
 }
 
 // A layer-time window as a band for the plot: [least, most], the least 0 and the most null (the top of the
@@ -564,7 +571,7 @@ std::string layer_time_plot(const VariantResult& r) {
     p["verdicts"].push_back(thermal::to_string(row.verdict));
     p["colours"].push_back(hex(verdict_colour(row.verdict)));
   }
-  return plot_html(p);
+  return plot_html(p, "the layer table below and in report.json");
 }
 
 // 1st, 2nd, 3rd, 4th, ..., 11th, 12th, 13th, ..., 21st.
@@ -601,7 +608,7 @@ std::string history_plot(const VariantResult& r) {
     p["series"].push_back({{"label", fmt::format("layer {} (the {})", layer.index, ordinal(layer.index + 1))},
                            {"temp", std::move(temp)}});
   }
-  return plot_html(p);
+  return plot_html(p, "the layer table below and in report.json");
 }
 
 // What the history plot shows, for the line above it.
@@ -774,12 +781,8 @@ std::string variants_table(const RunResult& result) {
   return h;
 }
 
-std::string report_html(const RunResult& result) {
-  const std::string name = result.scenario ? result.scenario->name : "";
-  std::string h;
-  h += "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
-  h += fmt::format("<title>beadtwin — {}</title>", esc(name));
-  h += R"(<style>
+std::string_view report_style() {
+  return R"(<style>
 body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1100px;color:#222;padding:0 1em}
 h1{margin-bottom:.2em} .verdict{display:inline-block;padding:.2em .7em;border-radius:4px;color:#fff;font-weight:600}
 .pass{background:#2e8b57}.fail{background:#c0392b} table{border-collapse:collapse;margin:1em 0;font-size:13px}
@@ -790,6 +793,14 @@ details{margin:1em 0} .muted{color:#777} .plot{position:relative;height:300px;ma
 td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#fff3cc} .delta{color:#555;font-size:11px}
 </style>
 )";
+}
+
+std::string report_html(const RunResult& result) {
+  const std::string name = result.scenario ? result.scenario->name : "";
+  std::string h;
+  h += "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
+  h += fmt::format("<title>beadtwin — {}</title>", esc(name));
+  h += report_style();
   h += "</head><body>\n";
   h += fmt::format("<h1>{}</h1>", esc(name));
   if (result.scenario && !result.scenario->description.empty())

@@ -1,10 +1,10 @@
-// The plots of beadtwin's report.html, drawn with Chart.js (embedded in the report before this script).
-// The report carries each plot's data as JSON in a script element of class beadtwin-plot (type
-// application/json); this script puts a canvas after each one and draws it. Kinds: "substrate" (the substrate temperature
-// per layer against the support limit and T_g), "layer_time" (each layer's time against the layer times
-// that would have put it in the fusion window) and "history" (chosen layers' mean temperature against
-// time). Missing values are null and leave gaps. Colours for verdicts come with the data, from the same
-// table the pictures use.
+// The plots of beadtwin's report.html and sweep.html, drawn with Chart.js (embedded in the report before
+// this script). The report carries each plot's data as JSON in a script element of class beadtwin-plot
+// (type application/json); this script puts a canvas after each one and draws it. Kinds: "substrate" (the
+// substrate temperature per layer against the support limit and T_g), "layer_time" (each layer's time
+// against the layer times that would have put it in the fusion window), "history" (chosen layers' mean
+// temperature against time) and "pareto" (a sweep's variants by two metrics). Missing values are null and
+// leave gaps. Colours for verdicts come with the data, from the same table the pictures use.
 (function () {
   'use strict';
   const seriesColours = ['#1f77b4', '#e07b00', '#2ca02c', '#9467bd', '#8c564b', '#d62728', '#17becf',
@@ -119,7 +119,34 @@
     };
   }
 
-  const kinds = {substrate: substrate, layer_time: layerTime, history: history};
+  // A sweep's variants by two metrics (sweep.html): every variant that ran as a point (a red cross where a
+  // gate failed, on the front too), the Pareto front joined by a line, each point named in its tooltip.
+  function pareto(p) {
+    const point = (v) => ({x: v.x, y: v.y, name: v.name});
+    const passed = p.points.filter((v) => v.passed).map(point);
+    const failed = p.points.filter((v) => !v.passed).map(point);
+    const front = p.front.map(point);
+    return {
+      type: 'scatter',
+      data: {datasets: [
+        {label: 'Pareto front', type: 'line', data: front, borderColor: '#1f77b4', backgroundColor: '#1f77b4',
+         borderWidth: 2, pointRadius: 5, pointStyle: 'circle', order: 0},
+        {label: 'variants that pass their gates', data: passed, borderColor: '#2e8b57',
+         backgroundColor: '#2e8b5799', pointRadius: 4, pointStyle: 'circle', order: 1},
+        {label: 'variants that fail a gate', data: failed, borderColor: '#c0392b', backgroundColor: '#c0392b99',
+         pointRadius: 6, pointStyle: 'crossRot', borderWidth: 2, order: -1},
+      ]},
+      options: {
+        scales: axes(p.x_label, p.y_label, {}),
+        plugins: {tooltip: {callbacks: {
+          label: (item) => item.raw.name + ': ' + fmt(item.parsed.x, p.x_digits) + ', ' +
+                           fmt(item.parsed.y, p.y_digits),
+        }}},
+      },
+    };
+  }
+
+  const kinds = {substrate: substrate, layer_time: layerTime, history: history, pareto: pareto};
   for (const holder of document.querySelectorAll('script.beadtwin-plot')) {
     const p = JSON.parse(holder.textContent);
     const config = kinds[p.kind](p);

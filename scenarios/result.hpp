@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,10 @@ struct SectionRow : FusionRow {
   double mean_layer_time_s = 0;
 };
 
+// Every gate metric a run measured, by its dotted name (a section's as sections.NAME.FIGURE): what gates
+// read, what report.json keeps as "values", and what a sweep gathers from each variant.
+using MetricValues = std::map<std::string, double>;
+
 struct Metrics {
   int layers = 0;
   double print_time_s = 0, print_length_mm = 0, travel_length_mm = 0;
@@ -102,6 +107,8 @@ struct Metrics {
   // The value of a gate metric by its dotted name (a section's as sections.NAME.FIGURE); nullopt when not
   // measured (or no section has that name). Throws InternalError on a name is_gate_metric() refuses.
   std::optional<double> get(const std::string& name) const;
+  // Every metric get() measures (those it leaves unset are absent).
+  MetricValues values() const;
 };
 
 struct LayerRow : FusionRow {

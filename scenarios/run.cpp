@@ -486,17 +486,36 @@ Toolpath variant_toolpath(const Variant& v) {
   return slice_variant(v);
 }
 
-std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics,
-                                       const Metrics* baseline) {
+namespace {
+
+std::optional<double> lookup(const MetricValues& values, const std::string& name) {
+  const auto it = values.find(name);
+  return it == values.end() ? std::nullopt : std::optional<double>(it->second);
+}
+
+// The sections a run measured, from their sections.NAME.layers values (every section has its layer count).
+std::vector<std::string> section_names(const MetricValues& values) {
+  constexpr std::string_view kPrefix = "sections.", kSuffix = ".layers";
+  std::vector<std::string> names;
+  for (const auto& [name, value] : values)
+    if (name.starts_with(kPrefix) && name.ends_with(kSuffix) && name.size() > kPrefix.size() + kSuffix.size())
+      names.push_back(name.substr(kPrefix.size(), name.size() - kPrefix.size() - kSuffix.size()));
+  return names;
+}
+
+}  // namespace
+
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const MetricValues& values,
+                                       const MetricValues* baseline) {
   std::vector<GateResult> out;
   for (const Gate& g : gates) {
     GateResult r;
     r.name = g.expr;
     r.expr = g.expr;
-    r.value = metrics.get(g.metric);
+    r.value = lookup(values, g.metric);
     std::optional<double> threshold = g.threshold;
+    const std::optional<double> base = baseline ? lookup(*baseline, g.metric) : std::nullopt;
     if (g.relative) {
-      const std::optional<double> base = baseline ? baseline->get(g.metric) : std::nullopt;
       threshold = base ? std::optional<double>(*base * g.factor + g.offset) : std::nullopt;
       r.threshold = threshold;
     }
@@ -504,8 +523,7 @@ std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Met
       r.passed = false;
       r.message = fmt::format("{} is not measured for this run", g.metric);
       if (const std::optional<std::string> section = gate_metric_section(g.metric)) {
-        std::vector<std::string> names;
-        for (const SectionRow& row : metrics.sections) names.push_back(row.name);
+        const std::vector<std::string> names = section_names(values);
         if (std::find(names.begin(), names.end(), *section) == names.end())
           r.message =
               fmt::format("{}: this run has no section '{}'; its sections are: {}", g.metric, *section,
@@ -519,12 +537,18 @@ std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Met
       r.passed = compare(*r.value, g.op, *threshold);
       if (!r.passed)
         r.message = g.relative ? fmt::format("{} = {:.6g}, required {} (baseline's: {:.6g}, so {:.6g})",
-                                             g.metric, *r.value, g.expr, *baseline->get(g.metric), *threshold)
+                                             g.metric, *r.value, g.expr, *base, *threshold)
                                : fmt::format("{} = {:.6g}, required {}", g.metric, *r.value, g.expr);
     }
     out.push_back(r);
   }
   return out;
+}
+
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics,
+                                       const Metrics* baseline) {
+  const MetricValues base = baseline ? baseline->values() : MetricValues{};
+  return evaluate_gates(gates, metrics.values(), baseline ? &base : nullptr);
 }
 
 std::size_t baseline_index(const std::vector<VariantResult>& variants) {

@@ -27,7 +27,6 @@ RunResult run_scenario(const Scenario& scenario, const RunOptions& options);
 // Slices one variant and returns its print program (for `beadtwin slice`).
 std::string slice_program(const Scenario& scenario, const std::string& variant_name);
 
-// Evaluates gates against metrics.
 // The toolpath a variant prints: its program as written (timed with its machine), or its part sliced.
 Toolpath variant_toolpath(const Variant& variant);
 
@@ -39,6 +38,9 @@ sim::DepositOptions deposit_options(const Variant& variant);
 // there is no baseline).
 std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const Metrics& metrics,
                                        const Metrics* baseline = nullptr);
+// The same over measured values (Metrics::values), as a sweep gathers them from its variants' reports.
+std::vector<GateResult> evaluate_gates(const std::vector<Gate>& gates, const MetricValues& values,
+                                       const MetricValues* baseline = nullptr);
 
 // The variant the relative gates compare with: the one named "baseline", else the first.
 std::size_t baseline_index(const std::vector<VariantResult>& variants);

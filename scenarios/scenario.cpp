@@ -51,6 +51,8 @@ bool is_special_file(const std::filesystem::path& path) {
   return std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec);
 }
 
+}  // namespace
+
 // Scenario, machine, material and gate files are text people write: a few kB. One far larger is not one of
 // them (a mesh or a program named by mistake), and yaml-cpp takes some fifty times a file's size to hold it.
 constexpr std::uintmax_t kMaxTextFileBytes = 16u << 20;
@@ -72,6 +74,8 @@ std::string read_text_file(const std::filesystem::path& path, const SourceLocati
   s << f.rdbuf();
   return s.str();
 }
+
+namespace {
 
 // A machine or material file: found beside the scenario, or among the shipped ones.
 struct LibraryFile {

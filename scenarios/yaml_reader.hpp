@@ -3,6 +3,7 @@
 // and values out of range.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,6 +26,11 @@ struct YamlSource {
 
 // Parses a `units:` block ({length: in, temperature: C, ...}) into default units per dimension.
 std::map<Dimension, std::string> read_units_block(const YAML::Node& node, const std::string& file);
+
+// A YAML settings file's text (a scenario, machine, material, gates or sweep combinations file): refuses a
+// path that is no regular file and a file over 16 MB (not one people write), naming `from` and `key`.
+std::string read_text_file(const std::filesystem::path& path, const SourceLocation& from,
+                           const std::string& key);
 
 // Parses YAML text; a syntax error becomes an InputError at its line and column.
 YAML::Node parse_yaml(const std::string& text, const std::string& file);

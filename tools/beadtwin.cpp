@@ -23,6 +23,7 @@
 #include "scenarios/params.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
+#include "tools/sweep_runner.hpp"
 
 namespace {
 
@@ -277,6 +278,45 @@ int main(int argc, char** argv) {
   read_cmd->add_option("program", check_program, "G-code program to read")->required();
   read_cmd->add_option("--machine", check.machine, "Machine by name; default: inferred from the program");
 
+  beadtwin::tools::SweepCommand sweep;
+  CLI::App* sweep_cmd = app.add_subcommand(
+      "sweep",
+      "Run a scenario's variant over a grid of parameter values and report them side by side: a table "
+      "sorted by a metric, the Pareto front of two, the gates applied to each. Under mpirun, rank 0 hands "
+      "the variants out to the other ranks.");
+  sweep_cmd->add_option("scenario", sweep.scenario, "Scenario YAML file (default: the built-in scenario)");
+  sweep_cmd->add_option("--variant", sweep.base_variant,
+                        "The scenario's variant the settings change (default: the first)");
+  sweep_cmd->add_option(
+      "--set", sweep.sets,
+      "KEY=V1,V2,...: the values of one parameter; every combination of the --set options is a variant "
+      "(KEY as a variant's set: takes it; commas inside [] or {} do not split); repeat for each parameter");
+  sweep_cmd->add_option("--combinations", sweep.combinations,
+                        "A YAML file listing combinations, each a map {KEY: VALUE, ...}; with --set, each "
+                        "is crossed with the --set grid");
+  sweep_cmd->add_option("--sort", sweep.sort,
+                        "Sort the table by this metric, METRIC or METRIC:max when larger is better "
+                        "(default: the first --pareto metric, else print_time_s)");
+  sweep_cmd->add_option("--pareto", sweep.pareto,
+                        "Plot the Pareto front of two metrics X,Y (each METRIC or METRIC:max), such as "
+                        "print_time_s,interfaces.too_cold_fraction");
+  sweep_cmd->add_option("--gate", sweep.gate_exprs, gate_help);
+  sweep_cmd->add_option("--gates", sweep.gate_files, gates_help);
+  sweep_cmd
+      ->add_option("-o,--out", sweep.out_dir,
+                   "Output directory: sweep.html, sweep.json, summary.md, junit.xml, and each variant's "
+                   "run in variants/NAME/; a sweep started again here keeps the variants that ran")
+      ->capture_default_str();
+  sweep_cmd
+      ->add_option("-j,--jobs", sweep.jobs,
+                   "Variants at once on this machine (default 1; under mpirun each rank runs one)")
+      ->check(CLI::Range(1, 1024));
+  sweep_cmd
+      ->add_option("--threads", sweep.threads,
+                   "Threads for each variant (default: the cores over the variants running at once)")
+      ->check(CLI::Range(1, 1024));
+  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print only the verdict and the report path");
+
   CLI::App* params = app.add_subcommand(
       "params", "List every scenario parameter (key, type, default, range, meaning, source) as Markdown.");
 
@@ -313,6 +353,7 @@ int main(int argc, char** argv) {
       check.settings = settings_of(sets);
       return cmd_check(check, gates, out_dir, quiet);
     }
+    if (*sweep_cmd) return beadtwin::tools::run_sweep(sweep);
     if (*params) return cmd_params();
   } catch (const beadtwin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

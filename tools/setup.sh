@@ -11,6 +11,7 @@ packages=(
   libembree-dev libopenimageio-dev libsundials-dev libpolyclipping-dev libassimp-dev
   libmeshoptimizer-dev libfreetype-dev fonts-dejavu-core
   libgtest-dev libgmock-dev libxml2-dev libjs-chart.js
+  libopenmpi-dev openmpi-bin
 )
 # Not needed to build or run beadtwin: headless Chromium opens report.html in the browser tests
 # (tests/scenarios/report_browser_test.cpp, skipped without it): 78 more packages on Debian 12, 138 MB to

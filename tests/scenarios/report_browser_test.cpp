@@ -18,6 +18,7 @@
 #include "render/image.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
+#include "scenarios/sweep.hpp"
 #include "tests/chromium.hpp"
 #include "tests/scenarios/small_box.hpp"
 
@@ -332,6 +333,69 @@ throw new Error('deliberate exception');</script>
             (std::vector<std::string>{"picture not loaded: missing.png", "plot of no size: <svg> empty plot",
                                       "plot of no size: <canvas> chart"}));
   EXPECT_EQ(inspection["table"]["rows"], json({"only"}));
+}
+
+// sweep.html (issue 12) as a browser shows it: the Pareto plot drawn, the variants table, no errors. The
+// records are made up (twelve variants of a two-parameter grid, one failed to run), so no run is needed.
+TEST(ReportInBrowser, ShowsASweepsParetoPlotAndTable) {
+  BEADTWIN_REQUIRE_CHROMIUM(exe);
+  const fs::path out = fs::temp_directory_path() / "beadtwin_sweep_browser";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  SweepResult r;
+  r.scenario_name = "browser sweep";
+  r.scenario_file = "box.yaml";
+  r.base_variant = "baseline";
+  r.axes = {{"sections.walls.layer_time", {"30 s", "60 s", "90 s", "120 s"}},
+            {"sections.walls.bead_width", {"18 mm", "20 mm", "22 mm"}}};
+  r.gates = {parse_gate_text("interfaces.too_cold_fraction < 0.2", {"t", 1, 1})};
+  r.sort = {"print_time_s", false};
+  r.pareto = {{"print_time_s", false}, {"interfaces.too_cold_fraction", false}};
+  r.engine = "1 local process";
+  const std::vector<SweepPoint> points = expand_sweep(r.axes, {});
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    SweepRecord rec;
+    rec.name = points[i].name;
+    rec.settings = points[i].settings;
+    rec.status = SweepStatus::kPassed;
+    rec.exit_code = 0;
+    const double layer = 30.0 * static_cast<double>(i / 3 + 1),
+                 width = 18.0 + 2.0 * static_cast<double>(i % 3);
+    // Longer layer times print slower with fewer cold joints; wider beads faster with more: a trade-off.
+    rec.values = {{"print_time_s", 3600.0 + 40.0 * layer - 50.0 * width},
+                  {"interfaces.too_cold_fraction", 0.35 - 0.0025 * layer + 0.004 * (width - 18.0)}};
+    r.records.push_back(rec);
+  }
+  r.records[7].status = SweepStatus::kFailed;
+  r.records[7].values.clear();
+  r.records[7].message = "error: deliberately failed";
+  apply_sweep_gates(r.records, r.gates);
+  write_sweep_reports(r, out);
+
+  json inspection;
+  render::Image shot;
+  std::vector<std::string> problems;
+  {
+    Chromium browser(exe, out / "chromium-profile", out / "chromium.log", kBrowserTimeout);
+    const Page page = open_page(browser, out / "sweep.html");
+    shot = screenshot(browser, page, out / "sweep-screenshot.png", inspection);
+    problems = console_problems(browser, page);
+  }
+  std::error_code ignored;
+  fs::remove_all(out / "chromium-profile", ignored);
+  std::cout << "screenshot: " << (out / "sweep-screenshot.png").string() << "\n";
+
+  EXPECT_TRUE(problems.empty()) << "the page reported:" << lines(problems);
+  // The links to the variants' own reports are missing here (no run made them): the layout check reads
+  // only pictures and plots.
+  EXPECT_TRUE(layout_problems(inspection).empty()) << lines(layout_problems(inspection));
+  ASSERT_TRUE(inspection["table"].is_object());
+  EXPECT_EQ(inspection["table"]["rows"].size(), points.size());
+  ASSERT_EQ(inspection["plots"].size(), 1u);
+  const json& plot = inspection["plots"][0]["box"];
+  EXPECT_GT(plot["height"].get<double>(), 100) << plot;
+  EXPECT_GT(share(shot, plot, ink), 0.01) << plot;
+  EXPECT_GT(share(shot, plot, coloured), 0.001) << plot;  // the front's blue, the points' green and red
 }
 
 }  // namespace

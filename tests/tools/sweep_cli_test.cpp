@@ -1,0 +1,194 @@
+// `beadtwin sweep` as a user runs it (issue 12): every combination runs as its own `beadtwin run` and
+// measures what that run measures alone; a variant that fails is reported and the sweep goes on; a sweep
+// started again keeps what ran; bad input stops it before anything runs; under mpirun the ranks give the
+// same records as the plain run.
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/read_file.hpp"
+#include "tests/shell.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using beadtwin::testing::read_file;
+using nlohmann::json;
+
+beadtwin::testing::ShellResult beadtwin_cmd(const std::string& args) {
+  return beadtwin::testing::shell(std::string(BEADTWIN_BINARY) + " " + args + " 2>&1");
+}
+
+// A three-layer box that runs in about a second, with a gate that holds at 5 mm layers only.
+fs::path tiny_scenario() {
+  const fs::path p = fs::temp_directory_path() / "bt_sweep_tiny.yaml";
+  std::ofstream(p) << "name: tiny\nunits: {length: mm}\nmachine: lsam-ph15\nmaterial: cf-abs-20\n"
+                      "part:\n  box: {size: [120, 80, 15]}\n"
+                      "output: {voxel_size: 2.5 mm}\n"
+                      "render: {width: 120, height: 80}\n"
+                      "sections:\n  - {name: a, z: [0, 15], layer_height: 5, bead_width: 20, boundary: "
+                      "{passes: 1}, fill: {angle: 0 deg}}\n"
+                      "gates:\n  - layers == 3\n";
+  return p;
+}
+
+json sweep_json(const fs::path& out) {
+  return json::parse(read_file(out / "sweep.json"));
+}
+
+const json& variant(const json& sweep, const std::string& name) {
+  for (const json& v : sweep["variants"])
+    if (v["name"] == name) return v;
+  throw std::runtime_error("no variant " + name);
+}
+
+TEST(Sweep, RunsEveryCombinationAsItsOwnRunAndReportsThemTogether) {
+  const fs::path out = fs::temp_directory_path() / "bt_sweep_grid";
+  fs::remove_all(out);
+  const auto r =
+      beadtwin_cmd("sweep " + tiny_scenario().string() +
+                   " --set sections.a.layer_height=5mm,3.75mm --set sections.a.bead_width=20mm,24mm"
+                   " --pareto print_time_s,interfaces.too_cold_fraction --jobs 2 -o " +
+                   out.string());
+  // Two of the four variants print four layers: the scenario's gate fails there, so the sweep does.
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("report: " + (out / "sweep.html").string()), std::string::npos) << r.output;
+  const json s = sweep_json(out);
+  ASSERT_EQ(s["variants"].size(), 4u) << s.dump(1);
+  EXPECT_EQ(s["counts"]["passed"], 2);
+  EXPECT_EQ(s["counts"]["gate_failed"], 2);
+  EXPECT_EQ(s["counts"]["failed"], 0);
+  EXPECT_EQ(variant(s, "v001")["settings"][0]["value"], "5mm");
+  EXPECT_EQ(variant(s, "v003")["status"], "gate failed");
+  EXPECT_EQ(variant(s, "v003")["values"]["layers"], 4);
+  for (const char* file : {"sweep.html", "summary.md", "junit.xml", "variants/v004/report.html"})
+    EXPECT_TRUE(fs::exists(out / file)) << file;
+  EXPECT_FALSE(s["pareto"]["front"].empty());
+
+  // A variant measures in the sweep what it measures run alone.
+  const fs::path alone = fs::temp_directory_path() / "bt_sweep_alone";
+  fs::remove_all(alone);
+  const auto single = beadtwin_cmd(
+      "run " + tiny_scenario().string() +
+      " --set sections.a.layer_height=3.75mm --set sections.a.bead_width=24mm -q -o " + alone.string());
+  ASSERT_EQ(single.code, 1) << single.output;
+  const json report = json::parse(read_file(alone / "report.json"));
+  EXPECT_EQ(variant(s, "v004")["values"], report["variants"][0]["values"]);
+}
+
+TEST(Sweep, AVariantThatFailsIsReportedAndTheSweepGoesOnAndResumes) {
+  const fs::path out = fs::temp_directory_path() / "bt_sweep_resume";
+  fs::remove_all(out);
+  // The second combination's memory budget cannot hold the deposit: that run stops with a message, late
+  // (the budget is checked when the deposit starts), as a variant on a cluster might.
+  const fs::path combos = fs::temp_directory_path() / "bt_sweep_combos.yaml";
+  std::ofstream(combos) << "- {output.memory_budget: 0}\n- {output.memory_budget: 0.000001}\n";
+  const std::string cmd = "sweep " + tiny_scenario().string() + " --combinations " + combos.string() +
+                          " --set sections.a.speed=1in/s,2in/s -o " + out.string();
+  const auto first = beadtwin_cmd(cmd);
+  EXPECT_EQ(first.code, 1) << first.output;
+  json s = sweep_json(out);
+  ASSERT_EQ(s["variants"].size(), 4u);
+  EXPECT_EQ(s["counts"]["passed"], 2) << s.dump(1);
+  EXPECT_EQ(s["counts"]["failed"], 2);
+  const json& failed = variant(s, "v003");
+  EXPECT_EQ(failed["status"], "failed to run");
+  EXPECT_EQ(failed["exit_code"], 2);
+  EXPECT_NE(failed["message"].get<std::string>().find("memory"), std::string::npos) << failed["message"];
+  EXPECT_NE(read_file(out / "sweep.html").find("did not run to the end"), std::string::npos);
+
+  // Started again: the two that ran are kept (their reports untouched), the two that failed run again.
+  const auto written = fs::last_write_time(out / "variants/v001/report.json");
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const auto again = beadtwin_cmd(cmd);
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("4 variants (2 from an earlier run)"), std::string::npos) << again.output;
+  EXPECT_EQ(fs::last_write_time(out / "variants/v001/report.json"), written);
+  s = sweep_json(out);
+  EXPECT_EQ(s["resumed"], 2);
+  EXPECT_EQ(variant(s, "v001")["values"]["layers"], 3);
+
+  // A third value renumbers the grid: the variants that ran keep their runs, matched by their settings and
+  // moved to their new names, and only the new ones run.
+  const auto wider = beadtwin_cmd("sweep " + tiny_scenario().string() + " --combinations " + combos.string() +
+                                  " --set sections.a.speed=3in/s,1in/s,2in/s -o " + out.string());
+  EXPECT_EQ(wider.code, 1) << wider.output;
+  EXPECT_NE(wider.output.find("6 variants (2 from an earlier run)"), std::string::npos) << wider.output;
+  s = sweep_json(out);
+  ASSERT_EQ(s["variants"].size(), 6u);
+  EXPECT_EQ(variant(s, "v002")["settings"][1]["value"], "1in/s");
+  EXPECT_EQ(variant(s, "v002")["values"]["layers"], 3);
+  EXPECT_EQ(fs::last_write_time(out / "variants/v002/report.json"), written);  // was v001
+  EXPECT_NE(read_file(out / "variants/v002/report.json").find("\"1in/s\""), std::string::npos);
+}
+
+TEST(Sweep, BadInputStopsItBeforeAnythingRuns) {
+  const fs::path out = fs::temp_directory_path() / "bt_sweep_bad";
+  const std::string scenario = tiny_scenario().string();
+  struct Case {
+    std::string args, says;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"", "nothing to sweep"},
+           {"--set sections.a.layer_height=5mm,-1mm", "layer_height"},
+           {"--set sections.b.layer_height=5mm", "no section named 'b'"},
+           {"--set sections.a.layer_height=5mm,,4mm", "value 2 of 3 is empty"},
+           {"--set sections.a.layer_height=5mm --pareto print_time_s", "expected two metrics"},
+           {"--set sections.a.layer_height=5mm --sort speediness", "unknown metric 'speediness'"},
+           {"--set sections.a.layer_height=5mm --variant nope", "no variant named 'nope'"},
+           {"--set sections.a.layer_height=5mm --combinations /nonexistent.yaml", "--combinations"},
+       }) {
+    fs::remove_all(out);
+    const auto r = beadtwin_cmd("sweep " + scenario + " " + c.args + " -o " + out.string());
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(out / "variants")) << c.args;
+  }
+}
+
+#ifdef BEADTWIN_MPIEXEC
+// Under mpirun, rank 0 hands the variants to rank 1; the records are those of the plain run.
+TEST(Sweep, UnderMpiRankZeroHandsOutTheVariantsAndTheRecordsMatchThePlainRun) {
+  const fs::path plain = fs::temp_directory_path() / "bt_sweep_plain",
+                 mpi = fs::temp_directory_path() / "bt_sweep_mpi";
+  fs::remove_all(plain);
+  fs::remove_all(mpi);
+  const std::string args =
+      " sweep " + tiny_scenario().string() + " --set sections.a.bead_width=20mm,24mm,28mm -q -o ";
+  const auto p = beadtwin_cmd(args + plain.string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  const auto m =
+      beadtwin::testing::shell(std::string(BEADTWIN_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
+                               BEADTWIN_BINARY + args + mpi.string() + " 2>&1");
+  ASSERT_EQ(m.code, 0) << m.output;
+  const json a = sweep_json(plain), b = sweep_json(mpi);
+  EXPECT_NE(b["engine"].get<std::string>().find("MPI, 2 ranks"), std::string::npos) << b["engine"];
+  ASSERT_EQ(a["variants"].size(), b["variants"].size());
+  for (std::size_t i = 0; i < a["variants"].size(); ++i) {
+    EXPECT_EQ(a["variants"][i]["values"], b["variants"][i]["values"]) << i;
+    EXPECT_NE(b["variants"][i]["worker"].get<std::string>().find("rank 1"), std::string::npos);
+  }
+  // A failing variant under MPI is reported too, and the sweep's exit code says so.
+  const auto bad =
+      beadtwin::testing::shell(std::string(BEADTWIN_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
+                               BEADTWIN_BINARY + " sweep " + tiny_scenario().string() +
+                               " --set output.memory_budget=0,0.000001 -q -o " + mpi.string() + " 2>&1");
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_EQ(sweep_json(mpi)["counts"]["failed"], 1);
+  // Bad input stops every rank with rank 0's message and exit code 2, rather than leave rank 1 waiting.
+  const auto typo =
+      beadtwin::testing::shell(std::string(BEADTWIN_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " +
+                               BEADTWIN_BINARY + " sweep " + tiny_scenario().string() +
+                               " --set sections.b.layer_height=5mm -o " + mpi.string() + " 2>&1");
+  EXPECT_NE(typo.output.find("no section named 'b'"), std::string::npos) << typo.output;
+  EXPECT_NE(typo.output.find("Exit code:    2"), std::string::npos) << typo.output;
+}
+#endif
+
+}  // namespace

@@ -960,6 +960,26 @@ std::string report_html(const RunResult& result) {
   return h;
 }
 
+std::string junit_suite(const std::string& scenario, const std::string& variant,
+                        const std::vector<GateResult>& gates, double seconds) {
+  int failures = 0;
+  for (const auto& g : gates) failures += g.passed ? 0 : 1;
+  const std::string classname = esc(scenario) + "." + esc(variant);
+  std::string x =
+      fmt::format("  <testsuite name=\"{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n",
+                  classname, gates.size(), failures, seconds);
+  for (const auto& g : gates) {
+    x += fmt::format("    <testcase classname=\"{}\" name=\"{}\"", classname, esc(g.expr));
+    if (g.passed) {
+      x += "/>\n";
+    } else {
+      x += fmt::format(">\n      <failure message=\"{0}\" type=\"gate\">{0}</failure>\n    </testcase>\n",
+                       esc(g.message));
+    }
+  }
+  return x + "  </testsuite>\n";
+}
+
 std::string junit_xml(const RunResult& result) {
   int tests = 0, failures = 0;
   for (const auto& v : result.variants)
@@ -969,24 +989,7 @@ std::string junit_xml(const RunResult& result) {
   x += fmt::format(
       "<testsuites name=\"beadtwin\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n", tests,
       failures, result.wall_time_s);
-  for (const auto& v : result.variants) {
-    int vf = 0;
-    for (const auto& g : v.gates) vf += g.passed ? 0 : 1;
-    const double seconds = v.wall_time_s;
-    x += fmt::format(
-        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n", esc(name),
-        esc(v.name), v.gates.size(), vf, seconds);
-    for (const auto& g : v.gates) {
-      x += fmt::format("    <testcase classname=\"{}.{}\" name=\"{}\"", esc(name), esc(v.name), esc(g.expr));
-      if (g.passed) {
-        x += "/>\n";
-      } else {
-        x += fmt::format(">\n      <failure message=\"{0}\" type=\"gate\">{0}</failure>\n    </testcase>\n",
-                         esc(g.message));
-      }
-    }
-    x += "  </testsuite>\n";
-  }
+  for (const auto& v : result.variants) x += junit_suite(name, v.name, v.gates, v.wall_time_s);
   x += "</testsuites>\n";
   return x;
 }

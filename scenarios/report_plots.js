@@ -138,10 +138,14 @@
       ]},
       options: {
         scales: axes(p.x_label, p.y_label, {}),
-        plugins: {tooltip: {callbacks: {
-          label: (item) => item.raw.name + ': ' + fmt(item.parsed.x, p.x_digits) + ', ' +
-                           fmt(item.parsed.y, p.y_digits),
-        }}},
+        plugins: {
+          // In the datasets' order, whatever order they are drawn in.
+          legend: {labels: {usePointStyle: true, sort: (a, b) => a.datasetIndex - b.datasetIndex}},
+          tooltip: {callbacks: {
+            label: (item) => item.raw.name + ': ' + fmt(item.parsed.x, p.x_digits) + ', ' +
+                             fmt(item.parsed.y, p.y_digits),
+          }},
+        },
       },
     };
   }

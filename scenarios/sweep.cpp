@@ -388,7 +388,7 @@ std::string sweep_html(const SweepResult& r) {
     h += pareto_plot(r, front);
   }
 
-  h += "<h2>Variants</h2><table class=variants><tr><th>#</th><th class=l>variant</th>";
+  h += "<h2>Variants</h2><div style=\"overflow-x:auto\"><table class=variants><tr><th>#</th><th class=l>variant</th>";
   for (const std::string& k : keys) h += fmt::format("<th class=l><code>{}</code></th>", esc(k));
   for (const std::string& m : metrics) h += fmt::format("<th><code>{}</code></th>", esc(m));
   h += "<th class=l>result</th><th>time</th></tr>\n";
@@ -408,7 +408,7 @@ std::string sweep_html(const SweepResult& r) {
       if (!g.passed) result += fmt::format("<br><code title=\"{}\">{}</code>", esc(g.message), esc(g.expr));
     h += fmt::format("<td class=l>{}</td><td>{:.1f} s</td></tr>\n", result, rec.wall_time_s);
   }
-  h += "</table>\n";
+  h += "</table></div>\n";
 
   bool any_failed = false;
   for (const SweepRecord& rec : r.records) {
@@ -483,19 +483,7 @@ std::string sweep_junit_xml(const SweepResult& r) {
           suite, name, rec.wall_time_s, rec.exit_code, esc(rec.message));
       continue;
     }
-    std::size_t vf = 0;
-    for (const GateResult& g : rec.gates) vf += g.passed ? 0 : 1;
-    x += fmt::format(
-        "  <testsuite name=\"{}.{}\" tests=\"{}\" failures=\"{}\" errors=\"0\" time=\"{:.3f}\">\n", suite,
-        name, rec.gates.size(), vf, rec.wall_time_s);
-    for (const GateResult& g : rec.gates) {
-      x += fmt::format("    <testcase classname=\"{}.{}\" name=\"{}\"", suite, name, esc(g.expr));
-      x += g.passed ? "/>\n"
-                    : fmt::format(
-                          ">\n      <failure message=\"{0}\" type=\"gate\">{0}</failure>\n    </testcase>\n",
-                          esc(g.message));
-    }
-    x += "  </testsuite>\n";
+    x += junit_suite(r.scenario_name, rec.name, rec.gates, rec.wall_time_s);
   }
   x += "</testsuites>\n";
   return x;

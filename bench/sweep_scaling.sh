@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # How a parameter sweep scales (issue 12, docs/scaling.md): the same sweep of the built-in default scenario
 # (the LSAM open box, its wall speed at six values: six variants) run plainly with one and two variants at
-# once, and under mpirun with two and three ranks (rank 0 hands out, the others run: one and two workers),
-# each from an empty output folder, timed end to end. The reference is the first, one variant at a time on
-# this machine. Prints a Markdown table for docs/scaling.md. Needs beadtwin built with MPI for the mpirun rows.
+# once, and under mpirun with one rank (which runs the sweep plainly), and two and three ranks (rank 0
+# hands out, the others run: one and two workers), each from an empty output folder, timed end to end. The
+# reference is the first, one variant at a time on this machine. Prints a Markdown table for
+# docs/scaling.md. Needs beadtwin built with MPI for the mpirun rows.
 #
 #   bash bench/sweep_scaling.sh [BUILD_DIR]
 set -euo pipefail
@@ -35,6 +36,7 @@ PY
   row "plain, 1 at a time" plain1 "$bin" "${sweep[@]}"
   row "plain, --jobs 2" plain2 "$bin" "${sweep[@]}" --jobs 2
   if command -v mpirun > /dev/null; then
+    row "mpirun -n 1" mpi1 "${mpirun[@]}" -n 1 "$bin" "${sweep[@]}"
     row "mpirun -n 2" mpi2 "${mpirun[@]}" -n 2 "$bin" "${sweep[@]}"
     row "mpirun -n 3" mpi3 "${mpirun[@]}" -n 3 "$bin" "${sweep[@]}"
   fi

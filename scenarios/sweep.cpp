@@ -388,7 +388,8 @@ std::string sweep_html(const SweepResult& r) {
     h += pareto_plot(r, front);
   }
 
-  h += "<h2>Variants</h2><div style=\"overflow-x:auto\"><table class=variants><tr><th>#</th><th class=l>variant</th>";
+  h += "<h2>Variants</h2><div style=\"overflow-x:auto\"><table class=variants><tr><th>#</th><th "
+       "class=l>variant</th>";
   for (const std::string& k : keys) h += fmt::format("<th class=l><code>{}</code></th>", esc(k));
   for (const std::string& m : metrics) h += fmt::format("<th><code>{}</code></th>", esc(m));
   h += "<th class=l>result</th><th>time</th></tr>\n";

@@ -231,6 +231,28 @@ std::string lines(const std::vector<std::string>& items) {
   return s;
 }
 
+// A page as the browser showed it: what kInspect found, a screenshot of the whole page (saved as
+// `shot_name` beside it, its path printed), and what the page reported as going wrong.
+struct Shown {
+  json inspection;
+  render::Image shot;
+  std::vector<std::string> problems;
+};
+Shown show(const fs::path& exe, const fs::path& out, const std::string& page_name,
+           const std::string& shot_name) {
+  Shown s;
+  {
+    Chromium browser(exe, out / "chromium-profile", out / "chromium.log", kBrowserTimeout);
+    const Page page = open_page(browser, out / page_name);
+    s.shot = screenshot(browser, page, out / shot_name, s.inspection);
+    s.problems = console_problems(browser, page);
+  }
+  std::error_code ignored;  // the crash handler, which outlives the browser a moment, may still write there
+  fs::remove_all(out / "chromium-profile", ignored);
+  std::cout << "screenshot: " << (out / shot_name).string() << "\n";
+  return s;
+}
+
 TEST(ReportInBrowser, ShowsTheTableAndThePicturesWithoutErrors) {
   BEADTWIN_REQUIRE_CHROMIUM(exe);
   const fs::path out = fs::temp_directory_path() / "beadtwin_report_browser";
@@ -240,18 +262,7 @@ TEST(ReportInBrowser, ShowsTheTableAndThePicturesWithoutErrors) {
   const RunResult r = run_scenario(load_scenario_text(kTwoVariants, "browser.yaml"), o);
   ASSERT_EQ(r.variants.size(), 2u);
 
-  json inspection;
-  render::Image shot;
-  std::vector<std::string> problems;
-  {
-    Chromium browser(exe, out / "chromium-profile", out / "chromium.log", kBrowserTimeout);
-    const Page page = open_page(browser, out / "report.html");
-    shot = screenshot(browser, page, out / "report-screenshot.png", inspection);
-    problems = console_problems(browser, page);
-  }
-  std::error_code ignored;  // the crash handler, which outlives the browser a moment, may still write there
-  fs::remove_all(out / "chromium-profile", ignored);
-  std::cout << "screenshot: " << (out / "report-screenshot.png").string() << "\n";
+  const auto [inspection, shot, problems] = show(exe, out, "report.html", "report-screenshot.png");
 
   EXPECT_TRUE(problems.empty()) << "the page reported:" << lines(problems);
   EXPECT_TRUE(layout_problems(inspection).empty()) << lines(layout_problems(inspection));
@@ -372,18 +383,7 @@ TEST(ReportInBrowser, ShowsASweepsParetoPlotAndTable) {
   apply_sweep_gates(r.records, r.gates);
   write_sweep_reports(r, out);
 
-  json inspection;
-  render::Image shot;
-  std::vector<std::string> problems;
-  {
-    Chromium browser(exe, out / "chromium-profile", out / "chromium.log", kBrowserTimeout);
-    const Page page = open_page(browser, out / "sweep.html");
-    shot = screenshot(browser, page, out / "sweep-screenshot.png", inspection);
-    problems = console_problems(browser, page);
-  }
-  std::error_code ignored;
-  fs::remove_all(out / "chromium-profile", ignored);
-  std::cout << "screenshot: " << (out / "sweep-screenshot.png").string() << "\n";
+  const auto [inspection, shot, problems] = show(exe, out, "sweep.html", "sweep-screenshot.png");
 
   EXPECT_TRUE(problems.empty()) << "the page reported:" << lines(problems);
   // The links to the variants' own reports are missing here (no run made them): the layout check reads

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <utility>
+#include <vector>
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
@@ -17,10 +18,6 @@
 namespace beadtwin::thermal {
 
 namespace {
-
-std::span<double> values(N_Vector v) {
-  return {N_VGetArrayPointer(v), static_cast<std::size_t>(N_VGetLength(v))};
-}
 
 std::string flag_name(int flag) {
   // CVodeGetReturnFlagName hands back a malloc'ed string.
@@ -73,8 +70,10 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
     throw InternalError("SUNDIALS: SUNContext_Create failed");
   context_.reset(ctx);
 
-  y_ = make_vector(y0);
-  scratch_ = make_vector(y0);
+  Communicator* comm = options.communicator;
+  BT_CHECK(comm == nullptr || kind_ == LinearSolver::kGmres);
+  y_ = make_vector(y0, comm);
+  scratch_ = make_vector(y0, comm);
 
   const auto n = static_cast<sunindextype>(size_);
   if (kind_ == LinearSolver::kBand) {
@@ -117,12 +116,25 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
 
 Cvode::~Cvode() = default;
 
-Cvode::VectorHandle Cvode::make_vector(std::span<const double> init) {
-  VectorHandle v(N_VNew_Serial(static_cast<sunindextype>(init.size()), context_.get()));
-  if (!v) throw InternalError("SUNDIALS: N_VNew_Serial failed");
-  if (N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0)
-    throw InternalError("SUNDIALS: N_VEnableFusedOps_Serial failed");
-  use_blocked_vector_ops(v.get());
+Cvode::VectorHandle Cvode::make_vector(std::span<const double> init, Communicator* comm) {
+  VectorHandle v;
+  if (comm == nullptr) {
+    v.reset(N_VNew_Serial(static_cast<sunindextype>(init.size()), context_.get()));
+    if (!v) throw InternalError("SUNDIALS: N_VNew_Serial failed");
+    if (N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0)
+      throw InternalError("SUNDIALS: N_VEnableFusedOps_Serial failed");
+  } else {
+    // The global length is the sum of the ranks' parts.
+    const std::vector<int> ones(static_cast<std::size_t>(comm->size()), 1);
+    std::vector<double> lengths(ones.size());
+    const double mine = static_cast<double>(init.size());
+    comm->all_gather({&mine, 1}, ones, lengths);
+    std::size_t global = 0;
+    for (const double l : lengths) global += static_cast<std::size_t>(l);
+    v.reset(comm->new_vector(init.size(), global, context_.get()));
+    if (!v) throw InternalError("SUNDIALS: N_VNew_Parallel failed");
+  }
+  use_blocked_vector_ops(v.get(), comm != nullptr);
   std::span<double> out = values(v.get());
   std::copy(init.begin(), init.end(), out.begin());
   return v;
@@ -202,7 +214,7 @@ int Cvode::jtimes_trampoline(N_Vector v, N_Vector jv, double t, N_Vector y, N_Ve
                              N_Vector /*tmp*/) {
   auto* self = static_cast<Cvode*>(user_data);
   try {
-    self->system_.jacobian_times(t, values(y), values(v), values(jv));
+    self->system_.jacobian_times(t, self->values(y), self->values(v), self->values(jv));
     return 0;
   } catch (...) {
     self->callback_error_ = std::current_exception();
@@ -216,7 +228,7 @@ int Cvode::psetup_trampoline(double t, N_Vector y, N_Vector /*fy*/, int /*jok*/,
                              void* user_data) {
   auto* self = static_cast<Cvode*>(user_data);
   try {
-    self->system_.jacobian_diagonal(t, values(y), self->preconditioner_);
+    self->system_.jacobian_diagonal(t, self->values(y), self->preconditioner_);
     *jcur = 1;
     return 0;
   } catch (...) {
@@ -228,8 +240,8 @@ int Cvode::psetup_trampoline(double t, N_Vector y, N_Vector /*fy*/, int /*jok*/,
 int Cvode::psolve_trampoline(double /*t*/, N_Vector /*y*/, N_Vector /*fy*/, N_Vector r, N_Vector z,
                              double gamma, double /*delta*/, int /*lr*/, void* user_data) {
   auto* self = static_cast<Cvode*>(user_data);
-  const std::span<const double> in = values(r);
-  const std::span<double> out = values(z);
+  const std::span<const double> in = self->values(r);
+  const std::span<double> out = self->values(z);
   const std::vector<double>& jd = self->preconditioner_;
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double m = 1.0 - gamma * jd[i];
@@ -241,7 +253,7 @@ int Cvode::psolve_trampoline(double /*t*/, N_Vector /*y*/, N_Vector /*fy*/, N_Ve
 int Cvode::rhs_trampoline(double t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* self = static_cast<Cvode*>(user_data);
   try {
-    self->system_.rhs(t, values(y), values(ydot));
+    self->system_.rhs(t, self->values(y), self->values(ydot));
     return 0;
   } catch (...) {
     self->callback_error_ = std::current_exception();
@@ -255,7 +267,7 @@ int Cvode::jacobian_trampoline(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix 
   try {
     if (SUNMatZero(jac) != 0) throw InternalError("SUNDIALS: SUNMatZero failed");
     BandJacobian band(jac, self->upper_, self->lower_);
-    self->system_.jacobian(t, values(y), band);
+    self->system_.jacobian(t, self->values(y), band);
     return 0;
   } catch (...) {
     self->callback_error_ = std::current_exception();
@@ -266,7 +278,7 @@ int Cvode::jacobian_trampoline(double t, N_Vector y, N_Vector /*fy*/, SUNMatrix 
 int Cvode::weights_trampoline(N_Vector y, N_Vector weights, void* user_data) {
   auto* self = static_cast<Cvode*>(user_data);
   try {
-    self->system_.error_weights(values(y), values(weights));
+    self->system_.error_weights(self->values(y), self->values(weights));
     return 0;
   } catch (...) {
     self->callback_error_ = std::current_exception();

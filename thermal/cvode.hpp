@@ -18,6 +18,8 @@
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nvector.h>
 
+#include "thermal/communicator.hpp"
+
 namespace beadtwin::thermal {
 
 // Write access to the banded Jacobian matrix CVODE asks for. The matrix is zero when handed out.
@@ -60,11 +62,15 @@ struct CvodeOptions {
   std::size_t lower_bandwidth = 0;  // kBand
   int krylov_dimension = 10;        // kGmres: the largest Krylov subspace
   double max_step_s = 0.0;          // > 0: the longest step CVODE may take
+  // Non-null: the state is shared among these ranks in SUNDIALS' MPI-parallel vectors (kGmres only). Every
+  // vector the integrator sees is then this rank's part of the state, and every rank makes the same calls.
+  Communicator* communicator = nullptr;
 };
 
 class Cvode {
  public:
-  // `system` must outlive the integrator. y0.size() sets the (fixed) state size.
+  // `system` must outlive the integrator. y0.size() sets the (fixed) state size: of this rank's part when
+  // the options name a communicator.
   Cvode(OdeSystem& system, double t0, std::span<const double> y0, const CvodeOptions& options);
   ~Cvode();
   Cvode(const Cvode&) = delete;
@@ -77,7 +83,8 @@ class Cvode {
   void set_stop_time(double t_stop);
   // Takes one internal step towards t_out and returns the time reached; the state is state().
   double step(double t_out);
-  // State after the last step (or at the last (re)initialisation).
+  // State after the last step (or at the last (re)initialisation); this rank's part of it with a
+  // communicator.
   std::span<const double> state() const;
   // State interpolated at t, which must lie within the last step. Valid until the next call.
   std::span<const double> interpolate(double t);
@@ -122,7 +129,9 @@ class Cvode {
                             void* user_data);
   // Throws (the callback's exception if one is pending, else InternalError naming `call`) when flag < 0.
   void check(int flag, const char* call);
-  VectorHandle make_vector(std::span<const double> values);
+  VectorHandle make_vector(std::span<const double> values, Communicator* communicator);
+  // This rank's values of a vector of the integrator's.
+  std::span<double> values(N_Vector v) const { return {N_VGetArrayPointer(v), size_}; }
 
   OdeSystem& system_;
   std::size_t size_;

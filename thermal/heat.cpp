@@ -41,6 +41,12 @@ Eigen::Matrix3d conductivity(const Eigen::Vector2d& along, const Material& m) {
 
 // The part as an ODE system: y = [T_0 .. T_{n-1} (°C) | Q (J lost through the boundary)]. Cells are in
 // birth order, so the born ones are the first born_.
+//
+// Across ranks (HeatOptions::communicator) each rank integrates a contiguous block of the cells, [lo_, hi_),
+// and its own share of Q: its part of the state is [T_lo .. T_{hi-1} | Q_rank], and the energy lost is the
+// sum of the ranks' shares. Cells in birth order are cells by height, so the blocks are slices of the part,
+// bottom to top. Each right-hand side and Jacobian product first brings in, from the other ranks, the
+// temperatures of the cells its own cells touch (the halo).
 class PartModel final : public OdeSystem {
  public:
   PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env)
@@ -108,12 +114,45 @@ class PartModel final : public OdeSystem {
 
   // The integrator's state: the first `capacity` cells (the born ones and room for the next) and the energy
   // lost, at index capacity. Every vector operation of a step runs over it, so it grows with the print.
+  // Shares it among the ranks anew (the cells born so far set the blocks).
   void set_capacity(std::size_t capacity) {
     BT_CHECK(capacity >= born_ && capacity <= n_);
     cap_ = capacity;
+    partition();
   }
   std::size_t capacity() const { return cap_; }
-  std::size_t size() const { return cap_ + 1; }
+  void set_communicator(Communicator* comm) { comm_ = comm != nullptr && comm->size() > 1 ? comm : nullptr; }
+  Communicator* communicator() const { return comm_; }
+
+  // This rank's part of a state of all cells (the first capacity() and the energy lost): its cells, and the
+  // energy lost on rank 0 (0 on the others, so that the ranks' shares add up to it).
+  std::vector<double> local(std::span<const double> full) const {
+    BT_CHECK_OP(full.size(), ==, cap_ + 1);
+    std::vector<double> out(full.begin() + static_cast<std::ptrdiff_t>(lo_),
+                            full.begin() + static_cast<std::ptrdiff_t>(hi_));
+    out.push_back(comm_ == nullptr || comm_->rank() == 0 ? full[cap_] : 0.0);
+    return out;
+  }
+  // The state of all cells from every rank's part (`local` is this rank's): in `buffer`, or `local` itself
+  // on one rank.
+  std::span<const double> gather(std::span<const double> local, std::vector<double>& buffer) const {
+    if (comm_ == nullptr) return local;
+    BT_CHECK_OP(local.size(), ==, hi_ - lo_ + 1);
+    gathered_.resize(cap_ + part_counts_.size());
+    comm_->all_gather(local, part_counts_, gathered_);
+    buffer.resize(cap_ + 1);
+    double lost = 0.0;
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < part_counts_.size(); ++r) {
+      const std::size_t cells = bounds_[r + 1] - bounds_[r];
+      std::copy_n(gathered_.begin() + static_cast<std::ptrdiff_t>(at), cells,
+                  buffer.begin() + static_cast<std::ptrdiff_t>(bounds_[r]));
+      lost += gathered_[at + cells];
+      at += cells + 1;
+    }
+    buffer[cap_] = lost;
+    return buffer;
+  }
   std::size_t born() const { return born_; }
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const {
@@ -243,8 +282,8 @@ class PartModel final : public OdeSystem {
     abs_tol_J_ = std::max(total * abs_tol_k, 1e-12);
   }
 
-  // dT/dt of born cell i in state y, K/s; its boundary loss, W, in `loss`.
-  double rate(std::size_t i, std::span<const double> y, double& loss) const {
+  // dT/dt of born cell i in state y (indexed by cell), K/s; its boundary loss, W, in `loss`.
+  double rate(std::size_t i, const double* y, double& loss) const {
     const std::size_t born = born_;
     const double t = y[i];
     double flux = 0.0;
@@ -256,47 +295,51 @@ class PartModel final : public OdeSystem {
     return (flux - loss) / heat_capacity(i, t);
   }
 
+  // The vectors below are this rank's part of the state: cell i at [i − lo_], its share of Q last.
   void rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) override {
-    const std::size_t born = born_;
-    for_cells(born, [&](std::size_t i) { ydot[i] = rate(i, y, loss_[i]); });
+    const double* all = with_halo(y, halo_y_);
+    const std::size_t end = owned_born();
+    for_cells(lo_, end, [&](std::size_t i) { ydot[i - lo_] = rate(i, all, loss_[i]); });
     double q = 0.0;
-    for (std::size_t i = 0; i < born; ++i) q += loss_[i];
-    for (std::size_t i = born; i < cap_; ++i) ydot[i] = 0.0;
-    ydot[cap_] = q;
+    for (std::size_t i = lo_; i < end; ++i) q += loss_[i];
+    for (std::size_t i = end; i < hi_; ++i) ydot[i - lo_] = 0.0;
+    ydot[hi_ - lo_] = q;
   }
 
   void jacobian_times(double /*t*/, std::span<const double> y, std::span<const double> v,
                       std::span<double> jv) override {
-    const std::size_t born = born_;
-    for_cells(born, [&](std::size_t i) {
+    const std::size_t born = born_, end = owned_born();
+    const double* all_v = with_halo(v, halo_v_);
+    for_cells(lo_, end, [&](std::size_t i) {
       double sum = 0.0;
-      const double vi = v[i];
+      const double vi = all_v[i], yi = y[i - lo_];
       for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
-        sum += nb_g_[k] * (v[nb_cell_[k]] - vi);
-      const double d_loss = loss_derivative(i, y[i]) * v[i];
+        sum += nb_g_[k] * (all_v[nb_cell_[k]] - vi);
+      const double d_loss = loss_derivative(i, yi) * vi;
       loss_[i] = d_loss;
-      jv[i] = (sum - d_loss) / heat_capacity(i, y[i]);
+      jv[i - lo_] = (sum - d_loss) / heat_capacity(i, yi);
     });
     double q = 0.0;
-    for (std::size_t i = 0; i < born; ++i) q += loss_[i];
-    for (std::size_t i = born; i < cap_; ++i) jv[i] = 0.0;
-    jv[cap_] = q;
+    for (std::size_t i = lo_; i < end; ++i) q += loss_[i];
+    for (std::size_t i = end; i < hi_; ++i) jv[i - lo_] = 0.0;
+    jv[hi_ - lo_] = q;
   }
 
   void jacobian_diagonal(double /*t*/, std::span<const double> y, std::span<double> diagonal) override {
-    const std::size_t born = born_;
-    for_cells(born, [&](std::size_t i) {
+    const std::size_t born = born_, end = owned_born();
+    for_cells(lo_, end, [&](std::size_t i) {
       double g = 0.0;
       for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k) g += nb_g_[k];
-      diagonal[i] = -(g + loss_derivative(i, y[i])) / heat_capacity(i, y[i]);
+      diagonal[i - lo_] = -(g + loss_derivative(i, y[i - lo_])) / heat_capacity(i, y[i - lo_]);
     });
-    for (std::size_t i = born; i < cap_; ++i) diagonal[i] = 0.0;
-    diagonal[cap_] = 0.0;
+    for (std::size_t i = end; i < hi_; ++i) diagonal[i - lo_] = 0.0;
+    diagonal[hi_ - lo_] = 0.0;
   }
 
   void error_weights(std::span<const double> y, std::span<double> weights) override {
-    for (std::size_t i = 0; i < cap_; ++i) weights[i] = 1.0 / (rel_tol_ * std::abs(y[i]) + abs_tol_k_);
-    weights[cap_] = 1.0 / (rel_tol_ * std::abs(y[cap_]) + abs_tol_J_);
+    const std::size_t cells = hi_ - lo_;
+    for (std::size_t i = 0; i < cells; ++i) weights[i] = 1.0 / (rel_tol_ * std::abs(y[i]) + abs_tol_k_);
+    weights[cells] = 1.0 / (rel_tol_ * std::abs(y[cells]) + abs_tol_J_);
   }
 
  private:
@@ -310,14 +353,81 @@ class PartModel final : public OdeSystem {
     return exposed_m2_[i] * (h_[i] + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
   }
 
+  // The end of this rank's born cells: [lo_, owned_born()).
+  std::size_t owned_born() const { return std::clamp(born_, lo_, hi_); }
+
+  // The blocks of the ranks: rank r integrates cells [bounds_[r], bounds_[r + 1]). Between two rebuilds of
+  // the integrator the born cells grow from born_ towards cap_, so the blocks share out the cells born on
+  // average over that time, (born_ + cap_) / 2, and the last block takes the rest. With several ranks, also
+  // the halo: which of its cells each rank sends to which, and which it receives.
+  void partition() {
+    const std::size_t ranks = comm_ != nullptr ? static_cast<std::size_t>(comm_->size()) : 1;
+    const std::size_t me = comm_ != nullptr ? static_cast<std::size_t>(comm_->rank()) : 0;
+    bounds_.assign(ranks + 1, cap_);
+    bounds_[0] = 0;
+    const double expected = 0.5 * static_cast<double>(born_ + cap_);
+    for (std::size_t r = 1; r < ranks; ++r)
+      bounds_[r] = std::min(cap_, static_cast<std::size_t>(std::llround(expected * static_cast<double>(r) /
+                                                                        static_cast<double>(ranks))));
+    lo_ = bounds_[me];
+    hi_ = bounds_[me + 1];
+    if (comm_ == nullptr) return;
+    part_counts_.resize(ranks);
+    for (std::size_t r = 0; r < ranks; ++r)
+      part_counts_[r] = static_cast<int>(bounds_[r + 1] - bounds_[r] + 1);
+    // The cells outside rank r's block that its cells touch, in order (each rank works this out for all).
+    const auto owner = [&](std::uint32_t j) {
+      return static_cast<std::size_t>(std::upper_bound(bounds_.begin(), bounds_.end(), std::size_t{j}) -
+                                      bounds_.begin()) -
+             1;
+    };
+    std::vector<std::uint32_t> needs;
+    const auto needed_by = [&](std::size_t r) {
+      needs.clear();
+      for (std::size_t i = bounds_[r]; i < bounds_[r + 1]; ++i)
+        for (std::size_t k = first_[i]; k < first_[i + 1] && nb_cell_[k] < cap_; ++k)
+          if (nb_cell_[k] < bounds_[r] || nb_cell_[k] >= bounds_[r + 1]) needs.push_back(nb_cell_[k]);
+      std::sort(needs.begin(), needs.end());
+      needs.erase(std::unique(needs.begin(), needs.end()), needs.end());
+    };
+    send_counts_.assign(ranks, 0);
+    recv_counts_.assign(ranks, 0);
+    send_cells_.clear();
+    for (std::size_t r = 0; r < ranks; ++r) {
+      needed_by(r);
+      if (r == me) {
+        recv_cells_ = needs;
+        for (const std::uint32_t j : needs) ++recv_counts_[owner(j)];
+        continue;
+      }
+      for (const std::uint32_t j : needs)
+        if (j >= lo_ && j < hi_) send_cells_.push_back(j), ++send_counts_[r];
+    }
+    send_buffer_.resize(send_cells_.size());
+    recv_buffer_.resize(recv_cells_.size());
+  }
+
+  // Values of a vector by cell for this rank's cells and its halo: `local` itself on one rank; else `all`,
+  // its block copied in and the halo brought from the other ranks.
+  const double* with_halo(std::span<const double> local, std::vector<double>& all) const {
+    if (comm_ == nullptr) return local.data();
+    all.resize(cap_);
+    std::copy(local.begin(), local.begin() + static_cast<std::ptrdiff_t>(hi_ - lo_),
+              all.begin() + static_cast<std::ptrdiff_t>(lo_));
+    for (std::size_t k = 0; k < send_cells_.size(); ++k) send_buffer_[k] = local[send_cells_[k] - lo_];
+    comm_->exchange(send_buffer_, send_counts_, recv_buffer_, recv_counts_);
+    for (std::size_t k = 0; k < recv_cells_.size(); ++k) all[recv_cells_[k]] = recv_buffer_[k];
+    return all.data();
+  }
+
   template <class F>
-  void for_cells(std::size_t end, const F& f) const {
+  void for_cells(std::size_t begin, std::size_t end, const F& f) const {
     constexpr std::size_t kGrain = 4096;
-    if (end < 2 * kGrain) {
-      for (std::size_t i = 0; i < end; ++i) f(i);
+    if (end < begin + 2 * kGrain) {
+      for (std::size_t i = begin; i < end; ++i) f(i);
       return;
     }
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, end, kGrain),
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
                       });
@@ -336,6 +446,14 @@ class PartModel final : public OdeSystem {
   mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
   std::size_t born_ = 0;
   std::size_t cap_ = 0;
+  // Across ranks (null on one): this rank's cells [lo_, hi_), every rank's block (bounds_) and part of the
+  // state (part_counts_: its cells and its share of Q), the halo, and scratch.
+  Communicator* comm_ = nullptr;
+  std::size_t lo_ = 0, hi_ = 0;
+  std::vector<std::size_t> bounds_;
+  std::vector<int> part_counts_, send_counts_, recv_counts_;
+  std::vector<std::uint32_t> send_cells_, recv_cells_;
+  mutable std::vector<double> send_buffer_, recv_buffer_, halo_y_, halo_v_, gathered_;
   std::vector<double> h_;  // convection coefficient at the cell's height, W/m²K
   double deposition_c_, ambient_c_, ambient_k4_, bed_c_, eps_sigma_;
   double energy_in_J_ = 0.0;
@@ -384,6 +502,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   if (n == 0) return result;
   PartModel model(mesh, material, env);
   model.set_tolerances(options.rel_tol, options.abs_tol_k);
+  model.set_communicator(options.communicator);
 
   // The cells' median conduction time constant sets the birth interval and the longest step.
   double median_tau = median_over_cells(n, [&](std::size_t i) { return model.time_constant_s(i); });
@@ -567,7 +686,6 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   // temperature for the cells beyond it (unborn: they wait at the deposition temperature).
   std::vector<double> temps(n, material.deposition_temp_c);
   std::size_t cap = std::min(n, std::max<std::size_t>(groups.front().end, 1024));
-  model.set_capacity(cap);
   std::vector<double> before(temps.begin(), temps.begin() + static_cast<std::ptrdiff_t>(cap));
   before.push_back(0.0);  // energy lost
   const auto born_group = [&](const Group& g, std::span<double> state) {
@@ -578,13 +696,14 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
         if (r.older < mesh_born) {
           double loss = 0.0;
           r.substrate_c = state[model_of[r.older]];
-          r.substrate_rate_K_s = model.rate(model_of[r.older], state, loss);
+          r.substrate_rate_K_s = model.rate(model_of[r.older], state.data(), loss);
         }
       }
     model.birth(model_of[g.end], state);
     mesh_born = g.end;
   };
   born_group(groups.front(), before);
+  model.set_capacity(cap);
 
   // Settled cells (HeatOptions::lump): lumped where they are far enough below the top and even enough in
   // temperature that one temperature stands for the run. Checked when enough cells have been born since.
@@ -653,9 +772,11 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   // test, which sees only small corrections, passes a state kelvins off. A steady bar of 50 cells ends
   // 1e-3 of its temperature drop off its own network with no limit, 2e-5 with this one (heat_test).
   co.max_step_s = 4.0 * median_tau;
-  auto cvode = std::make_unique<Cvode>(model, t0, before, co);
+  co.communicator = model.communicator();
+  auto cvode = std::make_unique<Cvode>(model, t0, model.local(before), co);
   long steps = 0, rhs = 0, linear = 0;  // of the integrators replaced
   double t = t0;
+  std::vector<double> now_all, between_all;  // across ranks: the whole state gathered
   const auto healing_rate = [&](std::span<const double> state, std::uint32_t k) {
     return reptation.rate_per_s(0.5 * (state[cells_of[k][0]] + state[cells_of[k][1]]));
   };
@@ -688,24 +809,26 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       const double half = 0.5 * (t - t_prev);
       const double mid = t_prev + half;
       const double offset = half / std::sqrt(3.0);
-      find_healing(before, cvode->state());
+      // Across ranks, every rank gathers the whole state: what follows is the same on all of them.
+      const std::span<const double> now = model.gather(cvode->state(), now_all);
+      find_healing(before, now);
       if (!healing_now.empty() || !lumps_healing_now.empty()) {
         // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
         for (const double at : {mid - offset, mid + offset}) {
-          const std::span<const double> y = cvode->interpolate(at);
+          const std::span<const double> y = model.gather(cvode->interpolate(at), between_all);
           for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(y, k);
           for (const std::uint32_t g : lumps_healing_now)
             lump_integral[g] += half * reptation.rate_per_s(y[g]);
         }
       }
-      const std::span<const double> now = cvode->state();
       std::copy(now.begin(), now.end(), before.begin());
       while (next_snapshot < snapshot_times.size() && snapshot_times[next_snapshot].first <= t) {
         const auto [ts, request] = snapshot_times[next_snapshot++];
-        snapshot(ts, request, ts == t ? cvode->state() : cvode->interpolate(ts));
+        snapshot(ts, request, ts == t ? now : model.gather(cvode->interpolate(ts), between_all));
       }
       while (next_sample <= t) {
-        sample(next_sample, next_sample == t ? cvode->state() : cvode->interpolate(next_sample));
+        sample(next_sample,
+               next_sample == t ? now : model.gather(cvode->interpolate(next_sample), between_all));
         next_sample += options.sample_interval_s;
       }
     }
@@ -728,12 +851,12 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       linear += cvode->linear_iterations();
       cvode.reset();
       model.set_capacity(cap);
-      cvode = std::make_unique<Cvode>(model, t, before, co);
+      cvode = std::make_unique<Cvode>(model, t, model.local(before), co);
     }
     // The first step tries to reach the next group at once: the temperatures move slowly against the birth
     // interval (it is a fifth of a cell's time constant), so CVODE usually takes it.
     const double gap = g + 1 < groups.size() ? groups[g + 1].time_s - t : interval;
-    cvode->reinit(t, before, std::max(gap, 1e-3 * interval));
+    cvode->reinit(t, model.local(before), std::max(gap, 1e-3 * interval));
     if (options.progress) options.progress((t - t0) / std::max(t_end - t0, 1e-9));
   }
   advance(t_end);
@@ -765,6 +888,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   result.energy_balance_rel_error =
       scale > 0.0 ? std::abs(result.energy_in_J - result.energy_lost_J - result.energy_stored_J) / scale
                   : 0.0;
+  result.ranks = model.communicator() != nullptr ? model.communicator()->size() : 1;
   result.steps = steps + cvode->steps();
   result.rhs_evaluations = rhs + cvode->rhs_evaluations();
   result.linear_iterations = linear + cvode->linear_iterations();

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "core/material.hpp"
+#include "thermal/communicator.hpp"
 #include "thermal/fusion.hpp"
 #include "thermal/mesh.hpp"
 
@@ -61,6 +62,11 @@ struct HeatOptions {
   // Called on the calling thread at every birth, with the fraction of the simulated span done (0..1);
   // empty: no reports.
   std::function<void(double fraction)> progress;
+  // Non-null (and more than one rank): the solve is shared among the ranks of an MPI job, each integrating
+  // a slice of the part by height in SUNDIALS' MPI-parallel vectors. Every rank calls solve_heat with the
+  // same mesh and options and gets the same whole result, which equals the one-rank solve within the
+  // solver's tolerance (not to the last bit: the sums over the state are added in another order).
+  Communicator* communicator = nullptr;
 };
 
 // Every cell's temperature at one moment, °C; NaN for cells not yet born.
@@ -101,6 +107,7 @@ struct HeatResult {
   // |stored|).
   double energy_in_J = 0.0, energy_lost_J = 0.0, energy_stored_J = 0.0, energy_balance_rel_error = 0.0;
   long steps = 0, rhs_evaluations = 0, linear_iterations = 0;
+  int ranks = 1;  // the MPI ranks the solve was shared among
   double start_time_s = 0.0, end_time_s = 0.0;
 };
 

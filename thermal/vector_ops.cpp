@@ -4,7 +4,6 @@
 #include <cmath>
 #include <vector>
 
-#include <nvector/nvector_serial.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <Eigen/Core>
@@ -19,11 +18,13 @@ using Map = Eigen::Map<Eigen::ArrayXd>;
 // costs more than it saves.
 constexpr std::size_t kParallelBlocks = 4;
 
+// This rank's part of the vector (all of a serial one; the serial vector has no local-length operation).
 std::size_t length(N_Vector v) {
-  return static_cast<std::size_t>(NV_LENGTH_S(v));
+  return static_cast<std::size_t>(v->ops->nvgetlocallength != nullptr ? v->ops->nvgetlocallength(v)
+                                                                      : N_VGetLength(v));
 }
 double* data(N_Vector v) {
-  return NV_DATA_S(v);
+  return N_VGetArrayPointer(v);
 }
 
 std::size_t block_count(std::size_t n) {
@@ -149,21 +150,22 @@ int dot_multi(int count, N_Vector x, N_Vector* ys, double* d) {
 
 }  // namespace
 
-void use_blocked_vector_ops(N_Vector v) {
+void use_blocked_vector_ops(N_Vector v, bool parallel) {
   N_Vector_Ops ops = v->ops;
   ops->nvlinearsum = &linear_sum;
   ops->nvconst = &constant;
   ops->nvprod = &product;
   ops->nvdiv = &quotient;
   ops->nvscale = &scale;
-  ops->nvdotprod = &dot;
   ops->nvdotprodlocal = &dot;
-  ops->nvwrmsnorm = &weighted_rms_norm;
   ops->nvwsqrsumlocal = &weighted_square_sum;
   ops->nvlinearcombination = &linear_combination;
   ops->nvscaleaddmulti = &scale_add_multi;
-  ops->nvdotprodmulti = &dot_multi;
   ops->nvdotprodmultilocal = &dot_multi;
+  if (parallel) return;  // the global reductions stay the parallel vector's own: its sums over the ranks
+  ops->nvdotprod = &dot;
+  ops->nvwrmsnorm = &weighted_rms_norm;
+  ops->nvdotprodmulti = &dot_multi;
 }
 
 }  // namespace beadtwin::thermal

@@ -10,9 +10,9 @@
 // the blocks (DESIGN §5: results independent of the thread count).
 //
 // The operations are installed in a vector's table of operations; the clones CVODE and GMRES make of it
-// copy the table, so installing them on the vector an integrator is created with is enough. Each local
-// reduction is a separate entry (nv*local), so an MPI-parallel vector could take the same kernels for its
-// rank's part.
+// copy the table, so installing them on the vector an integrator is created with is enough. An MPI-parallel
+// vector takes the same kernels for its rank's part (the streaming operations and the nv*local reductions);
+// its global reductions, which add the ranks' sums with MPI, stay its own.
 #pragma once
 
 #include <cstddef>
@@ -24,7 +24,8 @@ namespace beadtwin::thermal {
 // Elements per block: the unit of work of a thread, and the fixed grouping of every sum.
 inline constexpr std::size_t kVectorBlock = 4096;
 
-// Replaces the hot operations of serial vector `v` (N_VNew_Serial with fused operations enabled).
-void use_blocked_vector_ops(N_Vector v);
+// Replaces the hot operations of vector `v`: serial (N_VNew_Serial), or with `parallel` MPI-parallel
+// (N_VNew_Parallel), with fused operations enabled.
+void use_blocked_vector_ops(N_Vector v, bool parallel = false);
 
 }  // namespace beadtwin::thermal

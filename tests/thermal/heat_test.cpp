@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "tests/thermal/test_meshes.hpp"
 
 namespace beadtwin::thermal {
 namespace {
@@ -26,20 +27,6 @@ std::string sci(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3e", value);
   return text;
-}
-
-// The reference material of docs/physics.md (20 % CF-ABS), orthotropic, with radiation off: the analytic
-// solutions below are linear.
-Material test_material() {
-  Material m;
-  m.density_kg_m3 = 1140.0;
-  m.specific_heat_J_kgK = 1640.0;
-  m.conductivity_along_W_mK = 0.59;
-  m.conductivity_across_W_mK = 0.48;
-  m.conductivity_through_W_mK = 0.35;
-  m.emissivity = 0.0;
-  m.deposition_temp_c = 200.0;
-  return m;
 }
 
 // ρ c_p V, J/K.
@@ -58,28 +45,6 @@ Environment adiabatic() {
   env.convection_W_m2K = 0.0;
   env.bed_insulated = true;
   return env;
-}
-
-ThermalCell cell_at(const Eigen::Vector3d& centroid_mm, double volume_mm3, double birth_s = 0.0,
-                    int layer = 0) {
-  ThermalCell c;
-  c.centroid_mm = centroid_mm;
-  c.volume_mm3 = volume_mm3;
-  c.birth_s = birth_s;
-  c.layer = layer;
-  return c;
-}
-
-// A planar contact from cell a to cell b: `area_vector_mm2` from a towards b.
-ThermalLink link(std::uint32_t a, std::uint32_t b, const Eigen::Vector3d& area_vector_mm2,
-                 bool interface = false) {
-  ThermalLink l;
-  l.a = a;
-  l.b = b;
-  l.area_vector_mm2 = area_vector_mm2;
-  l.faces_mm2 = area_vector_mm2.norm();
-  l.interface = interface;
-  return l;
 }
 
 // A column of `count` cells of `thickness_mm` × `area_mm2` stacked upwards from the table (z = 0), all born
@@ -617,33 +582,8 @@ TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {
 // cells) that the model's loops and the vector operations of thermal/vector_ops.hpp both split into
 // parallel blocks; radiation on, so the right-hand side is nonlinear.
 TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
-  constexpr int kNx = 30, kNy = 30, kLayers = 20;
-  constexpr double kSide = 5.0, kHeight = 4.0;
-  ThermalMesh mesh;
-  mesh.voxel_size_mm = 1.0;
-  const auto index = [&](int x, int y, int z) { return static_cast<std::uint32_t>((z * kNy + y) * kNx + x); };
-  for (int z = 0; z < kLayers; ++z)
-    for (int y = 0; y < kNy; ++y)
-      for (int x = 0; x < kNx; ++x) {
-        // Each layer laid row by row over 30 s, the next one 60 s after it started.
-        ThermalCell c = cell_at({(x + 0.5) * kSide, (y + 0.5) * kSide, (z + 0.5) * kHeight},
-                                kSide * kSide * kHeight, z * 60.0 + y, z);
-        c.open_area_mm2 = (x == 0 || x == kNx - 1 ? kSide * kHeight : 0.0) +
-                          (y == 0 || y == kNy - 1 ? kSide * kHeight : 0.0) +
-                          (z == kLayers - 1 ? kSide * kSide : 0.0);
-        if (z == 0) c.table_area_mm2 = kSide * kSide;
-        mesh.cells.push_back(c);
-      }
-  for (int z = 0; z < kLayers; ++z)
-    for (int y = 0; y < kNy; ++y)
-      for (int x = 0; x < kNx; ++x) {
-        if (x + 1 < kNx)
-          mesh.links.push_back(link(index(x, y, z), index(x + 1, y, z), {kSide * kHeight, 0, 0}));
-        if (y + 1 < kNy)
-          mesh.links.push_back(link(index(x, y, z), index(x, y + 1, z), {0, kSide * kHeight, 0}));
-        if (z + 1 < kLayers)
-          mesh.links.push_back(link(index(x, y, z), index(x, y, z + 1), {0, 0, kSide * kSide}, true));
-      }
+  constexpr int kLayers = 20;
+  const ThermalMesh mesh = block(30, 30, kLayers);
   Material material = test_material();
   material.emissivity = 0.9;
   Environment env;
@@ -672,37 +612,6 @@ TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
 }
 
 // ---- settled cells ---------------------------------------------------------------------------------------
-
-// A thin wall of one bead per layer, 40 layers of 40 cells (1 mm pieces of a 0.5 x 0.2 mm bead), each layer
-// laid over 8 s and the next begun 20 s after it, on a heated table: a small desktop print, long enough that
-// its lower layers settle (docs/physics.md, settled cells). Lumped, those layers become a few cells each; the
-// answer must be the unlumped one's within what the solver's tolerance moves it.
-ThermalMesh thin_wall() {
-  constexpr int kAlong = 40, kLayers = 40;
-  constexpr double kLength = 1.0, kWidth = 0.5, kHeight = 0.2;
-  ThermalMesh mesh;
-  mesh.voxel_size_mm = 0.1;
-  for (int z = 0; z < kLayers; ++z)
-    for (int x = 0; x < kAlong; ++x) {
-      ThermalCell c = cell_at({(x + 0.5) * kLength, 0.0, (z + 0.5) * kHeight}, kLength * kWidth * kHeight,
-                              z * 20.0 + x * 0.2, z);
-      c.open_area_mm2 = 2.0 * kLength * kHeight + (x == 0 || x == kAlong - 1 ? kWidth * kHeight : 0.0) +
-                        (z == kLayers - 1 ? kLength * kWidth : 0.0);
-      if (z == 0) c.table_area_mm2 = kLength * kWidth;
-      mesh.cells.push_back(c);
-    }
-  const auto index = [&](int x, int z) { return static_cast<std::uint32_t>(z * kAlong + x); };
-  for (int z = 0; z < kLayers; ++z)
-    for (int x = 0; x < kAlong; ++x) {
-      if (x + 1 < kAlong) mesh.links.push_back(link(index(x, z), index(x + 1, z), {kWidth * kHeight, 0, 0}));
-      if (z + 1 < kLayers)
-        mesh.links.push_back(link(index(x, z), index(x, z + 1), {0, 0, kLength * kWidth}, true));
-    }
-  std::sort(mesh.links.begin(), mesh.links.end(), [](const ThermalLink& p, const ThermalLink& q) {
-    return std::pair(p.a, p.b) < std::pair(q.a, q.b);
-  });
-  return mesh;
-}
 
 TEST(HeatSettled, LumpedLayersFarBelowTheTopGiveTheSameInterfacesWithinTheSolversTolerance) {
   const ThermalMesh mesh = thin_wall();

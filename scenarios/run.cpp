@@ -72,7 +72,7 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
 }
 
 ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
-                       std::function<void(double)> progress) {
+                       std::function<void(double)> progress, thermal::Communicator* ranks) {
   ThermalRun out;
   thermal::MeshOptions mo;
   mo.cells_across = v.thermal.cells_across;
@@ -91,6 +91,7 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
   for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);
   ho.progress = std::move(progress);
+  ho.communicator = ranks;
   out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
                                  v.machine.environment, ho);
   std::vector<double> durations;
@@ -99,6 +100,40 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
       thermal::summarise_layers(out.mesh, out.heat, durations, v.material, v.machine.environment.ambient_c);
   out.cells = thermal::cell_verdicts(out.mesh, out.heat);
   return out;
+}
+
+// Deposits a variant's toolpath.
+sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress) {
+  try {
+    sim::DepositOptions o = deposit_options(v);
+    o.progress = std::move(progress);
+    return sim::deposit(tp, o);
+  } catch (const InputError& e) {
+    // The deposit knows the option, not where it was written: name the scenario's key.
+    if (e.key() != "voxel_size") throw;
+    throw InputError(v.output.voxel_size_at, "output.voxel_size", e.message());
+  }
+}
+
+// Under mpirun, whether every rank goes on: rank 0 says, once it has checked what only it checks (false: it
+// stopped on bad input). Every rank calls it once, before any thermal solve. Alone: `ok`.
+bool ranks_agree(thermal::Communicator* ranks, bool ok) {
+  if (ranks == nullptr) return ok;
+  const std::vector<int> one_each(static_cast<std::size_t>(ranks->size()), 1);
+  std::vector<double> all(one_each.size());
+  const double mine = ok ? 1.0 : 0.0;
+  ranks->all_gather({&mine, 1}, one_each, all);
+  return all[0] != 0.0;
+}
+
+// The variants a run runs: the ones named (all when none are).
+std::vector<const Variant*> chosen_variants(const Scenario& sc, const RunOptions& options) {
+  std::vector<const Variant*> chosen;
+  for (const Variant& v : sc.variants)
+    if (options.variants.empty() ||
+        std::find(options.variants.begin(), options.variants.end(), v.name) != options.variants.end())
+      chosen.push_back(&v);
+  return chosen;
 }
 
 // Compares the deposit with the CAD the sections print; nullopt when there is none (a program, AM Outline
@@ -386,17 +421,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
                       slicer::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
   });
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
-  const sim::Deposit deposit = stages.run("deposit", [&] {
-    try {
-      sim::DepositOptions o = deposit_options(v);
-      o.progress = progress_of("deposit");
-      return sim::deposit(tp, o);
-    } catch (const InputError& e) {
-      // The deposit knows the option, not where it was written: name the scenario's key.
-      if (e.key() != "voxel_size") throw;
-      throw InputError(v.output.voxel_size_at, "output.voxel_size", e.message());
-    }
-  });
+  const sim::Deposit deposit =
+      stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
   // The CAD comparison and the thermal stage only read the deposit, so the comparison runs on a thread of
   // its own beside the thermal stage. Both use both cores, but neither keeps both busy all the time (the
   // thermal stage's loops are short, between the integrator's serial steps): the default scenario gains
@@ -410,12 +436,15 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     compare_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
   });
-  const ThermalRun th =
-      stages.run("thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal")); });
+  const ThermalRun th = stages.run(
+      "thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal"), options.thermal_ranks); });
   const std::optional<CadCheck> cad = comparing.get();
   stages.record("compare", compare_s);
   for (const auto* notes : {&th.heat.notes, &th.mesh.notes})  // the thermal stage's choices
     res.notes.insert(res.notes.end(), notes->begin(), notes->end());
+  if (th.heat.ranks > 1)
+    res.notes.push_back(fmt::format("thermal: solved across {} MPI ranks, each a slice of the part by height",
+                                    th.heat.ranks));
   if (!v.thermal.snapshot_times_s.empty())
     stages.run("snapshots", [&] {
       for (const thermal::TemperatureSnapshot& s : th.heat.snapshots) {
@@ -580,8 +609,14 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
           fmt::format("scenario '{}' has no variant named '{}'; it has: {}", sc.name, name, names));
     }
   }
-  check_gate_sections(sc);
-  prepare_output_dir(options.out_dir, "--out");
+  try {
+    check_gate_sections(sc);
+    prepare_output_dir(options.out_dir, "--out");
+  } catch (...) {
+    (void)ranks_agree(options.thermal_ranks, false);
+    throw;
+  }
+  (void)ranks_agree(options.thermal_ranks, true);
   // Everything is written into a staging folder and moved into place once the run is complete (the reports
   // last): a run that stops part-way leaves the previous run's files as they were.
   StagedDir staged(options.out_dir);
@@ -589,17 +624,13 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   RunResult result;
   result.scenario = &sc;
   // Every variant sliced first: the pictures of all of them share one frame (camera box, colour scales).
-  std::vector<const Variant*> chosen;
+  const std::vector<const Variant*> chosen = chosen_variants(sc, options);
   std::vector<Sliced> sliced;
-  for (const Variant& v : sc.variants) {
-    if (!options.variants.empty() &&
-        std::find(options.variants.begin(), options.variants.end(), v.name) == options.variants.end())
-      continue;
+  for (const Variant* v : chosen) {
     const auto t_slice = std::chrono::steady_clock::now();
     Sliced s;
-    s.toolpath = slice_variant(v, &s.stats);
+    s.toolpath = slice_variant(*v, &s.stats);
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_slice).count();
-    chosen.push_back(&v);
     sliced.push_back(std::move(s));
   }
   std::vector<const Toolpath*> toolpaths;
@@ -622,6 +653,20 @@ RunResult run_scenario(const Scenario& sc, const RunOptions& options) {
   write_reports(result, stage);
   staged.commit({"summary.md", "junit.xml", "report.html", "report.json"});
   return result;
+}
+
+bool share_thermal(const Scenario& sc, const RunOptions& options) {
+  BT_CHECK(options.thermal_ranks != nullptr);
+  if (!ranks_agree(options.thermal_ranks, true)) return false;
+  // As rank 0: every variant sliced first, then each deposited and solved, in the same order.
+  const std::vector<const Variant*> chosen = chosen_variants(sc, options);
+  std::vector<Toolpath> toolpaths;
+  for (const Variant* v : chosen) toolpaths.push_back(slice_variant(*v, nullptr));
+  for (std::size_t i = 0; i < chosen.size(); ++i) {
+    const sim::Deposit deposit = deposit_variant(*chosen[i], toolpaths[i], {});
+    (void)run_thermal(*chosen[i], toolpaths[i], deposit, {}, options.thermal_ranks);
+  }
+  return true;
 }
 
 }  // namespace beadtwin::scenarios

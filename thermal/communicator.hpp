@@ -2,7 +2,7 @@
 // (HeatOptions::communicator, thermal/heat.hpp).
 //
 // The thermal library does not link MPI: beadtwin would then load Open MPI's libraries at every start, for
-// every command (tools/sweep_mpi.hpp measures it). The MPI implementation of this interface lives in
+// every command (tools/mpi_module.hpp measures it). The MPI implementation of this interface lives in
 // thermal/mpi/ and is linked only into what runs under mpirun: the MPI module and its tests.
 #pragma once
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <span>
@@ -469,6 +470,30 @@ double median_over_cells(std::size_t n, const F& value) {
   return v[n / 2];
 }
 
+// Across ranks, every rank must solve the same part and options, or their messages would not match: each
+// compares a fingerprint of what it was given (FNV-1a over the cells' births, volumes and the links, and the
+// options the integration depends on) with rank 0's.
+void check_same_on_every_rank(const ThermalMesh& mesh, const HeatOptions& o, Communicator& ranks) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto mix = [&h](const auto& value) {
+    unsigned char bytes[sizeof value];
+    std::memcpy(bytes, &value, sizeof value);
+    for (const unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
+  };
+  mix(mesh.cells.size());
+  mix(mesh.links.size());
+  for (const ThermalCell& c : mesh.cells) mix(c.birth_s), mix(c.volume_mm3), mix(c.open_area_mm2);
+  for (const ThermalLink& l : mesh.links) mix(l.a), mix(l.b), mix(l.interface);
+  mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.lump);
+  const double mine = static_cast<double>(h >> 12);  // 52 bits: exact in a double
+  const std::vector<int> one_each(static_cast<std::size_t>(ranks.size()), 1);
+  std::vector<double> all(one_each.size());
+  ranks.all_gather({&mine, 1}, one_each, all);
+  if (all[0] != mine)
+    throw InternalError(
+        fmt::format("thermal solve across ranks: rank {} was given another part than rank 0", ranks.rank()));
+}
+
 void check_options(const HeatOptions& o) {
   const auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
   if (!positive(o.rel_tol))
@@ -500,6 +525,8 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   HeatResult result;
   const std::size_t n = mesh.cells.size();
   if (n == 0) return result;
+  if (options.communicator != nullptr && options.communicator->size() > 1)
+    check_same_on_every_rank(mesh, options, *options.communicator);
   PartModel model(mesh, material, env);
   model.set_tolerances(options.rel_tol, options.abs_tol_k);
   model.set_communicator(options.communicator);

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -23,6 +24,8 @@
 #include "scenarios/params.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
+#include "tools/mpi_loader.hpp"
+#include "tools/mpi_module.hpp"
 #include "tools/sweep_runner.hpp"
 
 namespace {
@@ -110,10 +113,12 @@ class ProgressBar {
 
 // Runs a loaded scenario and prints the verdict, the report and the images.
 int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::string& out_dir,
-                   const std::vector<std::string>& variants, bool quiet) {
+                   const std::vector<std::string>& variants, bool quiet,
+                   beadtwin::thermal::Communicator* thermal_ranks = nullptr) {
   beadtwin::scenarios::RunOptions options;
   options.out_dir = out_dir;
   options.variants = variants;
+  options.thermal_ranks = thermal_ranks;
   ProgressBar bar;
   const bool draw = !quiet && ProgressBar::wanted();
   // Every stage's progress tells the interrupt handler what a Ctrl-C would stop.
@@ -151,10 +156,48 @@ int run_and_report(const beadtwin::scenarios::Scenario& scenario, const std::str
 }
 
 int cmd_run(const std::string& scenario_path, const std::vector<std::string>& sets, const ExtraGates& gates,
-            const std::string& out_dir, const std::vector<std::string>& variants, bool quiet) {
+            const std::string& out_dir, const std::vector<std::string>& variants, bool quiet, int threads) {
   auto scenario = load(scenario_path, sets);
   add_gates(scenario, gates);
-  return run_and_report(scenario, out_dir, variants, quiet);
+  if (!beadtwin::tools::launched_by_mpi()) return run_and_report(scenario, out_dir, variants, quiet);
+#ifdef BEADTWIN_MPI_MODULE
+  // Under mpirun every rank has loaded the scenario (bad input ends each alike, before MPI starts). Rank 0
+  // runs it and writes every output; the others take their share of each thermal solve.
+  namespace mpi = beadtwin::tools::mpi;
+  mpi::RunJob job;
+  job.run = [&](beadtwin::thermal::Communicator& ranks, int on_this_node) {
+    // The ranks on a node share its cores (unless --threads said otherwise).
+    std::optional<tbb::global_control> share;
+    if (threads == 0) {
+      const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+      share.emplace(tbb::global_control::max_allowed_parallelism,
+                    static_cast<std::size_t>(std::max(1, cores / std::max(1, on_this_node))));
+    }
+    if (ranks.rank() == 0) return run_and_report(scenario, out_dir, variants, quiet, &ranks);
+    beadtwin::scenarios::RunOptions options;
+    options.out_dir = out_dir;
+    options.variants = variants;
+    options.thermal_ranks = &ranks;
+    return beadtwin::scenarios::share_thermal(scenario, options) ? kExitPass : kExitBadInput;
+  };
+  job.shared_error = [](std::exception_ptr error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const beadtwin::InputError&) {
+      return true;
+    } catch (...) {
+      return false;
+    }
+  };
+  return reinterpret_cast<mpi::RunEntry>(beadtwin::tools::mpi_module_entry(mpi::kRunEntryName))(job);
+#else
+  (void)threads;
+  // Each rank would run the whole scenario into the same folder.
+  throw beadtwin::InputError(
+      {"command line", 0, 0}, "mpirun",
+      "this beadtwin was built without MPI, so its ranks cannot share a run: run it "
+      "without mpirun, or build beadtwin where MPI is installed (tools/setup.sh does)");
+#endif
 }
 
 // A print program simulated as it is (README, command line): machine and material given, from a scenario,
@@ -340,7 +383,7 @@ int main(int argc, char** argv) {
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
 
   try {
-    if (*run) return cmd_run(scenario_path, sets, gates, out_dir, variants, quiet);
+    if (*run) return cmd_run(scenario_path, sets, gates, out_dir, variants, quiet, threads);
     if (*slice) return cmd_slice(scenario_path, sets, variant, program_out);
     if (*read_cmd) {
       check.program = check_program;

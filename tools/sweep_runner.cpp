@@ -21,7 +21,6 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include <dlfcn.h>
 #include <sched.h>
 
 #include "core/atomic_file.hpp"
@@ -29,9 +28,8 @@
 #include "core/memory.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep.hpp"
-#include "tools/sweep_mpi.hpp"
-
-extern char** environ;
+#include "tools/mpi_loader.hpp"
+#include "tools/mpi_module.hpp"
 
 namespace beadtwin::tools {
 namespace {
@@ -95,7 +93,10 @@ Launched launch(const RunSpec& spec, const SweepPoint& point, int threads, int s
   posix_spawn_file_actions_addclose(&actions, STDIN_FILENO);
   Launched l;
   l.start = Clock::now();
-  const int err = posix_spawn(&l.pid, argv[0], &actions, nullptr, argv.data(), environ);
+  // A variant runs plainly, also when a rank of an MPI job starts it: without the job's environment it does
+  // not take itself for a rank (beadtwin run would share its thermal solve with ranks that are not there).
+  std::vector<char*> env = environment_without_mpi();
+  const int err = posix_spawn(&l.pid, argv[0], &actions, nullptr, argv.data(), env.data());
   posix_spawn_file_actions_destroy(&actions);
   if (err != 0)
     throw InternalError(
@@ -435,39 +436,7 @@ int run_plain(const SweepCommand& c) {
   return report(p, g, resumed, t0, c.quiet);
 }
 
-// Launched by mpirun or srun (their environment), rather than run plainly.
-bool launched_by_mpi() {
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "PMI_RANK", "MPI_LOCALNRANKS"})
-    if (std::getenv(v)) return true;
-  return false;
-}
-
-#ifdef BEADTWIN_SWEEP_MPI
-
-// The MPI module (tools/sweep_mpi.hpp says why it is one): from beside the running program, else from where
-// the build put it.
-mpi::Entry mpi_module() {
-  constexpr const char* kName = "libbeadtwin_sweep_mpi.so";
-  std::vector<fs::path> tried;
-  std::error_code ec;
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) tried.push_back(self.parent_path() / kName);
-  tried.emplace_back(BEADTWIN_SWEEP_MPI);
-  std::string errors;
-  for (const fs::path& path : tried) {
-    if (!fs::exists(path, ec)) continue;
-    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!module) {
-      errors += std::string("; ") + dlerror();
-      continue;
-    }
-    if (auto entry = reinterpret_cast<mpi::Entry>(dlsym(module, mpi::kEntryName))) return entry;
-    errors += "; " + path.string() + " has no " + mpi::kEntryName;
-  }
-  std::string where;
-  for (const fs::path& path : tried) where += (where.empty() ? "" : ", ") + path.string();
-  throw InternalError(fmt::format("cannot load the MPI module {} (looked for {}){}", kName, where, errors));
-}
+#ifdef BEADTWIN_MPI_MODULE
 
 // Lets the variants this rank starts use every core of the node. mpirun binds each rank to one core by
 // default when it starts two ranks or fewer (Open MPI's --bind-to core), and a rank's children inherit its
@@ -527,7 +496,7 @@ int run_mpi(const SweepCommand& c) {
     return scenarios::sweep_record_json(run_point(spec_of(work.at("spec")), point, threads, sharing, worker));
   };
   cb.plain = [&] { return run_plain(c); };
-  return mpi_module()(cb);
+  return reinterpret_cast<mpi::Entry>(mpi_module_entry(mpi::kEntryName))(cb);
 }
 
 #endif
@@ -536,7 +505,7 @@ int run_mpi(const SweepCommand& c) {
 
 int run_sweep(const SweepCommand& command) {
   if (launched_by_mpi()) {
-#ifdef BEADTWIN_SWEEP_MPI
+#ifdef BEADTWIN_MPI_MODULE
     return run_mpi(command);
 #else
     // Each rank would run the whole sweep into the same folder.

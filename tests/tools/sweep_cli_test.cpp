@@ -2,12 +2,15 @@
 // measures what that run measures alone; a variant that fails is reported and the sweep goes on; a sweep
 // started again keeps what ran; bad input stops it before anything runs; under mpirun the ranks give the
 // same records as the plain run.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -188,6 +191,49 @@ TEST(Sweep, UnderMpiRankZeroHandsOutTheVariantsAndTheRecordsMatchThePlainRun) {
                                " --set sections.b.layer_height=5mm -o " + mpi.string() + " 2>&1");
   EXPECT_NE(typo.output.find("no section named 'b'"), std::string::npos) << typo.output;
   EXPECT_NE(typo.output.find("Exit code:    2"), std::string::npos) << typo.output;
+}
+
+// `beadtwin run` under mpirun: the two ranks share the thermal solve (thermal/heat.hpp), rank 0 writes the
+// outputs, and every value of the report is the plain run's within the solver's tolerance.
+TEST(RunUnderMpi, TheRanksShareTheThermalSolveAndTheReportIsThePlainRunsWithinTheSolversTolerance) {
+  const fs::path plain = fs::temp_directory_path() / "bt_run_plain",
+                 mpi = fs::temp_directory_path() / "bt_run_mpi";
+  fs::remove_all(plain);
+  fs::remove_all(mpi);
+  const std::string args = " run " + tiny_scenario().string() + " -q -o ";
+  const auto p = beadtwin_cmd(args + plain.string());
+  ASSERT_EQ(p.code, 0) << p.output;
+  const std::string mpirun =
+      std::string(BEADTWIN_MPIEXEC) + " -n 2 --allow-run-as-root --oversubscribe " + BEADTWIN_BINARY;
+  const auto m = beadtwin::testing::shell(mpirun + args + mpi.string() + " 2>&1");
+  ASSERT_EQ(m.code, 0) << m.output;
+  const json a = json::parse(read_file(plain / "report.json")),
+             b = json::parse(read_file(mpi / "report.json"));
+  const json& va = a["variants"][0]["values"];
+  const json& vb = b["variants"][0]["values"];
+  ASSERT_EQ(va.size(), vb.size());
+  for (const auto& [key, value] : va.items()) {
+    ASSERT_TRUE(vb.contains(key)) << key;
+    const double x = value.get<double>(), y = vb[key].get<double>();
+    EXPECT_NEAR(x, y, 1e-3 * std::max(1.0, std::abs(x))) << key;
+  }
+  const auto notes = b["variants"][0]["notes"].dump();
+  EXPECT_NE(notes.find("solved across 2 MPI ranks"), std::string::npos) << notes;
+  // One set of outputs, rank 0's: the same files as the plain run's.
+  const auto files = [](const fs::path& dir) {
+    std::vector<std::string> out;
+    for (const auto& e : fs::recursive_directory_iterator(dir))
+      out.push_back(fs::relative(e.path(), dir).string());
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(files(plain), files(mpi));
+  // Bad input found by rank 0 alone (an output folder that is a file) stops every rank with exit code 2.
+  const fs::path taken = fs::temp_directory_path() / "bt_run_mpi_file";
+  std::ofstream(taken) << "not a folder\n";
+  const auto bad = beadtwin::testing::shell(mpirun + args + taken.string() + " 2>&1");
+  EXPECT_NE(bad.output.find("Exit code:    2"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("--out"), std::string::npos) << bad.output;
 }
 #endif
 

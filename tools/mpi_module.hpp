@@ -1,17 +1,24 @@
-// The MPI half of `beadtwin sweep` (tools/sweep_runner.hpp): the messages between rank 0, which hands the
-// variants out and writes the report, and the other ranks, which run them. A module of its own
-// (libbeadtwin_sweep_mpi.so), loaded only when a sweep is launched by mpirun or srun.
+// The MPI half of beadtwin, a module of its own (libbeadtwin_mpi.so), loaded only when beadtwin is launched
+// by mpirun or srun:
+// - `beadtwin sweep` (tools/sweep_runner.hpp): the messages between rank 0, which hands the variants out and
+//   writes the report, and the other ranks, which run them;
+// - `beadtwin run`: every rank takes its share of each variant's thermal solve (thermal/communicator.hpp).
 //
 // Why a module: Open MPI brings eight shared libraries more, which the dynamic loader would bind at every
 // start of beadtwin (measured: `beadtwin --version` 0.039 s without them, 0.085 s with them, on a day the
 // suite's references ran 1.3 times slower), for every command, most of which never meet MPI. The module
-// knows nothing of scenarios: the sweep's work comes to it through the callbacks below.
+// knows nothing of scenarios: the work comes to it through the callbacks below.
 #pragma once
 
 #include <cstddef>
+#include <exception>
 #include <functional>
 #include <string>
 #include <vector>
+
+namespace beadtwin::thermal {
+class Communicator;
+}
 
 namespace beadtwin::tools::mpi {
 
@@ -32,8 +39,23 @@ struct Callbacks {
   std::function<int()> plain;
 };
 
-// The module's entry point: this rank's part of the sweep, and its exit code (rank 0's is the sweep's).
+// The sweep's entry point: this rank's part of the sweep, and its exit code (rank 0's is the sweep's).
 using Entry = int (*)(const Callbacks&);
 constexpr const char* kEntryName = "beadtwin_sweep_mpi";
+
+// A run whose thermal solves the ranks share.
+struct RunJob {
+  // Every rank: its part of the run, given the job's ranks and how many of them are on this node (they
+  // share its cores); returns the rank's exit code.
+  std::function<int(thermal::Communicator& ranks, int on_this_node)> run;
+  // Whether an error is one every rank meets alike (bad input, found the same way on each): each rank then
+  // ends with it. Any other ends the whole job (MPI_Abort), as the other ranks may be waiting for this one.
+  std::function<bool(std::exception_ptr)> shared_error;
+};
+using RunEntry = int (*)(const RunJob&);
+constexpr const char* kRunEntryName = "beadtwin_run_mpi";
+
+// The module's file name; beadtwin looks for it beside itself, then where the build put it.
+constexpr const char* kModuleName = "libbeadtwin_mpi.so";
 
 }  // namespace beadtwin::tools::mpi

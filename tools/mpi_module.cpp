@@ -1,4 +1,4 @@
-#include "tools/sweep_mpi.hpp"
+#include "tools/mpi_module.hpp"
 
 #include <mpi.h>
 
@@ -7,8 +7,11 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <memory>
 #include <string>
 #include <thread>
+
+#include "thermal/mpi/mpi_communicator.hpp"
 
 namespace beadtwin::tools::mpi {
 namespace {
@@ -60,12 +63,13 @@ std::string receive(int from, int& source, int& tag, bool sleep_while_waiting) {
   return text;
 }
 
-// How many ranks on this node run variants (all but rank 0), so each takes its share of the node.
-int workers_on_this_node(int rank) {
+// How many ranks on this node run variants (all but rank 0 when `master_idles`), so each takes its share of
+// the node.
+int workers_on_this_node(int rank, bool master_idles = true) {
   MPI_Comm node;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
   int size = 1, has_master = 0;
-  const int is_master = rank == 0 ? 1 : 0;
+  const int is_master = rank == 0 && master_idles ? 1 : 0;
   MPI_Comm_size(node, &size);
   MPI_Allreduce(&is_master, &has_master, 1, MPI_INT, MPI_MAX, node);
   MPI_Comm_free(&node);
@@ -148,4 +152,29 @@ extern "C" int beadtwin_sweep_mpi(const beadtwin::tools::mpi::Callbacks& cb) {
     return 0;
   }
   return master(s, cb);
+}
+
+extern "C" int beadtwin_run_mpi(const beadtwin::tools::mpi::RunJob& job) {
+  using namespace beadtwin::tools::mpi;
+  Session s;
+  const int on_this_node = workers_on_this_node(s.rank(), false);
+  std::unique_ptr<beadtwin::thermal::Communicator> ranks = beadtwin::thermal::world_communicator();
+  try {
+    return job.run(*ranks, on_this_node);
+  } catch (...) {
+    const std::exception_ptr error = std::current_exception();
+    if (s.size() == 1 || job.shared_error(error)) {
+      ranks.reset();
+      throw;  // every rank ends alike; the session ends as the exception leaves
+    }
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "internal error on rank %d: %s\n", s.rank(), e.what());
+    } catch (...) {
+      std::fprintf(stderr, "internal error on rank %d\n", s.rank());
+    }
+    MPI_Abort(MPI_COMM_WORLD, 3);
+    return 3;
+  }
 }

@@ -3,6 +3,10 @@
 // integrator's work, the energy balance, the verdicts and the real-time factor (simulated print time over
 // the solve's wall time). bench/bench_thermal.sh runs it with /usr/bin/time for the peak memory.
 //
+// Built as thermal_ranks_bench (with MPI), it shares the solve among the ranks it is started with
+// (`mpirun -n N thermal_ranks_bench ...`; rank 0 prints): bench/thermal_ranks.sh. THERMAL_BENCH_THREADS=N
+// limits each process to N threads.
+//
 //   thermal_bench SCENARIO [BIRTH_INTERVAL_S [REL_TOL ABS_TOL_K]]   (0: the default)
 #include <chrono>
 #include <cstdio>
@@ -11,6 +15,14 @@
 #include <string>
 
 #include <openvdb/openvdb.h>
+#include <tbb/global_control.h>
+#ifdef BEADTWIN_BENCH_MPI
+#include <mpi.h>
+
+#include <memory>
+
+#include "thermal/mpi/mpi_communicator.hpp"
+#endif
 
 #include "bench/bench_common.hpp"
 #include "scenarios/run.hpp"
@@ -30,6 +42,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: thermal_bench SCENARIO [BIRTH_INTERVAL_S [REL_TOL ABS_TOL_K]]\n");
     return 2;
   }
+#ifdef BEADTWIN_BENCH_MPI
+  MPI_Init(&argc, &argv);
+  std::unique_ptr<thermal::Communicator> world = thermal::world_communicator();
+  if (world->rank() != 0 && std::freopen("/dev/null", "w", stdout) == nullptr) return 3;
+#endif
+  std::size_t threads = 0;
+  if (const char* t = std::getenv("THERMAL_BENCH_THREADS")) threads = std::strtoul(t, nullptr, 10);
+  const tbb::global_control limit(
+      tbb::global_control::max_allowed_parallelism,
+      threads > 0 ? threads
+                  : tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
   try {
     openvdb::initialize();
     const scenarios::Scenario sc = scenarios::load_scenario(argv[1]);
@@ -55,6 +78,9 @@ int main(int argc, char** argv) {
       o.rel_tol = std::atof(argv[3]);
       o.abs_tol_k = std::atof(argv[4]);
     }
+#ifdef BEADTWIN_BENCH_MPI
+    o.communicator = world.get();
+#endif
     t0 = std::chrono::steady_clock::now();
     const thermal::HeatResult h =
         thermal::solve_heat(mesh, tp.layers.size(), tp.total_time_s(), v.material, v.machine.environment, o);
@@ -68,9 +94,10 @@ int main(int argc, char** argv) {
     }
     const double simulated = h.end_time_s - h.start_time_s;
     std::printf(
-        "heat %.2f s: birth interval %.3f s, %zu events, %ld steps, %ld rhs, %ld gmres iterations; energy "
+        "heat %.2f s on %d rank(s): birth interval %.3f s, %zu events, %ld steps, %ld rhs, %ld gmres "
+        "iterations; energy "
         "in %.4g J lost %.4g J stored %.4g J, balance error %.2e\n",
-        solve_s, h.birth_interval_s, h.birth_events, h.steps, h.rhs_evaluations, h.linear_iterations,
+        solve_s, h.ranks, h.birth_interval_s, h.birth_events, h.steps, h.rhs_evaluations, h.linear_iterations,
         h.energy_in_J, h.energy_lost_J, h.energy_stored_J, h.energy_balance_rel_error);
     std::printf("interfaces %zu: too hot %zu, too cold %zu, min healing %.3f\n", h.interfaces.size(), hot,
                 cold, min_healing);
@@ -94,5 +121,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
   }
+#ifdef BEADTWIN_BENCH_MPI
+  world.reset();
+  MPI_Finalize();
+#endif
   return 0;
 }

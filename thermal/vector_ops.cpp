@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -148,6 +149,30 @@ int dot_multi(int count, N_Vector x, N_Vector* ys, double* d) {
   return 0;
 }
 
+// The global reductions of an MPI-parallel vector: this rank's blocked sums, then the sum over the ranks by
+// the vector's own all-reduce (MPI_Allreduce, in place).
+void sum_over_ranks(N_Vector x, int count, double* values) {
+  if (x->ops->nvdotprodmultiallreduce(count, x, values) != 0)
+    *values = std::numeric_limits<double>::quiet_NaN();
+}
+
+double dot_over_ranks(N_Vector x, N_Vector y) {
+  double d = dot(x, y);
+  sum_over_ranks(x, 1, &d);
+  return d;
+}
+
+double weighted_rms_norm_over_ranks(N_Vector x, N_Vector w) {
+  double s = weighted_square_sum(x, w);
+  sum_over_ranks(x, 1, &s);
+  return std::sqrt(s / static_cast<double>(N_VGetLength(x)));  // the global length
+}
+
+int dot_multi_over_ranks(int count, N_Vector x, N_Vector* ys, double* d) {
+  dot_multi(count, x, ys, d);
+  return x->ops->nvdotprodmultiallreduce(count, x, d);
+}
+
 }  // namespace
 
 void use_blocked_vector_ops(N_Vector v, bool parallel) {
@@ -162,7 +187,14 @@ void use_blocked_vector_ops(N_Vector v, bool parallel) {
   ops->nvlinearcombination = &linear_combination;
   ops->nvscaleaddmulti = &scale_add_multi;
   ops->nvdotprodmultilocal = &dot_multi;
-  if (parallel) return;  // the global reductions stay the parallel vector's own: its sums over the ranks
+  if (parallel) {
+    // Without the vector's all-reduce (N_VEnableDotProdMultiLocal_Parallel) its own reductions stay.
+    if (ops->nvdotprodmultiallreduce == nullptr) return;
+    ops->nvdotprod = &dot_over_ranks;
+    ops->nvwrmsnorm = &weighted_rms_norm_over_ranks;
+    ops->nvdotprodmulti = &dot_multi_over_ranks;
+    return;
+  }
   ops->nvdotprod = &dot;
   ops->nvwrmsnorm = &weighted_rms_norm;
   ops->nvdotprodmulti = &dot_multi;

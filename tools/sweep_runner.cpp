@@ -424,8 +424,9 @@ int run_plain(const SweepCommand& c) {
   const int jobs =
       std::clamp(c.jobs > 0 ? c.jobs : 1, 1, static_cast<int>(std::max<std::size_t>(todo.size(), 1)));
   const int threads = c.threads > 0 ? c.threads : std::max(1, cores() / jobs);
-  p.result.engine = fmt::format("{} local process{} of {} thread{}", jobs, jobs == 1 ? "" : "es", threads,
-                                threads == 1 ? "" : "s");
+  p.result.engine = todo.empty() ? std::string("nothing left to run: every variant from an earlier run")
+                                 : fmt::format("{} local process{} of {} thread{}", jobs,
+                                               jobs == 1 ? "" : "es", threads, threads == 1 ? "" : "s");
   if (!c.quiet)
     std::fprintf(stderr, "beadtwin %s: sweep of %s, %zu variants (%zu from an earlier run), %s\n",
                  BEADTWIN_VERSION, p.result.scenario_name.c_str(), p.points.size(), resumed.size(),
@@ -495,7 +496,10 @@ int run_mpi(const SweepCommand& c) {
     unbind_from_cores(threads);
     return scenarios::sweep_record_json(run_point(spec_of(work.at("spec")), point, threads, sharing, worker));
   };
-  cb.plain = [&] { return run_plain(c); };
+  cb.plain = [&] {  // mpirun -n 1 binds its one rank to one core: the variants would all run on it
+    unbind_from_cores(c.threads > 0 ? c.threads : cores());
+    return run_plain(c);
+  };
   return reinterpret_cast<mpi::Entry>(mpi_module_entry(mpi::kEntryName))(cb);
 }
 

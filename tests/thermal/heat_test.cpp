@@ -584,12 +584,7 @@ TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {
 TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
   constexpr int kLayers = 20;
   const ThermalMesh mesh = block(30, 30, kLayers);
-  Material material = test_material();
-  material.emissivity = 0.9;
-  Environment env;
-  env.bed_temp_c = 80.0;
-  HeatOptions options;
-  options.cooldown_s = 300.0;
+  const auto [material, env, options] = block_print();
   const auto run = [&](int threads) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     return solve_heat(mesh, kLayers, 0.0, material, env, options);
@@ -615,14 +610,7 @@ TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
 
 TEST(HeatSettled, LumpedLayersFarBelowTheTopGiveTheSameInterfacesWithinTheSolversTolerance) {
   const ThermalMesh mesh = thin_wall();
-  Material material = test_material();
-  material.emissivity = 0.9;
-  material.deposition_temp_c = 240.0;
-  Environment env;
-  env.bed_temp_c = 100.0;
-  HeatOptions options;
-  options.cooldown_s = 120.0;
-  options.lump_check_cells = 80;  // look every two layers (the default waits for 4,096 cells)
+  const auto [material, env, options] = thin_wall_print();
   const double end_s = mesh.cells.back().birth_s;
   HeatOptions kept = options;
   kept.lump = false;

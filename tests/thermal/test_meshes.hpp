@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/material.hpp"
+#include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
 
 namespace beadtwin::thermal {
@@ -111,6 +112,35 @@ inline ThermalMesh thin_wall() {
     return std::pair(p.a, p.b) < std::pair(q.a, q.b);
   });
   return mesh;
+}
+
+// How the thin wall is printed and cooled: deposited at 240 °C, radiating, on a table at 100 °C, cooled for
+// 120 s after the last bead, settled cells looked for every two layers (the default waits for 4,096 cells).
+struct HeatCase {
+  Material material;
+  Environment env;
+  HeatOptions options;
+};
+inline HeatCase thin_wall_print() {
+  HeatCase c;
+  c.material = test_material();
+  c.material.emissivity = 0.9;
+  c.material.deposition_temp_c = 240.0;
+  c.env.bed_temp_c = 100.0;
+  c.options.cooldown_s = 120.0;
+  c.options.lump_check_cells = 80;
+  return c;
+}
+
+// How the block is printed and cooled: radiating (so the right-hand side is nonlinear), on a table at 80 °C,
+// cooled for 300 s after the last layer.
+inline HeatCase block_print() {
+  HeatCase c;
+  c.material = test_material();
+  c.material.emissivity = 0.9;
+  c.env.bed_temp_c = 80.0;
+  c.options.cooldown_s = 300.0;
+  return c;
 }
 
 }  // namespace beadtwin::thermal

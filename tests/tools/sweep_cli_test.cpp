@@ -131,6 +131,21 @@ TEST(Sweep, AVariantThatFailsIsReportedAndTheSweepGoesOnAndResumes) {
   EXPECT_NE(read_file(out / "variants/v002/report.json").find("\"1in/s\""), std::string::npos);
 }
 
+TEST(Sweep, StartedAgainWithEveryVariantDoneItSaysNothingIsLeftToRun) {
+  const fs::path out = fs::temp_directory_path() / "bt_sweep_done";
+  fs::remove_all(out);
+  const std::string cmd =
+      "sweep " + tiny_scenario().string() + " --set sections.a.speed=1in/s,2in/s --jobs 2 -o " + out.string();
+  const auto first = beadtwin_cmd(cmd);
+  ASSERT_EQ(first.code, 0) << first.output;
+  EXPECT_NE(first.output.find("2 local processes"), std::string::npos) << first.output;
+  const auto again = beadtwin_cmd(cmd);
+  EXPECT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("nothing left to run"), std::string::npos) << again.output;
+  EXPECT_NE(sweep_json(out)["engine"].get<std::string>().find("nothing left to run"), std::string::npos);
+  EXPECT_EQ(sweep_json(out)["resumed"], 2);
+}
+
 TEST(Sweep, BadInputStopsItBeforeAnythingRuns) {
   const fs::path out = fs::temp_directory_path() / "bt_sweep_bad";
   const std::string scenario = tiny_scenario().string();

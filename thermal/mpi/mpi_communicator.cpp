@@ -64,7 +64,9 @@ class WorldCommunicator final : public Communicator {
   N_Vector new_vector(std::size_t local_length, std::size_t global_length, SUNContext context) override {
     N_Vector v = N_VNew_Parallel(comm_, static_cast<sunindextype>(local_length),
                                  static_cast<sunindextype>(global_length), context);
-    if (v != nullptr && N_VEnableFusedOps_Parallel(v, SUNTRUE) != 0) {
+    // The fused operations, and the all-reduce that thermal/vector_ops.hpp adds its blocked sums with.
+    if (v != nullptr && (N_VEnableFusedOps_Parallel(v, SUNTRUE) != 0 ||
+                         N_VEnableDotProdMultiLocal_Parallel(v, SUNTRUE) != 0)) {
       N_VDestroy(v);
       return nullptr;
     }

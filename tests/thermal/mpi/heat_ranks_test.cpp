@@ -99,26 +99,14 @@ TEST(HeatAcrossRanks, TheJobHasSeveralRanks) {
 // A block of 30 × 30 × 20 cells laid layer by layer: the integrator is rebuilt as the part grows, and each
 // rebuild shares the cells out again.
 TEST(HeatAcrossRanks, ABlockLaidLayerByLayerGivesTheOneRankAnswer) {
-  Material material = test_material();
-  material.emissivity = 0.9;
-  Environment env;
-  env.bed_temp_c = 80.0;
-  HeatOptions options;
-  options.cooldown_s = 300.0;
+  auto [material, env, options] = block_print();
   options.lump = false;
   expect_shared_equals_alone(block(30, 30, 20), 20, material, env, options);
 }
 
 // The same with settled cells lumped: every rank lumps the same cells, and the blocks follow the new cells.
 TEST(HeatAcrossRanks, SettledCellsAreLumpedAlikeOnEveryRank) {
-  Material material = test_material();
-  material.emissivity = 0.9;
-  material.deposition_temp_c = 240.0;
-  Environment env;
-  env.bed_temp_c = 100.0;
-  HeatOptions options;
-  options.cooldown_s = 120.0;
-  options.lump_check_cells = 80;
+  auto [material, env, options] = thin_wall_print();
   const ThermalMesh mesh = thin_wall();
   expect_shared_equals_alone(mesh, 40, material, env, options);
   options.communicator = world.get();

@@ -119,11 +119,7 @@ sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function
 // stopped on bad input). Every rank calls it once, before any thermal solve. Alone: `ok`.
 bool ranks_agree(thermal::Communicator* ranks, bool ok) {
   if (ranks == nullptr) return ok;
-  const std::vector<int> one_each(static_cast<std::size_t>(ranks->size()), 1);
-  std::vector<double> all(one_each.size());
-  const double mine = ok ? 1.0 : 0.0;
-  ranks->all_gather({&mine, 1}, one_each, all);
-  return all[0] != 0.0;
+  return ranks->gather_each(ok ? 1.0 : 0.0)[0] != 0.0;
 }
 
 // The variants a run runs: the ones named (all when none are).

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_nvector.h>
@@ -29,6 +30,14 @@ class Communicator {
   // A SUNDIALS MPI-parallel vector (N_VNew_Parallel) on these ranks: `local_length` of its `global_length`
   // values on this rank, with the fused operations enabled. Null when SUNDIALS fails.
   virtual N_Vector new_vector(std::size_t local_length, std::size_t global_length, SUNContext context) = 0;
+
+  // One value from each rank, in rank order (on every rank).
+  std::vector<double> gather_each(double value) {
+    const std::vector<int> one_each(static_cast<std::size_t>(size()), 1);
+    std::vector<double> all(one_each.size());
+    all_gather({&value, 1}, one_each, all);
+    return all;
+  }
 };
 
 }  // namespace beadtwin::thermal

@@ -125,12 +125,9 @@ Cvode::VectorHandle Cvode::make_vector(std::span<const double> init, Communicato
       throw InternalError("SUNDIALS: N_VEnableFusedOps_Serial failed");
   } else {
     // The global length is the sum of the ranks' parts.
-    const std::vector<int> ones(static_cast<std::size_t>(comm->size()), 1);
-    std::vector<double> lengths(ones.size());
-    const double mine = static_cast<double>(init.size());
-    comm->all_gather({&mine, 1}, ones, lengths);
     std::size_t global = 0;
-    for (const double l : lengths) global += static_cast<std::size_t>(l);
+    for (const double l : comm->gather_each(static_cast<double>(init.size())))
+      global += static_cast<std::size_t>(l);
     v.reset(comm->new_vector(init.size(), global, context_.get()));
     if (!v) throw InternalError("SUNDIALS: N_VNew_Parallel failed");
   }

@@ -486,10 +486,7 @@ void check_same_on_every_rank(const ThermalMesh& mesh, const HeatOptions& o, Com
   for (const ThermalLink& l : mesh.links) mix(l.a), mix(l.b), mix(l.interface);
   mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.lump);
   const double mine = static_cast<double>(h >> 12);  // 52 bits: exact in a double
-  const std::vector<int> one_each(static_cast<std::size_t>(ranks.size()), 1);
-  std::vector<double> all(one_each.size());
-  ranks.all_gather({&mine, 1}, one_each, all);
-  if (all[0] != mine)
+  if (ranks.gather_each(mine)[0] != mine)
     throw InternalError(
         fmt::format("thermal solve across ranks: rank {} was given another part than rank 0", ranks.rank()));
 }

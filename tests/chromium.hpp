@@ -150,6 +150,14 @@ class Chromium {
     std::vector<char*> argv;
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
+    // Chromium puts its singleton socket in a folder under TMPDIR, and a socket's path must fit in 108
+    // bytes: a test's own TMPDIR deep in a build tree does not leave room, so the browser gets /tmp.
+    std::vector<std::string> env = {"TMPDIR=/tmp"};
+    for (char** e = environ; *e; ++e)
+      if (std::string_view(*e).substr(0, 7) != "TMPDIR=") env.emplace_back(*e);
+    std::vector<char*> envp;
+    for (std::string& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
     const pid_t parent = ::getpid();
 
     pid_ = ::fork();
@@ -162,7 +170,7 @@ class Chromium {
       if (::dup2(log_fd, 1) < 0 || ::dup2(log_fd, 2) < 0 || ::dup2(to_browser[1], 3) < 0 ||
           ::dup2(from_browser[1], 4) < 0)
         ::_exit(127);
-      ::execv(argv[0], argv.data());
+      ::execve(argv[0], argv.data(), envp.data());
       ::_exit(127);
     }
     if (pid_ > 0) ::setpgid(pid_, pid_);  // as the child does, whichever runs first

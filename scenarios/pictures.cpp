@@ -129,11 +129,13 @@ double picture_time_s(const Toolpath& tp, double time_s, int up_to_layer) {
 }
 
 // The field of `colouring` for the variant of `in`, over the material voxels of `fill` (the part as the
-// picture shows it). `time_s`: the moment of a temperature picture.
-Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::FloatGrid& fill, double time_s,
+// picture shows it). `time_s`: the moment of a temperature picture. `thermal`: the variant's thermal run,
+// null while it runs (then only colourings that do not need it).
+Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun* thermal,
+                 const openvdb::FloatGrid& fill, double time_s,
                  const std::optional<std::pair<double, double>>& range) {
   const PictureFrame& frame = *in.frame;
-  const ThermalRun& th = *in.thermal;
+  BT_CHECK(thermal != nullptr || !needs_thermal(colouring));
   const Material& material = in.variant->material;
   Field f;
   // The scale from lo to hi (display units), or the picture's own range (given in the colouring's internal
@@ -145,6 +147,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
   };
   switch (colouring) {
     case Colouring::kFusion: {
+      const ThermalRun& th = *thermal;
       using thermal::Verdict;
       f.heading = "Fusion";
       f.title = "each piece of bead by its worst interface";
@@ -193,6 +196,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       break;
     }
     case Colouring::kSubstrate: {
+      const ThermalRun& th = *thermal;
       f.heading = "Substrate temperature at deposition";
       f.title = "temperature of what the bead landed on (°C)";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_substrate_c(th.mesh, th.heat));
@@ -201,6 +205,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       break;
     }
     case Colouring::kHealing: {
+      const ThermalRun& th = *thermal;
       f.heading = "Degree of healing";
       f.title = "least degree of healing of each piece of bead";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_healing(th.mesh, th.heat));
@@ -236,6 +241,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const openvdb::Fl
       break;
     }
     case Colouring::kTemperature: {
+      const ThermalRun& th = *thermal;
       f.heading = fmt::format("Temperature at {}", when(time_s));
       f.title = "temperature (°C)";
       const thermal::TemperatureSnapshot* s = snapshot_at(th.heat, time_s);
@@ -357,22 +363,46 @@ std::vector<double> picture_snapshot_times(const RenderSpec& spec, const Toolpat
   return out;
 }
 
-PictureFiles write_pictures(const PictureInputs& in, const std::filesystem::path& dir,
-                            std::vector<std::string>& notes) {
-  const Variant& v = *in.variant;
-  const Toolpath& tp = *in.toolpath;
-  const sim::Deposit& d = *in.deposit;
-  PictureFiles files;
-  // The part as a picture shows it, prepared once per shape: whole, as it stood when a layer was done, or
-  // as it stood at a moment (the material landed by then).
+bool needs_thermal(Colouring colouring) {
+  switch (colouring) {
+    case Colouring::kFusion:
+    case Colouring::kSubstrate:
+    case Colouring::kHealing:
+    case Colouring::kTemperature:
+      return true;
+    case Colouring::kSection:
+    case Colouring::kLayer:
+    case Colouring::kTime:
+    case Colouring::kDeviation:
+    case Colouring::kPorosity:
+      return false;
+  }
+  return true;
+}
+
+// The part as a picture shows it, prepared once per shape: whole, as it stood when a layer was done, or as
+// it stood at a moment (the material landed by then); by (last layer or -1, moment or infinity).
+struct PictureWriter::State {
+  PictureInputs in;
+  std::filesystem::path dir;
   struct Shown {
     openvdb::FloatGrid::Ptr fill;
     render::PreparedDeposit prepared;
   };
   std::map<std::pair<int, double>, Shown> shapes;
-  const auto shape = [&](int last_layer, double until_s) -> const Shown& {
+  // Per picture of the render block: its files once drawn (none for one left out).
+  std::vector<PictureFiles> drawn;
+  PictureFiles progress;  // the progress frames, once drawn
+  std::vector<std::string> notes;
+  bool early_done = false;
+
+  const Variant& variant() const { return *in.variant; }
+  const Toolpath& toolpath() const { return *in.toolpath; }
+
+  const Shown& shape(int last_layer, double until_s) {
     const std::pair key{last_layer, until_s};
     if (auto it = shapes.find(key); it != shapes.end()) return it->second;
+    const sim::Deposit& d = *in.deposit;
     sim::Deposit shown = d;
     if (last_layer >= 0)
       shown.fill = sim::fill_up_to_layer(d, last_layer);
@@ -380,30 +410,41 @@ PictureFiles write_pictures(const PictureInputs& in, const std::filesystem::path
       shown.fill = sim::fill_up_to_time(d, until_s);
     openvdb::FloatGrid::Ptr fill = shown.fill;
     return shapes.emplace(key, Shown{fill, render::PreparedDeposit(shown)}).first->second;
-  };
-  const std::string scenario_line = fmt::format("{} — variant {}", in.scenario->name, v.name);
-  for (const ImageSpec& im : v.render.images) {
-    if (im.colour == Colouring::kDeviation && !in.cad) {
-      if (v.render.images_given)
-        notes.push_back(fmt::format("picture '{}' left out: there is no CAD to compare with ({})", im.name,
-                                    v.program ? "a program is simulated" : "the sections print outlines"));
-      continue;
-    }
-    const double t = picture_time_s(tp, im.time_s, im.up_to_layer);
-    // A temperature picture at a moment inside the print shows the part as it stood then.
-    const bool at_moment =
-        im.up_to_layer < 0 && im.colour == Colouring::kTemperature && t < tp.total_time_s();
-    const Shown& shown = shape(im.up_to_layer, at_moment ? t : std::numeric_limits<double>::infinity());
-    const Field field = make_field(im.colour, in, *shown.fill, t, im.range);
-    std::string subtitle = scenario_line + ", " + view_title(im.camera);
+  }
+
+  // A picture of the render block: whether it is drawn at all, its moment, and the shape it shows.
+  bool left_out(const ImageSpec& im) const { return im.colour == Colouring::kDeviation && !in.cad; }
+  double moment_s(const ImageSpec& im) const { return picture_time_s(toolpath(), im.time_s, im.up_to_layer); }
+  // A temperature picture at a moment inside the print shows the part as it stood then.
+  bool at_moment(const ImageSpec& im) const {
+    return im.up_to_layer < 0 && im.colour == Colouring::kTemperature &&
+           moment_s(im) < toolpath().total_time_s();
+  }
+  const Shown& shape_of(const ImageSpec& im) {
+    return shape(im.up_to_layer, at_moment(im) ? moment_s(im) : std::numeric_limits<double>::infinity());
+  }
+
+  std::string scenario_line() const {
+    return fmt::format("{} — variant {}", in.scenario->name, variant().name);
+  }
+
+  void draw_image(std::size_t k, const ThermalRun* thermal) {
+    const Variant& v = variant();
+    const ImageSpec& im = v.render.images[k];
+    const Shown& shown = shape_of(im);
+    const Field field = make_field(im.colour, in, thermal, *shown.fill, moment_s(im), im.range);
+    std::string subtitle = scenario_line() + ", " + view_title(im.camera);
     if (im.up_to_layer >= 0) subtitle += fmt::format(", after layer {}", im.up_to_layer);
-    if (at_moment) subtitle += ", as it stood then";
+    if (at_moment(im)) subtitle += ", as it stood then";
     if (im.cut) subtitle += ", cut away";
     const render::FieldPicture picture =
         draw(shown.prepared, field, im.camera, im.cut, in, field.heading, subtitle);
-    write_picture(picture, dir, im.name, v.render.exr, v.name, files);
+    write_picture(picture, dir, im.name, v.render.exr, v.name, drawn[k]);
   }
-  if (v.render.progress) {
+
+  void draw_progress(const ThermalRun* thermal) {
+    const Variant& v = variant();
+    const Toolpath& tp = toolpath();
     const ProgressSpec& p = *v.render.progress;
     const std::filesystem::path frames = dir / "progress";
     std::filesystem::create_directories(frames);
@@ -412,18 +453,73 @@ PictureFiles write_pictures(const PictureInputs& in, const std::filesystem::path
       if ((i + 1) % static_cast<std::size_t>(p.every) != 0 && i + 1 != tp.layers.size()) continue;
       const int layer = static_cast<int>(i);
       const Shown& shown = shape(layer, std::numeric_limits<double>::infinity());
-      const Field field = make_field(p.colour, in, *shown.fill, layer_end_s(tp, layer), std::nullopt);
+      const Field field =
+          make_field(p.colour, in, thermal, *shown.fill, layer_end_s(tp, layer), std::nullopt);
       const render::FieldPicture picture =
           draw(shown.prepared, field, p.camera, std::nullopt, in, field.heading,
-               fmt::format("{}, layer {} of {}, {}", scenario_line, layer, tp.layers.size(),
+               fmt::format("{}, layer {} of {}, {}", scenario_line(), layer, tp.layers.size(),
                            when(layer_end_s(tp, layer))));
       const std::string stem = fmt::format("frame-{:04}", frame_index++);
       render::write_png(picture.image, frames / (stem + ".png"));
-      files.progress.push_back(v.name + "/progress/" + stem + ".png");
+      progress.progress.push_back(v.name + "/progress/" + stem + ".png");
       shapes.erase({layer, std::numeric_limits<double>::infinity()});  // each frame's shape is used once
     }
   }
-  return files;
+};
+
+PictureWriter::PictureWriter(const PictureInputs& in, std::filesystem::path dir)
+    : state_(std::make_unique<State>()) {
+  state_->in = in;
+  state_->dir = std::move(dir);
+  state_->drawn.resize(in.variant->render.images.size());
+}
+
+PictureWriter::~PictureWriter() = default;
+
+void PictureWriter::without_thermal() {
+  State& s = *state_;
+  BT_CHECK(!s.early_done);
+  s.early_done = true;
+  const Variant& v = s.variant();
+  for (std::size_t k = 0; k < v.render.images.size(); ++k) {
+    const ImageSpec& im = v.render.images[k];
+    if (s.left_out(im)) {
+      if (v.render.images_given)
+        s.notes.push_back(fmt::format("picture '{}' left out: there is no CAD to compare with ({})", im.name,
+                                      v.program ? "a program is simulated" : "the sections print outlines"));
+      continue;
+    }
+    if (needs_thermal(im.colour))
+      (void)s.shape_of(im);  // drawn once the thermal run is done
+    else
+      s.draw_image(k, nullptr);
+  }
+  // The progress frames are drawn in one go (each shape is dropped once drawn, so they are not prepared
+  // ahead).
+  if (v.render.progress && !needs_thermal(v.render.progress->colour)) s.draw_progress(nullptr);
+}
+
+PictureFiles PictureWriter::finish(const ThermalRun& thermal) {
+  State& s = *state_;
+  if (!s.early_done) without_thermal();
+  const Variant& v = s.variant();
+  for (std::size_t k = 0; k < v.render.images.size(); ++k) {
+    const ImageSpec& im = v.render.images[k];
+    if (!s.left_out(im) && needs_thermal(im.colour)) s.draw_image(k, &thermal);
+  }
+  if (v.render.progress && needs_thermal(v.render.progress->colour)) s.draw_progress(&thermal);
+  s.shapes.clear();
+  PictureFiles out;
+  for (PictureFiles& d : s.drawn) {
+    out.images.insert(out.images.end(), d.images.begin(), d.images.end());
+    out.exr.insert(out.exr.end(), d.exr.begin(), d.exr.end());
+  }
+  out.progress = std::move(s.progress.progress);
+  return out;
+}
+
+const std::vector<std::string>& PictureWriter::notes() const {
+  return state_->notes;
 }
 
 std::vector<std::string> write_sheets(const RunResult& result, const std::filesystem::path& out_dir) {

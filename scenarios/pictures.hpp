@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -47,23 +48,44 @@ struct PictureInputs {
   const Variant* variant = nullptr;
   const Toolpath* toolpath = nullptr;
   const sim::Deposit* deposit = nullptr;
-  const ThermalRun* thermal = nullptr;
   const CadCheck* cad = nullptr;  // null without a CAD to compare with
   const PictureFrame* frame = nullptr;
 };
 
-// What write_pictures wrote, relative to the run's output directory.
+// What PictureWriter wrote, relative to the run's output directory.
 struct PictureFiles {
   std::vector<std::string> images;    // PNG, one per picture, in the order of the render block
   std::vector<std::string> exr;       // with render.exr
   std::vector<std::string> progress;  // the progress frames, in layer order
 };
 
+// Whether pictures so coloured need the thermal run (temperatures, fusion verdicts, healing).
+bool needs_thermal(Colouring colouring);
+
 // Renders the variant's pictures into `dir` (the variant's own directory, named after it under the run's
-// output directory). A picture that cannot be drawn for this variant (a deviation without a CAD) is left out
-// with a note when the scenario asked for it, silently when it is one of the defaults.
-PictureFiles write_pictures(const PictureInputs& in, const std::filesystem::path& dir,
-                            std::vector<std::string>& notes);
+// output directory), in two goes so that most of the work can run beside the thermal stage:
+// - without_thermal() needs only the deposit and the CAD comparison: it prepares the shape of every picture
+//   (its surface and ray-tracing scene) and draws the pictures not coloured by a thermal result;
+// - finish() draws the rest from the thermal run and returns every file, in the order of the render block.
+// The two may run on different threads, one after the other. A picture that cannot be drawn for this variant
+// (a deviation without a CAD) is left out with a note when the scenario asked for it, silently when it is one
+// of the defaults. What `in` points to must outlive the writer.
+class PictureWriter {
+ public:
+  PictureWriter(const PictureInputs& in, std::filesystem::path dir);
+  ~PictureWriter();
+  PictureWriter(const PictureWriter&) = delete;
+  PictureWriter& operator=(const PictureWriter&) = delete;
+
+  void without_thermal();
+  PictureFiles finish(const ThermalRun& thermal);
+  // What the pictures had to say (left-out pictures), in the order of the render block.
+  const std::vector<std::string>& notes() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
 
 // For every picture name, the variants' pictures side by side with their names (comparison-<name>.png in
 // `out_dir`), when there are two variants or more and render.sheet is on. Returns the files, relative to

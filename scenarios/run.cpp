@@ -419,23 +419,50 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
   const sim::Deposit deposit =
       stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
-  // The CAD comparison and the thermal stage only read the deposit, so the comparison runs on a thread of
-  // its own beside the thermal stage. Both use both cores, but neither keeps both busy all the time (the
-  // thermal stage's loops are short, between the integrator's serial steps): the default scenario gains
-  // about 0.4 s, for the comparison's grids held while the thermal mesh exists (docs/PERFORMANCE.md). Its
-  // time is recorded once both are done, so the stages keep one order. An error of either is thrown after
-  // both have finished (the future waits as it is destroyed).
-  double compare_s = 0.0;
-  std::future<std::optional<CadCheck>> comparing = std::async(std::launch::async, [&] {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::optional<CadCheck> out = check_against_cad(v, deposit);
-    compare_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    return out;
+  // Only the thermal stage and the pictures coloured by its results need it: the rest reads the deposit
+  // alone and runs on a thread of its own beside the thermal stage: the CAD comparison, the pictures' shapes
+  // (surfaces and ray-tracing scenes) and the pictures that need no thermal result, and the deposit's files.
+  // The thermal stage keeps both cores busy only in its short parallel loops between the integrator's serial
+  // steps, so the other thread mostly fills the gaps (docs/PERFORMANCE.md). The main thread touches none of
+  // what that thread writes until it is done. The times of its stages are recorded once both are done, so
+  // the stages keep one order; the render stage's time is both of its goes. An error of either is thrown
+  // after both have finished (the future waits as it is destroyed).
+  PictureInputs pictures_in;
+  pictures_in.scenario = &sc;
+  pictures_in.variant = &v;
+  pictures_in.toolpath = &tp;
+  pictures_in.deposit = &deposit;
+  pictures_in.frame = &frame;
+  struct Beside {
+    std::optional<CadCheck> cad;
+    std::optional<PictureWriter> pictures;
+    std::vector<std::string> notes;  // the skin's
+    double compare_s = 0.0, render_s = 0.0, vdb_s = 0.0, skin_s = 0.0, fields_s = 0.0;
+  } beside;
+  std::future<void> beside_thermal = std::async(std::launch::async, [&] {
+    const auto timed = [](double& seconds, const auto& work) {
+      const auto t0 = std::chrono::steady_clock::now();
+      work();
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit); });
+    timed(beside.render_s, [&] {
+      pictures_in.cad = beside.cad ? &*beside.cad : nullptr;
+      beside.pictures.emplace(pictures_in, dir);
+      beside.pictures->without_thermal();
+    });
+    timed(beside.vdb_s, [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
+    res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
+    res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
+    if (!v.output.skin_format.empty())
+      timed(beside.skin_s, [&] { write_skin(v, tp, deposit, dir, res.exported, beside.notes); });
+    if (v.output.write_fields) timed(beside.fields_s, [&] { write_fields(v, deposit, dir, res.exported); });
   });
   const ThermalRun th = stages.run(
       "thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal"), options.thermal_ranks); });
-  const std::optional<CadCheck> cad = comparing.get();
-  stages.record("compare", compare_s);
+  beside_thermal.get();
+  const std::optional<CadCheck>& cad = beside.cad;
+  stages.record("compare", beside.compare_s);
   for (const auto* notes : {&th.heat.notes, &th.mesh.notes})  // the thermal stage's choices
     res.notes.insert(res.notes.end(), notes->begin(), notes->end());
   if (th.heat.ranks > 1)
@@ -453,26 +480,23 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
             {s.time_s, (rel / (stem + ".vdb")).string(), (rel / (stem + ".vtp")).string()});
       }
     });
-  stages.run("render", [&] {
-    PictureInputs in;
-    in.scenario = &sc;
-    in.variant = &v;
-    in.toolpath = &tp;
-    in.deposit = &deposit;
-    in.thermal = &th;
-    in.cad = cad ? &*cad : nullptr;
-    in.frame = &frame;
-    PictureFiles files = write_pictures(in, dir, res.notes);
+  {
+    if (options.progress) options.progress(v.name, "render", 0.0);
+    const auto t0 = std::chrono::steady_clock::now();
+    PictureFiles files = beside.pictures->finish(th);
+    stages.record("render", beside.render_s +
+                                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const std::vector<std::string>& picture_notes = beside.pictures->notes();
+    res.notes.insert(res.notes.end(), picture_notes.begin(), picture_notes.end());
     res.images = std::move(files.images);
     res.exr_images = std::move(files.exr);
     res.progress_frames = std::move(files.progress);
-  });
-  stages.run("vdb", [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
-  res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
-  res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
-  if (!v.output.skin_format.empty())
-    stages.run("skin", [&] { write_skin(v, tp, deposit, dir, res.exported, res.notes); });
-  if (v.output.write_fields) stages.run("fields", [&] { write_fields(v, deposit, dir, res.exported); });
+    beside.pictures.reset();  // the shapes
+  }
+  stages.record("vdb", beside.vdb_s);
+  if (!v.output.skin_format.empty()) stages.record("skin", beside.skin_s);
+  if (v.output.write_fields) stages.record("fields", beside.fields_s);
+  res.notes.insert(res.notes.end(), beside.notes.begin(), beside.notes.end());
   res.metrics = measure(v, tp, deposit, th);
   if (cad) put_cad_metrics(*cad, res.metrics);
   res.metrics.extruder_demand = worst_flow_excess(v.machine.extruder, tp).ratio;

@@ -40,6 +40,20 @@ Eigen::Matrix3d conductivity(const Eigen::Vector2d& along, const Material& m) {
          m.conductivity_through_W_mK * z * z.transpose();
 }
 
+// f(i) for every i in [begin, end), on TBB's threads when there are enough to be worth handing out.
+template <class F>
+void for_range(std::size_t begin, std::size_t end, const F& f) {
+  constexpr std::size_t kGrain = 4096;
+  if (end < begin + 2 * kGrain) {
+    for (std::size_t i = begin; i < end; ++i) f(i);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+                    });
+}
+
 // The part as an ODE system: y = [T_0 .. T_{n-1} (°C) | Q (J lost through the boundary)]. Cells are in
 // birth order, so the born ones are the first born_.
 //
@@ -423,15 +437,7 @@ class PartModel final : public OdeSystem {
 
   template <class F>
   void for_cells(std::size_t begin, std::size_t end, const F& f) const {
-    constexpr std::size_t kGrain = 4096;
-    if (end < begin + 2 * kGrain) {
-      for (std::size_t i = begin; i < end; ++i) f(i);
-      return;
-    }
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, kGrain),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
-                      });
+    for_range(begin, end, f);
   }
 
   std::size_t n_;
@@ -801,6 +807,7 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
   long steps = 0, rhs = 0, linear = 0;  // of the integrators replaced
   double t = t0;
   std::vector<double> now_all, between_all;  // across ranks: the whole state gathered
+  std::vector<double> first_point;           // the state at the first Gauss-Legendre point of a step
   const auto healing_rate = [&](std::span<const double> state, std::uint32_t k) {
     return reptation.rate_per_s(0.5 * (state[cells_of[k][0]] + state[cells_of[k][1]]));
   };
@@ -837,12 +844,21 @@ HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double e
       const std::span<const double> now = model.gather(cvode->state(), now_all);
       find_healing(before, now);
       if (!healing_now.empty() || !lumps_healing_now.empty()) {
-        // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
-        for (const double at : {mid - offset, mid + offset}) {
-          const std::span<const double> y = model.gather(cvode->interpolate(at), between_all);
-          for (const std::uint32_t k : healing_now) integral[k] += half * healing_rate(y, k);
-          for (const std::uint32_t g : lumps_healing_now)
-            lump_integral[g] += half * reptation.rate_per_s(y[g]);
+        // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order. Each
+        // interface and lumped cell is listed once, so they are shared out among threads as they are (an
+        // exponential each, twice a step: a sixth of the stage when it ran on one thread), each summing its
+        // two points in order as before.
+        const std::span<const double> y0 = model.gather(cvode->interpolate(mid - offset), between_all);
+        first_point.assign(y0.begin(), y0.end());
+        const std::span<const double> y1 = model.gather(cvode->interpolate(mid + offset), between_all);
+        for_range(0, healing_now.size(), [&](std::size_t e) {
+          const std::uint32_t k = healing_now[e];
+          integral[k] += half * healing_rate(first_point, k);
+          integral[k] += half * healing_rate(y1, k);
+        });
+        for (const std::uint32_t g : lumps_healing_now) {
+          lump_integral[g] += half * reptation.rate_per_s(first_point[g]);
+          lump_integral[g] += half * reptation.rate_per_s(y1[g]);
         }
       }
       std::copy(now.begin(), now.end(), before.begin());

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <tbb/task_arena.h>
 
 #include "core/atomic_file.hpp"
 #include "scenarios/pictures.hpp"
@@ -135,19 +136,64 @@ std::vector<const Variant*> chosen_variants(const Scenario& sc, const RunOptions
 // Compares the deposit with the CAD the sections print; nullopt when there is none (a program, AM Outline
 // sections). The band reaches the requested stock and a bead width beyond it (stocks beyond that are
 // reported as "at least"), within 4..32 voxels.
-std::optional<CadCheck> check_against_cad(const Variant& v, const sim::Deposit& deposit) {
+// The CAD a variant's print is compared with, and how, on voxels of `voxel_mm`; nothing without one (a
+// program simulated, or sections that print outlines).
+struct CadPlan {
+  slicer::TriangleMesh cad;
+  sim::CadCompareOptions options;
+  double requested_stock_mm = 0.0, map_half_range_mm = 0.0;
+  sim::CadSurface surface() const { return {cad.vertices, cad.triangles}; }
+};
+std::optional<CadPlan> plan_cad_check(const Variant& v, double voxel_mm) {
   if (v.program || !v.part.loaded) return std::nullopt;
-  const std::optional<slicer::TriangleMesh> cad = slicer::printed_cad(*v.part.loaded, v.sections);
+  std::optional<slicer::TriangleMesh> cad = slicer::printed_cad(*v.part.loaded, v.sections);
   if (!cad) return std::nullopt;
   const StockScale stock = stock_scale(v);
+  CadPlan plan;
+  plan.cad = std::move(*cad);
+  plan.requested_stock_mm = stock.requested_mm;
+  plan.map_half_range_mm = stock.half_range_mm;
+  plan.options.requested_stock_mm = stock.requested_mm;
+  plan.options.band_mm =
+      std::clamp(std::abs(stock.requested_mm) + stock.widest_bead_mm, 4.0 * voxel_mm, 32.0 * voxel_mm);
+  return plan;
+}
+
+// The part of the CAD check that needs no deposit, made while it runs: the plan and the CAD's distance grid
+// on the voxels the deposit will use.
+struct CadAhead {
+  double voxel_mm = 0.0;
+  CadPlan plan;
+  sim::CadDistance distance;
+};
+std::optional<CadAhead> cad_check_ahead(const Variant& v, const Toolpath& tp) {
+  if (v.program || !v.part.loaded) return std::nullopt;
+  CadAhead ahead;
+  try {
+    ahead.voxel_mm = sim::deposit_voxel_size_mm(tp, deposit_options(v));
+  } catch (const InputError&) {
+    return std::nullopt;  // the deposit says what is wrong, naming the scenario's key
+  }
+  std::optional<CadPlan> plan = plan_cad_check(v, ahead.voxel_mm);
+  if (!plan) return std::nullopt;
+  ahead.plan = std::move(*plan);
+  ahead.distance = sim::cad_distance(ahead.plan.surface(), ahead.voxel_mm, ahead.plan.options);
+  return ahead;
+}
+
+// The print against its CAD, with what was made ahead for the deposit's voxels (else all of it here).
+std::optional<CadCheck> check_against_cad(const Variant& v, const sim::Deposit& deposit,
+                                          const std::optional<CadAhead>& ahead) {
+  const bool usable = ahead && ahead->voxel_mm == deposit.voxel_size_mm;
+  std::optional<CadPlan> fresh;
+  if (!usable) fresh = plan_cad_check(v, deposit.voxel_size_mm);
+  const CadPlan* plan = usable ? &ahead->plan : fresh ? &*fresh : nullptr;
+  if (plan == nullptr) return std::nullopt;
   CadCheck check;
-  check.requested_stock_mm = stock.requested_mm;
-  check.map_half_range_mm = stock.half_range_mm;
-  sim::CadCompareOptions o;
-  o.requested_stock_mm = check.requested_stock_mm;
-  o.band_mm = std::clamp(std::abs(check.requested_stock_mm) + stock.widest_bead_mm,
-                         4.0 * deposit.voxel_size_mm, 32.0 * deposit.voxel_size_mm);
-  check.comparison = sim::compare_with_cad(deposit, {cad->vertices, cad->triangles}, o);
+  check.requested_stock_mm = plan->requested_stock_mm;
+  check.map_half_range_mm = plan->map_half_range_mm;
+  check.comparison =
+      sim::compare_with_cad(deposit, plan->surface(), plan->options, usable ? &ahead->distance : nullptr);
   return check;
 }
 
@@ -417,6 +463,13 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
                       slicer::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
   });
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
+  // The deposit keeps one core busy; the CAD's side of the comparison (its distance grid) needs only the
+  // voxel size, so it is made on the other meanwhile. Its error, if any, is thrown by the comparison, after
+  // the deposit's (the future waits as it is destroyed).
+  std::future<std::optional<CadAhead>> cad_ahead = std::async(std::launch::async, [&] {
+    tbb::task_arena one_core(1);  // the deposit has the other
+    return one_core.execute([&] { return cad_check_ahead(v, tp); });
+  });
   const sim::Deposit deposit =
       stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
   // Only the thermal stage and the pictures coloured by its results need it: the rest reads the deposit
@@ -445,7 +498,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
       work();
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
-    timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit); });
+    timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
     timed(beside.render_s, [&] {
       pictures_in.cad = beside.cad ? &*beside.cad : nullptr;
       beside.pictures.emplace(pictures_in, dir);

@@ -113,13 +113,12 @@ std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double sp
   return first + count_samples(m, t.q, t.r, spacing, limit - first);
 }
 
-void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
-  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0)
-    throw InputError("nothing was deposited: there is no printed part to compare with the CAD");
+// The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
+void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
   std::string problems;
   const auto add = [&](const std::string& problem) { problems += (problems.empty() ? "" : "; ") + problem; };
 
-  g.voxel_mm = deposit.fill->voxelSize()[0];
+  g.voxel_mm = voxel_mm;
   if (!(g.voxel_mm > 0 && std::isfinite(g.voxel_mm)))
     throw InputError({}, "voxel_size",
                      fmt::format("the deposit's voxel size must be positive, got {}", g.voxel_mm));
@@ -180,6 +179,12 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
         fmt::format("the CAD's surface ({:.6g} mm²) is too large for {} mm voxels and a {} mm band: "
                     "its distance grids would hold about {:.3g} voxels (limit {:.3g})",
                     area, g.voxel_mm, g.band_mm, band_voxels, kMaxBandVolume));
+}
+
+void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
+  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0)
+    throw InputError("nothing was deposited: there is no printed part to compare with the CAD");
+  validate_cad(deposit.fill->voxelSize()[0], cad, o, g);
   const double box = static_cast<double>(deposit.fill->evalActiveVoxelBoundingBox().expandBy(1).volume());
   if (box > kMaxDenseVoxels)
     throw InputError(
@@ -584,8 +589,20 @@ void measure_outside(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& c
 
 }  // namespace
 
+CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadCompareOptions& options) {
+  openvdb::initialize();
+  Geometry g;
+  validate_cad(voxel_size_mm, cad, options, g);
+  CadDistance out;
+  out.voxel_mm = g.voxel_mm;
+  out.band_mm = g.band_mm;
+  out.grid =
+      cad_distance_grid(cad, *deposit_transform(g.voxel_mm), static_cast<float>(g.band_mm / g.voxel_mm));
+  return out;
+}
+
 CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
-                               const CadCompareOptions& options) {
+                               const CadCompareOptions& options, const CadDistance* made_ahead) {
   openvdb::initialize();
   Geometry g;
   validate(deposit, cad, options, g);
@@ -596,7 +613,11 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   out.plate_z_mm = plate_k * g.voxel_mm;
 
   const auto band_voxels = static_cast<float>(g.band_mm / g.voxel_mm);
-  const openvdb::FloatGrid::Ptr cad_grid = cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
+  const bool ahead = made_ahead != nullptr && made_ahead->grid && made_ahead->voxel_mm == g.voxel_mm &&
+                     made_ahead->band_mm == g.band_mm &&
+                     made_ahead->grid->transform() == deposit.fill->transform();
+  const openvdb::FloatGrid::Ptr cad_grid =
+      ahead ? made_ahead->grid : cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
   if (options.exclude_plate) mark_plate(triangles, *cad_grid, g, out.plate_z_mm);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);

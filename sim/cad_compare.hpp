@@ -103,12 +103,23 @@ struct CadComparison {
   openvdb::FloatGrid::ConstPtr cad_distance;
 };
 
+// The CAD's half of a comparison: its signed distance on the voxels of a deposit of `voxel_size_mm`
+// (deposit_transform), which needs no deposit and so can be made while the deposit runs. Throws InputError
+// as compare_with_cad does for the CAD and the options.
+struct CadDistance {
+  double voxel_mm = 0.0, band_mm = 0.0;  // what it was made for
+  openvdb::FloatGrid::Ptr grid;
+};
+CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadCompareOptions& options);
+
 // Compares `deposit` (the printed part: fill >= 0.5) with `cad`. Throws InputError, listing every problem,
 // for a deposit without printed voxels, a CAD without triangles, a vertex that is not finite, a triangle
 // index out of range, options out of range, or a CAD so large for the voxels that its bands would not fit
-// in memory. Deterministic: the numbers do not depend on the number of threads.
+// in memory. Deterministic: the numbers do not depend on the number of threads. `made_ahead`: the CAD's
+// distance from cad_distance for the same CAD and options, used when it was made for the deposit's voxels
+// and the options' band (else made again here).
 CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
-                               const CadCompareOptions& options);
+                               const CadCompareOptions& options, const CadDistance* made_ahead = nullptr);
 
 // The CAD's signed distance (mm, negative inside; ±band beyond the band) at `point_mm`, trilinear between
 // voxel centres. Safe to call from several threads at once on the same grid.

@@ -645,6 +645,12 @@ Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm)
   return Eigen::Vector3d(ijk.x() + 0.5, ijk.y() + 0.5, ijk.z() + 0.5) * voxel_size_mm;
 }
 
+double deposit_voxel_size_mm(const Toolpath& toolpath, const DepositOptions& options) {
+  validate(toolpath, options);
+  Deposit unused;
+  return settle_voxel_size(toolpath, options, unused);
+}
+
 Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   openvdb::initialize();
   validate(toolpath, options);

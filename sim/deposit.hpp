@@ -151,6 +151,11 @@ struct Deposit {
 // Deterministic: the grids and numbers do not depend on the number of threads.
 Deposit deposit(const Toolpath& toolpath, const DepositOptions& options = {});
 
+// The voxel size deposit() would use for `toolpath` with `options`, mm, known before it runs (what is made
+// on the deposit's voxels can start beside it). Throws InputError as deposit() does for a toolpath that
+// cannot be deposited or a voxel size that does not fit the memory budget.
+double deposit_voxel_size_mm(const Toolpath& toolpath, const DepositOptions& options = {});
+
 // The grids' transform for voxels of `voxel_size_mm` (> 0): index (i,j,k) ↦ centre ((i+½)s, (j+½)s, (k+½)s).
 openvdb::math::Transform::Ptr deposit_transform(double voxel_size_mm);
 // The voxel that contains `point_mm` (machine frame).

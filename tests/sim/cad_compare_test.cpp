@@ -230,6 +230,41 @@ TEST(CadCompare, SameNumbersForAnyNumberOfThreads) {
   EXPECT_EQ(one.outside_volume_mm3, two.outside_volume_mm3);
 }
 
+// The CAD's distance made ahead of the deposit (the run makes it while the deposit runs) gives the same
+// comparison; one made for other voxels or another band is not used, and the comparison is still right.
+TEST(CadCompare, TheCadsDistanceMadeAheadGivesTheSameNumbers) {
+  const Printed& p = stocked();
+  const CadSurface cad{p.cad.vertices, p.cad.triangles};
+  const CadComparison& plain = stocked_comparison();
+  const CadDistance ahead = cad_distance(cad, kVoxel, options(kStock));
+  EXPECT_EQ(ahead.voxel_mm, kVoxel);
+  EXPECT_EQ(ahead.band_mm, kBand);
+  ASSERT_TRUE(ahead.grid);
+  EXPECT_TRUE(ahead.grid->transform() == p.deposit.fill->transform());
+  const CadComparison with = compare_with_cad(p.deposit, cad, options(kStock), &ahead);
+  EXPECT_EQ(with.cad_distance, ahead.grid);  // used, not made again
+  EXPECT_EQ(with.min_stock_mm, plain.min_stock_mm);
+  EXPECT_EQ(with.max_stock_mm, plain.max_stock_mm);
+  EXPECT_EQ(with.mean_stock_mm, plain.mean_stock_mm);
+  EXPECT_EQ(with.deviation_rms_mm, plain.deviation_rms_mm);
+  EXPECT_EQ(with.outside_volume_mm3, plain.outside_volume_mm3);
+  for (const CadDistance& other : {cad_distance(cad, 2.0 * kVoxel, options(kStock)), [&] {
+                                     CadCompareOptions o = options(kStock);
+                                     o.band_mm = 0.5 * kBand;
+                                     return cad_distance(cad, kVoxel, o);
+                                   }()}) {
+    const CadComparison again = compare_with_cad(p.deposit, cad, options(kStock), &other);
+    EXPECT_NE(again.cad_distance, other.grid);
+    EXPECT_EQ(again.mean_stock_mm, plain.mean_stock_mm);
+    EXPECT_EQ(again.deviation_rms_mm, plain.deviation_rms_mm);
+  }
+  // Bad input is refused ahead as it is in the comparison.
+  CadCompareOptions bad = options(kStock);
+  bad.band_mm = 0;
+  EXPECT_THROW((void)cad_distance(cad, kVoxel, bad), InputError);
+  EXPECT_THROW((void)cad_distance(CadSurface{}, kVoxel, options(kStock)), InputError);
+}
+
 TEST(CadCompare, BadInputIsAnInputError) {
   const Printed& p = stocked();
   const CadSurface cad{p.cad.vertices, p.cad.triangles};

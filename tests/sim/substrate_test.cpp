@@ -331,6 +331,11 @@ TEST(Deposit, AutomaticVoxelSizeFitsTheMemoryBudget) {
   ASSERT_EQ(d.notes.size(), 1u);
   EXPECT_NE(d.notes[0].find("memory budget"), std::string::npos) << d.notes[0];
   EXPECT_TRUE(sim::deposit(block(5, 2)).notes.empty());
+  // Known before the deposit runs (the run makes the CAD's distance on these voxels meanwhile).
+  EXPECT_EQ(sim::deposit_voxel_size_mm(block(5, 2), o), d.voxel_size_mm);
+  EXPECT_EQ(sim::deposit_voxel_size_mm(block(5, 2)), sim::deposit(block(5, 2)).voxel_size_mm);
+  o.voxel_size_mm = 0.5;  // asked for, and over the budget: refused as the deposit refuses it
+  EXPECT_THROW((void)sim::deposit_voxel_size_mm(block(5, 2), o), InputError);
 }
 
 // Coast (issue 6, item 3): the planner writes a coast as steps whose material falls off linearly to zero

@@ -1,6 +1,8 @@
 #include "scenarios/run.hpp"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <future>
@@ -474,12 +476,12 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
       stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
   // Only the thermal stage and the pictures coloured by its results need it: the rest reads the deposit
   // alone and runs on a thread of its own beside the thermal stage: the CAD comparison, the pictures' shapes
-  // (surfaces and ray-tracing scenes) and the pictures that need no thermal result, and the deposit's files.
-  // The thermal stage keeps both cores busy only in its short parallel loops between the integrator's serial
-  // steps, so the other thread mostly fills the gaps (docs/PERFORMANCE.md). The main thread touches none of
-  // what that thread writes until it is done. The times of its stages are recorded once both are done, so
-  // the stages keep one order; the render stage's time is both of its goes. An error of either is thrown
-  // after both have finished (the future waits as it is destroyed).
+  // (surfaces and ray-tracing scenes) and the pictures that need no thermal result, and the deposit's files
+  // (shared, below). The thermal stage keeps both cores busy only in its short parallel loops between the
+  // integrator's serial steps, so the other thread mostly fills the gaps (docs/PERFORMANCE.md). The main
+  // thread touches none of what that thread writes until it is done. The times of its stages are recorded
+  // once both are done, so the stages keep one order; the render stage's time is both of its goes. An error
+  // of either is thrown after both have finished (the future waits as it is destroyed).
   PictureInputs pictures_in;
   pictures_in.scenario = &sc;
   pictures_in.variant = &v;
@@ -490,29 +492,47 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     std::optional<CadCheck> cad;
     std::optional<PictureWriter> pictures;
     std::vector<std::string> notes;  // the skin's
-    double compare_s = 0.0, render_s = 0.0, vdb_s = 0.0, skin_s = 0.0, fields_s = 0.0;
+    double compare_s = 0.0, render_s = 0.0;
   } beside;
+  const auto timed = [](double& seconds, const auto& work) {
+    const auto t0 = std::chrono::steady_clock::now();
+    work();
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  // The deposit's files, each written by whichever thread comes to it first: that thread once its pictures
+  // are drawn, or this one once the thermal stage is done (on a large part the comparison outlasts the
+  // thermal stage; on a small one the thermal stage outlasts all of it). Each writes its own fields of res.
+  struct FileJob {
+    std::atomic_flag taken;
+    double seconds = 0.0;
+    std::function<void()> work;  // none: not asked for
+  };
+  std::array<FileJob, 3> file_jobs;
+  auto& [vdb_job, skin_job, fields_job] = file_jobs;
+  vdb_job.work = [&] {
+    sim::write_deposit_vdb(deposit, dir / "deposit.vdb");
+    res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
+    res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
+  };
+  if (!v.output.skin_format.empty())
+    skin_job.work = [&] { write_skin(v, tp, deposit, dir, res.exported, beside.notes); };
+  if (v.output.write_fields) fields_job.work = [&] { write_fields(v, deposit, dir, res.exported); };
+  const auto write_files = [&] {
+    for (FileJob& job : file_jobs)
+      if (job.work && !job.taken.test_and_set()) timed(job.seconds, job.work);
+  };
   std::future<void> beside_thermal = std::async(std::launch::async, [&] {
-    const auto timed = [](double& seconds, const auto& work) {
-      const auto t0 = std::chrono::steady_clock::now();
-      work();
-      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
     timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
     timed(beside.render_s, [&] {
       pictures_in.cad = beside.cad ? &*beside.cad : nullptr;
       beside.pictures.emplace(pictures_in, dir);
       beside.pictures->without_thermal();
     });
-    timed(beside.vdb_s, [&] { sim::write_deposit_vdb(deposit, dir / "deposit.vdb"); });
-    res.deposit_file = (std::filesystem::path(v.name) / "deposit.vdb").string();
-    res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
-    if (!v.output.skin_format.empty())
-      timed(beside.skin_s, [&] { write_skin(v, tp, deposit, dir, res.exported, beside.notes); });
-    if (v.output.write_fields) timed(beside.fields_s, [&] { write_fields(v, deposit, dir, res.exported); });
+    write_files();
   });
   const ThermalRun th = stages.run(
       "thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal"), options.thermal_ranks); });
+  write_files();
   beside_thermal.get();
   const std::optional<CadCheck>& cad = beside.cad;
   stages.record("compare", beside.compare_s);
@@ -546,9 +566,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     res.progress_frames = std::move(files.progress);
     beside.pictures.reset();  // the shapes
   }
-  stages.record("vdb", beside.vdb_s);
-  if (!v.output.skin_format.empty()) stages.record("skin", beside.skin_s);
-  if (v.output.write_fields) stages.record("fields", beside.fields_s);
+  stages.record("vdb", vdb_job.seconds);
+  if (skin_job.work) stages.record("skin", skin_job.seconds);
+  if (fields_job.work) stages.record("fields", fields_job.seconds);
   res.notes.insert(res.notes.end(), beside.notes.begin(), beside.notes.end());
   res.metrics = measure(v, tp, deposit, th);
   if (cad) put_cad_metrics(*cad, res.metrics);

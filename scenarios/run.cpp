@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "core/atomic_file.hpp"
+#include "core/memory.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"
@@ -521,19 +522,30 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     for (FileJob& job : file_jobs)
       if (job.work && !job.taken.test_and_set()) timed(job.seconds, job.work);
   };
-  std::future<void> beside_thermal = std::async(std::launch::async, [&] {
-    timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
+  const auto pictures_without_thermal = [&] {
     timed(beside.render_s, [&] {
       pictures_in.cad = beside.cad ? &*beside.cad : nullptr;
       beside.pictures.emplace(pictures_in, dir);
       beside.pictures->without_thermal();
     });
+  };
+  // The pictures' surfaces and scenes and the skin, held or built while the thermal stage holds its own,
+  // add to the run's peak: beside it only while the deposit's estimate (which counts the later stages) is
+  // within half the memory budget. A program checked at the finest voxels that fit (a 16-hour desktop print,
+  // docs/PERFORMANCE.md) peaked at 14.2 GB with them beside the thermal stage, against 9.5 GB before.
+  const bool room_beside =
+      2.0 * deposit.memory_estimate_bytes <= memory_budget_bytes(v.output.memory_budget_gb * 1e9);
+  std::future<void> beside_thermal = std::async(std::launch::async, [&] {
+    timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
+    if (!room_beside) return;
+    pictures_without_thermal();
     write_files();
   });
   const ThermalRun th = stages.run(
       "thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal"), options.thermal_ranks); });
-  write_files();
+  if (room_beside) write_files();
   beside_thermal.get();
+  if (!beside.pictures) pictures_without_thermal();
   const std::optional<CadCheck>& cad = beside.cad;
   stages.record("compare", beside.compare_s);
   for (const auto* notes : {&th.heat.notes, &th.mesh.notes})  // the thermal stage's choices
@@ -566,6 +578,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     res.progress_frames = std::move(files.progress);
     beside.pictures.reset();  // the shapes
   }
+  write_files();  // without room beside the thermal stage, all of them now, after the pictures
   stages.record("vdb", vdb_job.seconds);
   if (skin_job.work) stages.record("skin", skin_job.seconds);
   if (fields_job.work) stages.record("fields", fields_job.seconds);

@@ -17,6 +17,7 @@
 #include "render/image.hpp"
 #include "scenarios/colours.hpp"
 #include "scenarios/scenario.hpp"
+#include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"
 #include "tests/scenarios/small_box.hpp"
@@ -34,6 +35,43 @@ gates:
   - porosity < 0.5
   - interfaces.too_hot_fraction <= 0.5
 )";
+
+// With little memory to spare (the deposit's estimate, which counts the later stages, over half the budget)
+// the pictures and the deposit's files wait for the thermal stage instead of running beside it: the same
+// figures and the same pictures as with room.
+TEST(Run, WithoutRoomBesideTheThermalStageTheSameFiguresAndPictures) {
+  const std::string output = "voxel_size: 2.5 mm, skin: ply, fields: vtu";
+  const Scenario roomy = load_scenario_text(testing::small_box("tight", "{" + output + "}"), "tight.yaml");
+  const Variant& v = roomy.variants.front();
+  const double estimate = sim::deposit(variant_toolpath(v), deposit_options(v)).memory_estimate_bytes;
+  ASSERT_GT(estimate, 0.0);
+  const Scenario tight = load_scenario_text(
+      testing::small_box("tight", fmt::format("{{{}, memory_budget: {:.9g}}}", output, 1.5 * estimate / 1e9)),
+      "tight.yaml");
+  const auto base = std::filesystem::temp_directory_path();
+  std::map<std::string, nlohmann::json> reports;
+  for (const auto& [name, sc] :
+       {std::pair<std::string, const Scenario*>{"roomy", &roomy}, {"tight", &tight}}) {
+    RunOptions o;
+    o.out_dir = base / name;
+    std::filesystem::remove_all(o.out_dir);
+    (void)run_scenario(*sc, o);
+    reports[name] = nlohmann::json::parse(read_file(o.out_dir / "report.json"))["variants"][0];
+  }
+  const nlohmann::json& a = reports["roomy"];
+  const nlohmann::json& b = reports["tight"];
+  EXPECT_EQ(a["metrics"], b["metrics"]);
+  EXPECT_EQ(a["layers"], b["layers"]);
+  EXPECT_EQ(a["notes"], b["notes"]);
+  ASSERT_EQ(a["images"], b["images"]);
+  ASSERT_FALSE(a["images"].empty());
+  for (const auto& image : a["images"])
+    EXPECT_EQ(read_file(base / "roomy" / image.get<std::string>()),
+              read_file(base / "tight" / image.get<std::string>()))
+        << image;
+  for (const char* file : {"deposit.vdb", "skin.ply", "fields.vtu"})
+    EXPECT_TRUE(std::filesystem::exists(base / "tight" / v.name / file)) << file;
+}
 
 TEST(Run, SmallScenarioEndToEnd) {
   const Scenario sc = load_scenario_text(kSmall, "small.yaml");

@@ -531,8 +531,8 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   };
   // The pictures' surfaces and scenes and the skin, held or built while the thermal stage holds its own,
   // add to the run's peak: beside it only while the deposit's estimate (which counts the later stages) is
-  // within half the memory budget. A program checked at the finest voxels that fit (a 16-hour desktop print,
-  // docs/PERFORMANCE.md) peaked at 14.2 GB with them beside the thermal stage, against 9.5 GB before.
+  // within half the memory budget (docs/PERFORMANCE.md: what the PrusaSlicer program's check peaks at, and
+  // why that is not settled).
   const bool room_beside =
       2.0 * deposit.memory_estimate_bytes <= memory_budget_bytes(v.output.memory_budget_gb * 1e9);
   std::future<void> beside_thermal = std::async(std::launch::async, [&] {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 
 namespace beadtwin {
 
@@ -149,7 +150,12 @@ void plan_motion(const std::vector<Move>& moves, const MotionLimits& limits, Tim
   const double a = limits.acceleration_mm_s2;
   BT_CHECK(a > 0.0);
   const std::size_t n = moves.size();
-  std::vector<double> length(n), cruise(n), entry(n + 1, 0.0);
+  // Three numbers a move: for a long program, memory worth having in huge pages (core/memory.hpp).
+  std::vector<double> length, cruise, entry;
+  for (std::vector<double>* v : {&length, &cruise, &entry}) reserve_huge(*v, n + 1);
+  length.resize(n);
+  cruise.resize(n);
+  entry.assign(n + 1, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const Move& m = moves[i];
     length[i] = m.length_mm();

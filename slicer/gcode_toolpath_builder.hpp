@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "core/memory.hpp"
 #include "core/toolpath.hpp"
 
 namespace beadtwin::slicer {
@@ -40,11 +41,11 @@ class GcodeToolpathBuilder {
   // Appends `m`, setting its section and layer, and for a print move or a dwell laying material its layer
   // height and (print moves) width.
   void add(Move m);
-  // Room for `moves` moves, so that the move list is not copied as it grows. A hint: without room for
-  // them, the list grows as it would have.
+  // Room for `moves` moves, so that the move list is not copied as it grows (in huge pages where the system
+  // has them: core/memory.hpp). A hint: without room for them, the list grows as it would have.
   void reserve(std::size_t moves) {
     try {
-      tp_.moves.reserve(moves);
+      reserve_huge(tp_.moves, moves);
     } catch (const std::bad_alloc&) {
     }
   }

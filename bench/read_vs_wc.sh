@@ -18,7 +18,8 @@ wall() { local t0 t1; t0=$(date +%s.%N); "$@" >/dev/null 2>&1; t1=$(date +%s.%N)
 
 wc_t=$(for _ in $(seq "$runs"); do wall wc -l "$work/big.gcode"; done | median)
 lines=$(wc -l < "$work/big.gcode")
-g++ -O2 -std=c++20 -I"$root" -I/usr/include/eigen3 "$root/bench/toolpath_floor.cpp" -o "$work/toolpath_floor"
+g++ -O2 -std=c++20 -I"$root" -I/usr/include/eigen3 "$root/bench/toolpath_floor.cpp" \
+  "$root/core/memory.cpp" -o "$work/toolpath_floor"
 floor=$(for _ in $(seq "$runs"); do "$work/toolpath_floor" "$lines"; done | median)
 start=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" --version; done | median)
 bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done | median)

@@ -1,5 +1,6 @@
-// The least any reader of a program must spend to hand over its Toolpath: N moves written into a reserved
-// vector, with nothing parsed. bench/read_vs_wc.sh compiles it on the fly and runs it with the program's
+// The least any reader of a program must spend to hand over its Toolpath: N moves written into a vector
+// reserved as the reader reserves it (in huge pages where the system has them, core/memory.hpp), with
+// nothing parsed. bench/read_vs_wc.sh compiles it on the fly and runs it with the program's
 // line count, so the floor is measured in the same run as `wc -l` and `beadtwin read`.
 // Usage: toolpath_floor MOVES   (prints the wall time in seconds)
 #include <chrono>
@@ -7,6 +8,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "core/memory.hpp"
 #include "core/toolpath.hpp"
 
 int main(int argc, char** argv) {
@@ -17,7 +19,7 @@ int main(int argc, char** argv) {
   const auto n = static_cast<std::size_t>(std::strtoull(argv[1], nullptr, 10));
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<beadtwin::Move> moves;
-  moves.reserve(n);
+  beadtwin::reserve_huge(moves, n);
   Eigen::Vector3d at = Eigen::Vector3d::Zero();
   for (std::size_t i = 0; i < n; ++i) {
     beadtwin::Move m;

@@ -245,6 +245,15 @@ inline Eigen::Vector2f concentric_disc(const Eigen::Vector2f& u) {
 
 // Two unit vectors completing unit `n` to an orthonormal basis, without a branch on its direction (T. Duff
 // et al., "Building an orthonormal basis, revisited", JCGT 6(1), 2017).
+// x^n for a whole n >= 0, by repeated squaring: a few multiplications where std::pow took a tenth of a
+// picture's shading.
+inline float whole_power(float x, int n) {
+  float result = 1.0f;
+  for (; n > 0; n >>= 1, x *= x)
+    if (n & 1) result *= x;
+  return result;
+}
+
 inline void complete_basis(const Vec3& n, Vec3& t, Vec3& b) {
   const float sign = std::copysign(1.0f, n.z());
   const float a = -1.0f / (sign + n.z());
@@ -327,7 +336,7 @@ struct Lights {
   Vec3 ground{0.20f, 0.19f, 0.18f};  // ...and from below
   float rim = 0.30f;                 // strength of the grazing-angle rim light
   float specular = 0.08f;            // strength of a soft highlight from the key
-  float shininess = 24.0f;
+  int shininess = 24;  // the highlight's exponent: a whole number, taken by repeated squaring (no powf)
   float ground_shadow = 0.30f;  // fraction of the background's light the part's shadow takes
 
   Lights(const Camera& camera, double key_radius_deg)
@@ -466,7 +475,7 @@ class Shader {
     if (lambert > 0.0f && key > 0.0f) {
       light += key * lambert * lights_.key;
       const Vec3 half = (lights_.to_key + s.to_eye).normalized();
-      highlight = key * lights_.specular * std::pow(std::max(0.0f, s.normal.dot(half)), lights_.shininess);
+      highlight = key * lights_.specular * whole_power(std::max(0.0f, s.normal.dot(half)), lights_.shininess);
     }
     const float facing = 1.0f - std::clamp(s.normal.dot(s.to_eye), 0.0f, 1.0f);
     const float rim = lights_.rim * (facing * facing) * (facing * facing);

@@ -32,6 +32,7 @@ std::string flag_name(int flag) {
 void OdeSystem::jacobian(double, std::span<const double>, BandJacobian&) {
   throw InternalError("this ODE system has no banded Jacobian: solve it with GMRES");
 }
+void OdeSystem::jacobian_times_setup(double, std::span<const double>) {}
 void OdeSystem::jacobian_times(double, std::span<const double>, std::span<const double>, std::span<double>) {
   throw InternalError("this ODE system has no Jacobian-vector product: solve it with the banded solver");
 }
@@ -103,7 +104,8 @@ Cvode::Cvode(OdeSystem& system, double t0, std::span<const double> y0, const Cvo
   if (kind_ == LinearSolver::kBand) {
     check(CVodeSetJacFn(mem_.get(), &Cvode::jacobian_trampoline), "CVodeSetJacFn");
   } else {
-    check(CVodeSetJacTimes(mem_.get(), nullptr, &Cvode::jtimes_trampoline), "CVodeSetJacTimes");
+    check(CVodeSetJacTimes(mem_.get(), &Cvode::jtsetup_trampoline, &Cvode::jtimes_trampoline),
+          "CVodeSetJacTimes");
     check(CVodeSetPreconditioner(mem_.get(), &Cvode::psetup_trampoline, &Cvode::psolve_trampoline),
           "CVodeSetPreconditioner");
     // GMRES stops at this fraction of the Newton iteration's tolerance (CVODE's default is 0.05). With only
@@ -205,6 +207,18 @@ long Cvode::linear_iterations() const {
   long n = 0;
   if (CVodeGetNumLinIters(mem_.get(), &n) < 0) throw InternalError("CVODE: CVodeGetNumLinIters failed");
   return linear_before_reinit_ + n;
+}
+
+// CVODE calls it before every linear solve, with the y its products are then taken at (cvLsSolve).
+int Cvode::jtsetup_trampoline(double t, N_Vector y, N_Vector /*fy*/, void* user_data) {
+  auto* self = static_cast<Cvode*>(user_data);
+  try {
+    self->system_.jacobian_times_setup(t, self->values(y));
+    return 0;
+  } catch (...) {
+    self->callback_error_ = std::current_exception();
+    return -1;
+  }
 }
 
 int Cvode::jtimes_trampoline(N_Vector v, N_Vector jv, double t, N_Vector y, N_Vector /*fy*/, void* user_data,

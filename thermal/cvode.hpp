@@ -44,6 +44,9 @@ class OdeSystem {
   virtual void rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
   // Fills the nonzero entries of ∂f/∂y at (t, y); entries not set are zero.
   virtual void jacobian(double t, std::span<const double> y, BandJacobian& jacobian);
+  // Called before each linear solve with the (t, y) every jacobian_times() of that solve is taken at, so a
+  // system can work out once what its products there share. Does nothing unless overridden.
+  virtual void jacobian_times_setup(double t, std::span<const double> y);
   // Jv = (∂f/∂y at (t, y)) · v.
   virtual void jacobian_times(double t, std::span<const double> y, std::span<const double> v,
                               std::span<double> jv);
@@ -119,6 +122,7 @@ class Cvode {
   static int jacobian_trampoline(double t, N_Vector y, N_Vector fy, SUNMatrix jac, void* user_data,
                                  N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
   static int weights_trampoline(N_Vector y, N_Vector weights, void* user_data);
+  static int jtsetup_trampoline(double t, N_Vector y, N_Vector fy, void* user_data);
   static int jtimes_trampoline(N_Vector v, N_Vector jv, double t, N_Vector y, N_Vector fy, void* user_data,
                                N_Vector tmp);
   static int psetup_trampoline(double t, N_Vector y, N_Vector fy, int jok, int* jcur, double gamma,

@@ -321,18 +321,33 @@ class PartModel final : public OdeSystem {
     ydot[hi_ - lo_] = q;
   }
 
-  void jacobian_times(double /*t*/, std::span<const double> y, std::span<const double> v,
+  // What every product of a linear solve shares: each cell's heat capacity and boundary loss derivative at
+  // the solve's y (CVODE calls this before each solve: cvode.hpp). Kept as they are, not as reciprocals,
+  // so a product is the same to the last bit as one working them out itself.
+  void jacobian_times_setup(double /*t*/, std::span<const double> y) override {
+    const std::size_t end = owned_born();
+    jt_capacity_.resize(hi_ - lo_);
+    jt_loss_derivative_.resize(hi_ - lo_);
+    for_cells(lo_, end, [&](std::size_t i) {
+      const double yi = y[i - lo_];
+      jt_capacity_[i - lo_] = heat_capacity(i, yi);
+      jt_loss_derivative_[i - lo_] = loss_derivative(i, yi);
+    });
+  }
+
+  void jacobian_times(double /*t*/, std::span<const double> /*y*/, std::span<const double> v,
                       std::span<double> jv) override {
     const std::size_t born = born_, end = owned_born();
     const double* all_v = with_halo(v, halo_v_);
+    BT_CHECK_OP(jt_capacity_.size(), ==, hi_ - lo_);
     for_cells(lo_, end, [&](std::size_t i) {
       double sum = 0.0;
-      const double vi = all_v[i], yi = y[i - lo_];
+      const double vi = all_v[i];
       for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
         sum += nb_g_[k] * (all_v[nb_cell_[k]] - vi);
-      const double d_loss = loss_derivative(i, yi) * vi;
+      const double d_loss = jt_loss_derivative_[i - lo_] * vi;
       loss_[i] = d_loss;
-      jv[i - lo_] = (sum - d_loss) / heat_capacity(i, yi);
+      jv[i - lo_] = (sum - d_loss) / jt_capacity_[i - lo_];
     });
     double q = 0.0;
     for (std::size_t i = lo_; i < end; ++i) q += loss_[i];
@@ -451,6 +466,8 @@ class PartModel final : public OdeSystem {
   std::vector<double> nb_g_;
   std::vector<double> nb_area_m2_;
   mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
+  // Per cell of this rank, at the y of the linear solve under way (jacobian_times_setup).
+  std::vector<double> jt_capacity_, jt_loss_derivative_;
   std::size_t born_ = 0;
   std::size_t cap_ = 0;
   // Across ranks (null on one): this rank's cells [lo_, hi_), every rank's block (bounds_) and part of the

@@ -36,9 +36,10 @@ gates:
   - interfaces.too_hot_fraction <= 0.5
 )";
 
-// With little memory to spare (the deposit's estimate, which counts the later stages, over half the budget)
-// the pictures and the deposit's files wait for the thermal stage instead of running beside it: the same
-// figures and the same pictures as with room.
+// With little memory to spare (the run's estimate over an eighth of the budget: here a quarter, which the
+// rule before 2026-11-23 evening, half, still let run side by side) the pictures and the deposit's files
+// wait for the thermal stage instead of running beside it: the same figures and the same pictures as with
+// room.
 TEST(Run, WithoutRoomBesideTheThermalStageTheSameFiguresAndPictures) {
   const std::string output = "voxel_size: 2.5 mm, skin: ply, fields: vtu";
   const Scenario roomy = load_scenario_text(testing::small_box("tight", "{" + output + "}"), "tight.yaml");
@@ -46,7 +47,7 @@ TEST(Run, WithoutRoomBesideTheThermalStageTheSameFiguresAndPictures) {
   const double estimate = sim::deposit(variant_toolpath(v), deposit_options(v)).memory_estimate_bytes;
   ASSERT_GT(estimate, 0.0);
   const Scenario tight = load_scenario_text(
-      testing::small_box("tight", fmt::format("{{{}, memory_budget: {:.9g}}}", output, 1.5 * estimate / 1e9)),
+      testing::small_box("tight", fmt::format("{{{}, memory_budget: {:.9g}}}", output, 4.0 * estimate / 1e9)),
       "tight.yaml");
   const auto base = std::filesystem::temp_directory_path();
   std::map<std::string, nlohmann::json> reports;

@@ -399,31 +399,39 @@ FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32
   std::atomic<std::uint64_t> outside{0}, shadow_rays{0}, occlusion_rays{0};
   // Square tiles keep a task's rays close together (in the BVH's cache); every pixel is a pure function of
   // its position, so how TBB splits the image does not change it.
-  tbb::parallel_for(
-      tbb::blocked_range2d<int>(0, height, kTile, 0, width, kTile),
-      [&](const tbb::blocked_range2d<int>& tile) {
-        const FlushDenormals flush;
-        PixelSampler sampler(shader, rays, patterns, reach, labels, albedo.field_grid(), deposit.fill(),
-                             options);
-        for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
-          const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
-          const Vec3 background = top + t * (bottom - top);
-          for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-            float value = 0.0f, depth = 0.0f;
-            const Vec3 c = sampler.pixel(x, y, background, value, depth);
-            picture.image.set(x, y, {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())});
-            if (values) {
-              const std::size_t i =
-                  static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
-              picture.values[i] = value;
-              picture.depth[i] = depth;
-            }
-          }
-        }
-        outside += sampler.camera_rays_outside();
-        shadow_rays += sampler.shadow_rays();
-        occlusion_rays += sampler.occlusion_rays();
-      });
+  tbb::parallel_for(tbb::blocked_range2d<int>(0, height, kTile, 0, width, kTile),
+                    [&](const tbb::blocked_range2d<int>& tile) {
+                      const FlushDenormals flush;
+                      PixelSampler sampler(shader, rays, patterns, reach, labels, albedo.field_grid(),
+                                           deposit.fill(), options);
+                      // The last colour encoded: runs of pixels of the same radiance (the background's rows)
+                      // are encoded once.
+                      Vec3 last = Vec3::Constant(std::numeric_limits<float>::quiet_NaN());
+                      Rgb encoded{};
+                      for (int y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+                        const float t = (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+                        const Vec3 background = top + t * (bottom - top);
+                        for (int x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                          float value = 0.0f, depth = 0.0f;
+                          const Vec3 c = sampler.pixel(x, y, background, value, depth);
+                          if (c != last) {
+                            encoded = {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())};
+                            last = c;
+                          }
+                          picture.image.set(x, y, encoded);
+                          if (values) {
+                            const std::size_t i =
+                                static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                                static_cast<std::size_t>(x);
+                            picture.values[i] = value;
+                            picture.depth[i] = depth;
+                          }
+                        }
+                      }
+                      outside += sampler.camera_rays_outside();
+                      shadow_rays += sampler.shadow_rays();
+                      occlusion_rays += sampler.occlusion_rays();
+                    });
   picture.stats.primary_rays = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
                                static_cast<std::uint64_t>(options.samples_per_pixel);
   picture.stats.primary_rays_outside = outside;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -94,6 +95,12 @@ class Palette {
 struct Probes {
   LayerProbe labels;
   std::optional<FieldProbe> field;
+  // The field's last value (its bits, so that NaN is a value too) and its colour in linear light: the
+  // samples of a pixel, and the pixels along a bead, mostly show the same voxel's value, and the colour
+  // function and the sRGB decoding were a large part of a sample's cost.
+  std::uint64_t last_value_bits = 0;
+  bool has_last = false;
+  Vec3 last_colour = Vec3::Zero();
 
   Probes(const openvdb::Int32Grid& label_grid, const openvdb::FloatGrid* field_grid) : labels(label_grid) {
     if (field_grid != nullptr) field.emplace(*field_grid);
@@ -117,7 +124,13 @@ class Albedo {
       const double v = field_->voxels ? static_cast<double>(probes.field->value_at(point, inward))
                                       : field_->at_point(point.cast<double>());
       value = static_cast<float>(v);
-      return to_linear(field_->colour(v));
+      const auto bits = std::bit_cast<std::uint64_t>(v);
+      if (!probes.has_last || bits != probes.last_value_bits) {
+        probes.last_colour = to_linear(field_->colour(v));
+        probes.last_value_bits = bits;
+        probes.has_last = true;
+      }
+      return probes.last_colour;
     }
     const int label = probes.labels.layer_at(point, inward);
     if (colour_) {

@@ -270,7 +270,10 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     Eigen::Vector3d vector = Eigen::Vector3d::Zero();
     double faces = 0.0;
   };
-  std::unordered_map<std::uint64_t, Contact> contacts;
+  // By the lower-numbered cell of each pair: the higher one and their contact. A cell touches a dozen
+  // others or so, so a short list searched in order beats a hash map over all the pairs (whose lookups,
+  // each a cache miss, were most of this step).
+  std::vector<std::vector<std::pair<std::uint32_t, Contact>>> contacts(mesh.cells.size());
   {
     openvdb::tree::ValueAccessor<const openvdb::FloatTree> fill_at(fill);
     openvdb::tree::ValueAccessor<const openvdb::Int32Tree> cell_at(mesh.cell_grid->tree());
@@ -293,7 +296,10 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
             const auto a = static_cast<std::uint32_t>(std::min(cell, other));
             const auto b = static_cast<std::uint32_t>(std::max(cell, other));
             const double sign = cell < other ? 1.0 : -1.0;
-            Contact& c = contacts[(static_cast<std::uint64_t>(a) << 32) | b];
+            auto& list = contacts[a];
+            auto entry = std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
+            if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
+            Contact& c = entry->second;
             c.vector += sign * normal * (face_area * std::min(f, fq));
             c.faces += face_area * std::min(f, fq);
           }
@@ -309,24 +315,26 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
       mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
     }
   }
-  std::vector<std::uint64_t> pairs;
-  pairs.reserve(contacts.size());
-  for (const auto& entry : contacts) pairs.push_back(entry.first);
-  std::sort(pairs.begin(), pairs.end());
-  mesh.links.reserve(pairs.size());
-  for (const std::uint64_t pair : pairs) {
-    ThermalLink link;
-    link.a = static_cast<std::uint32_t>(pair >> 32);
-    link.b = static_cast<std::uint32_t>(pair & 0xFFFFFFFFu);
-    const Contact& c = contacts.at(pair);
-    link.area_vector_mm2 = c.vector;
-    link.faces_mm2 = c.faces;
-    const CellKey ka = keys[link.a], kb = keys[link.b];
-    const bool same_chain = key_chain(ka) == key_chain(kb);
-    const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);
-    link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
-    mesh.links.push_back(link);
+  // The links in the order of their pairs: by the lower cell, then the higher.
+  std::size_t link_count = 0;
+  for (auto& list : contacts) {
+    std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    link_count += list.size();
   }
+  mesh.links.reserve(link_count);
+  for (std::size_t a = 0; a < contacts.size(); ++a)
+    for (const auto& [b, c] : contacts[a]) {
+      ThermalLink link;
+      link.a = static_cast<std::uint32_t>(a);
+      link.b = b;
+      link.area_vector_mm2 = c.vector;
+      link.faces_mm2 = c.faces;
+      const CellKey ka = keys[link.a], kb = keys[link.b];
+      const bool same_chain = key_chain(ka) == key_chain(kb);
+      const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);
+      link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
+      mesh.links.push_back(link);
+    }
   if (mesh.cell_length_factor > 1.0) {
     const double at_two_widths = mesh.cell_length_factor * static_cast<double>(mesh.cells.size());
     mesh.notes.push_back(fmt::format(

@@ -36,7 +36,7 @@ gates:
   - interfaces.too_hot_fraction <= 0.5
 )";
 
-// With little memory to spare (the run's estimate over an eighth of the budget: here a quarter, which the
+// With little memory to spare (the run's estimate over a seventh of the budget: here a quarter, which the
 // rule before 2026-11-23 evening, half, still let run side by side) the pictures and the deposit's files
 // wait for the thermal stage instead of running beside it: the same figures and the same pictures as with
 // room.

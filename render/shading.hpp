@@ -258,8 +258,8 @@ inline Eigen::Vector2f concentric_disc(const Eigen::Vector2f& u) {
 
 // Two unit vectors completing unit `n` to an orthonormal basis, without a branch on its direction (T. Duff
 // et al., "Building an orthonormal basis, revisited", JCGT 6(1), 2017).
-// x^n for a whole n >= 0, by repeated squaring: a few multiplications where std::pow took a tenth of a
-// picture's shading.
+// x^n for a whole n >= 0, by repeated squaring: a few multiplications where std::pow, once a sample, was
+// 2 % of the default scenario's CPU time.
 inline float whole_power(float x, int n) {
   float result = 1.0f;
   for (; n > 0; n >>= 1, x *= x)

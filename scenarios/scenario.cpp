@@ -1,6 +1,7 @@
 #include "scenarios/scenario.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -1468,6 +1469,16 @@ std::string infer_machine(const std::filesystem::path& program, std::string* why
   return "lsam-ph15";
 }
 
+std::string stated_filament_type(const std::filesystem::path& program) {
+  if (is_special_file(program)) throw InputError({program.string(), 0, 0}, "program", "not a regular file");
+  std::ifstream in(program, std::ios::binary);
+  if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
+  std::string type = slicer::stated_setting(in, "filament_type").value_or("");
+  type = type.substr(0, type.find(';'));  // several extruders: "PLA;PETG", the first taken
+  while (!type.empty() && type.back() == ' ') type.pop_back();
+  return type;
+}
+
 Scenario load_program_check(const ProgramCheck& check) {
   std::vector<std::string> assumed;
   YAML::Node doc(YAML::NodeType::Map);
@@ -1499,8 +1510,25 @@ Scenario load_program_check(const ProgramCheck& check) {
   if (!check.material.empty()) {
     doc["material"] = check.material;
   } else if (!doc["material"]) {
-    doc["material"] = "cf-abs-20";
-    assumed.push_back("assumed material cf-abs-20 (the shipped material); give --material to choose");
+    // The filament a desktop slicer says it sliced for, where beadtwin ships it; else the shipped CF-ABS.
+    const std::string type = stated_filament_type(check.program);
+    std::string lower = type;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == "pla" || lower == "abs") {
+      doc["material"] = lower;
+      assumed.push_back(
+          fmt::format("assumed material {} (the program says filament_type = {}); give --material to choose",
+                      lower, type));
+    } else {
+      doc["material"] = "cf-abs-20";
+      assumed.push_back(
+          type.empty() ? std::string("assumed material cf-abs-20 (the shipped material); give --material to "
+                                     "choose")
+                       : fmt::format("assumed material cf-abs-20 (the shipped material): the program's "
+                                     "filament_type {} is not one beadtwin ships; give --material to choose",
+                                     type));
+    }
   }
   doc["program"] = std::filesystem::absolute(check.program).string();
   YAML::Node variants(YAML::NodeType::Sequence);

@@ -234,9 +234,14 @@ struct ProgramCheck {
 // printer (desktop-fff); otherwise a pellet gantry (lsam-ph15). `why` says what decided it.
 std::string infer_machine(const std::filesystem::path& program, std::string* why);
 
+// The filament type a program says it was sliced for ("; filament_type = PLA" in the settings PrusaSlicer
+// and Slic3r write at its end; the first of several extruders'), as written; empty when it says none.
+std::string stated_filament_type(const std::filesystem::path& program);
+
 // Loads the scenario for a program check: variant "program" (and "baseline" with an older program), with
-// the machine and material given, taken from the scenario, or inferred; what was assumed is in the
-// scenario's warnings.
+// the machine and material given, taken from the scenario, or inferred (the material from the program's
+// filament type when beadtwin ships it: PLA, ABS; else cf-abs-20); what was assumed is in the scenario's
+// warnings.
 Scenario load_program_check(const ProgramCheck& check);
 
 }  // namespace beadtwin::scenarios

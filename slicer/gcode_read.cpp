@@ -59,10 +59,22 @@ std::optional<std::streamoff> bytes_left(std::istream& in) {
   return end - start;
 }
 
-// The filament diameter a program states in its settings block (PrusaSlicer, Slic3r: near its end, ";
-// filament_diameter = 1.75" or "= 1.75,1.75" for several extruders, the first taken), found without reading
-// the whole stream: the last 256 kB of a seekable stream. The stream is left where it was.
+// The filament diameter a program states in its settings block (";filament_diameter = 1.75", or "= 1.75,1.75"
+// for several extruders, the first taken).
 std::optional<double> stated_filament_diameter(std::istream& in) {
+  const std::optional<std::string> value = stated_setting(in, "filament_diameter");
+  if (!value) return std::nullopt;
+  try {
+    const double d = std::stod(*value);
+    if (d > 0.1 && d < 10) return d;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> stated_setting(std::istream& in, std::string_view key) {
   const std::istream::pos_type start = in.tellg();
   if (start == std::istream::pos_type(-1)) return std::nullopt;
   in.seekg(0, std::ios::end);
@@ -76,20 +88,16 @@ std::optional<double> stated_filament_diameter(std::istream& in) {
   in.seekg(end - tail);
   std::string text(static_cast<std::size_t>(tail), '\0');
   in.read(text.data(), tail);
+  text.resize(static_cast<std::size_t>(in.gcount()));
   in.clear();
   in.seekg(start);
-  const std::string key = "; filament_diameter = ";
-  const std::size_t at = text.rfind(key);
-  if (at == std::string::npos) return std::nullopt;
-  try {
-    const double d = std::stod(text.substr(at + key.size(), 32));
-    if (d > 0.1 && d < 10) return d;
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
+  const std::string line = "; " + std::string(key) + " = ";
+  const std::size_t at = text.rfind(line);
+  if (at == std::string::npos || (at > 0 && text[at - 1] != '\n')) return std::nullopt;
+  std::string value = text.substr(at + line.size(), text.find('\n', at) - (at + line.size()));
+  while (!value.empty() && (value.back() == '\r' || value.back() == ' ')) value.pop_back();
+  return value;
 }
-
-}  // namespace
 
 Toolpath read_gcode(std::istream& in, const std::string& file_name, const ReaderOptions& given,
                     ReadStats* stats) {

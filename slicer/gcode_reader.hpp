@@ -61,6 +61,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/flow.hpp"
@@ -166,6 +167,11 @@ class GcodeReader {
   class State;
   std::unique_ptr<State> state_;
 };
+
+// The value of a setting a program states in the block PrusaSlicer and Slic3r write at its end ("; key =
+// value"), as written, found in the last 256 kB of a seekable stream without reading the rest; the stream
+// is left where it was. None when the stream cannot seek or states no such setting.
+std::optional<std::string> stated_setting(std::istream& in, std::string_view key);
 
 // Reads the program in `in` line by line (lexer, then reader) until its end or M2/M30. Throws InputError
 // for a file that is not text (NUL bytes or a line over 1 MB), a line with macro syntax (the program needs

@@ -1,10 +1,14 @@
 #include "scenarios/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <tuple>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <gtest/gtest.h>
 
@@ -831,6 +835,44 @@ TEST(ProgramCheck, TimingAgreesWithPrusaSlicersEstimate) {
   // The machine is said to be assumed.
   ASSERT_FALSE(sc.warnings.empty());
   EXPECT_NE(sc.warnings.front().find("assumed machine desktop-fff"), std::string::npos);
+}
+
+// The material a check assumes: the program's stated filament type where beadtwin ships it (PrusaSlicer's
+// settings block, "; filament_type = PLA" in tests/data/prusa_box.gcode), the shipped CF-ABS otherwise, and
+// always said; a material given wins.
+TEST(ProgramCheck, MaterialFromTheProgramsFilamentType) {
+  ProgramCheck check;
+  check.program = std::filesystem::path(BEADTWIN_SOURCE_DIR) / "tests/data/prusa_box.gcode";
+  EXPECT_EQ(stated_filament_type(check.program), "PLA");
+  Scenario sc = load_program_check(check);
+  EXPECT_EQ(sc.variants.front().material.name, "pla");
+  const auto said = [](const Scenario& s, const std::string& text) {
+    return std::any_of(s.warnings.begin(), s.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(said(sc, "assumed material pla (the program says filament_type = PLA)"));
+
+  check.material = "abs";
+  sc = load_program_check(check);
+  EXPECT_EQ(sc.variants.front().material.name, "abs");
+  EXPECT_FALSE(said(sc, "assumed material"));
+
+  const auto dir = std::filesystem::temp_directory_path() / "bt_check_material";
+  std::filesystem::create_directories(dir);
+  const std::string moves = "G21\nG90\nM83\nG1 Z0.3 F600\nG1 X20 Y0 E1\nG1 X20 Y20 E1\n";
+  for (const auto& [settings, material, message] :
+       {std::tuple<std::string, std::string, std::string>{"; filament_type = ABS;PLA\n", "abs",
+                                                          "filament_type = ABS)"},
+        {"; filament_type = PETG\n", "cf-abs-20", "filament_type PETG is not one beadtwin ships"},
+        {"; layer_height = 0.2\n", "cf-abs-20", "assumed material cf-abs-20 (the shipped material)"}}) {
+    SCOPED_TRACE(settings);
+    ProgramCheck c;
+    c.program = dir / "p.gcode";
+    std::ofstream(c.program) << moves << settings;
+    const Scenario s = load_program_check(c);
+    EXPECT_EQ(s.variants.front().material.name, material);
+    EXPECT_TRUE(said(s, message)) << fmt::format("{}", fmt::join(s.warnings, " | "));
+  }
 }
 
 // The same for CuraEngine: its estimate is the last ";TIME_ELAPSED:" of the program

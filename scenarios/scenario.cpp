@@ -1444,10 +1444,20 @@ Scenario load_default_scenario(const std::vector<Setting>& settings) {
 
 namespace beadtwin::scenarios {
 
-std::string infer_machine(const std::filesystem::path& program, std::string* why) {
+namespace {
+
+// The program a check reads, open for the guesses made from its text before it is read.
+std::ifstream open_program(const std::filesystem::path& program) {
   if (is_special_file(program)) throw InputError({program.string(), 0, 0}, "program", "not a regular file");
   std::ifstream in(program, std::ios::binary);
   if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
+  return in;
+}
+
+}  // namespace
+
+std::string infer_machine(const std::filesystem::path& program, std::string* why) {
+  std::ifstream in = open_program(program);
   std::string text(std::size_t{1} << 20, '\0');
   in.read(text.data(), static_cast<std::streamsize>(text.size()));
   text.resize(static_cast<std::size_t>(in.gcount()));
@@ -1470,9 +1480,7 @@ std::string infer_machine(const std::filesystem::path& program, std::string* why
 }
 
 std::string stated_filament_type(const std::filesystem::path& program) {
-  if (is_special_file(program)) throw InputError({program.string(), 0, 0}, "program", "not a regular file");
-  std::ifstream in(program, std::ios::binary);
-  if (!in) throw InputError({program.string(), 0, 0}, "program", "cannot open the program");
+  std::ifstream in = open_program(program);
   std::string type = slicer::stated_setting(in, "filament_type").value_or("");
   type = type.substr(0, type.find(';'));  // several extruders: "PLA;PETG", the first taken
   while (!type.empty() && type.back() == ' ') type.pop_back();
@@ -1510,12 +1518,13 @@ Scenario load_program_check(const ProgramCheck& check) {
   if (!check.material.empty()) {
     doc["material"] = check.material;
   } else if (!doc["material"]) {
-    // The filament a desktop slicer says it sliced for, where beadtwin ships it; else the shipped CF-ABS.
+    // The filament a desktop slicer says it sliced for, where the shipped library has a material of that
+    // name; else the shipped CF-ABS.
     const std::string type = stated_filament_type(check.program);
     std::string lower = type;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (lower == "pla" || lower == "abs") {
+    if (!lower.empty() && shipped_files().contains("materials/" + lower + ".yaml")) {
       doc["material"] = lower;
       assumed.push_back(
           fmt::format("assumed material {} (the program says filament_type = {}); give --material to choose",

@@ -240,8 +240,8 @@ std::string stated_filament_type(const std::filesystem::path& program);
 
 // Loads the scenario for a program check: variant "program" (and "baseline" with an older program), with
 // the machine and material given, taken from the scenario, or inferred (the material from the program's
-// filament type when beadtwin ships it: PLA, ABS; else cf-abs-20); what was assumed is in the scenario's
-// warnings.
+// filament type when a shipped material has its name, as pla and abs do; else cf-abs-20); what was assumed is
+// in the scenario's warnings.
 Scenario load_program_check(const ProgramCheck& check);
 
 }  // namespace beadtwin::scenarios

@@ -59,8 +59,8 @@ std::optional<std::streamoff> bytes_left(std::istream& in) {
   return end - start;
 }
 
-// The filament diameter a program states in its settings block (";filament_diameter = 1.75", or "= 1.75,1.75"
-// for several extruders, the first taken).
+// The filament diameter a program states in its settings block ("; filament_diameter = 1.75", or
+// "= 1.75,1.75" for several extruders, the first taken).
 std::optional<double> stated_filament_diameter(std::istream& in) {
   const std::optional<std::string> value = stated_setting(in, "filament_diameter");
   if (!value) return std::nullopt;

@@ -371,13 +371,22 @@ struct Lights {
 struct Sample {
   bool on_part = false;
   // On the part:
-  Vec3 point, geometric, normal, albedo;  // the normals face the viewer; geometric is the facet's
+  Vec3 point, geometric, normal;  // the normals face the viewer; geometric is the facet's
   Vec3 to_eye;
-  float value = std::numeric_limits<float>::quiet_NaN();  // what the colour shows (Albedo)
-  float t = 0.0f;                                         // along the camera ray, mm
+  float t = 0.0f;                                   // along the camera ray, mm
   float key_lit = 0.0f;                             // the key's visibility when no shadow ray decides it
   int shadow_ray = -1;                              // in the shadow batch (on the part or on the bed), or -1
   int first_occlusion_ray = 0, occlusion_rays = 0;  // in the occlusion batch
+};
+
+// The light a sample on the part sends towards the eye, in two shares: radiance = albedo ⊙ tinted +
+// untinted, where albedo is the colour of the material there (linear). Apart, the light of a picture's
+// samples can be kept and the picture coloured by another field later (TracedPicture).
+struct SampleLight {
+  Vec3 tinted = Vec3::Zero();  // what the surface's colour filters: the key, sky and ground, most of the rim
+  float untinted = 0.0f;       // what it does not: the highlight and the rim's white share
+
+  Vec3 radiance(const Vec3& albedo) const { return albedo.cwiseProduct(tinted) + Vec3::Constant(untinted); }
 };
 
 // Shades camera samples in two steps, so that the rays of many samples can be traced together: begin()
@@ -387,13 +396,12 @@ class Shader {
  public:
   // `offset_mm`: shadow and occlusion rays start this far off the surface, against self-intersection;
   // `occlusion_distance_mm`: how far an occluder darkens (RenderOptions::ambient_occlusion_distance_mm).
-  Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Albedo& albedo, const Lights& lights,
+  Shader(const embree::Scene& scene, const SurfaceMesh& mesh, const Lights& lights,
          const RenderOptions& options, float offset_mm, float occlusion_distance_mm,
          const CutPlane* cut = nullptr)
       : cut_(cut),
         scene_(scene),
         mesh_(mesh),
-        albedo_(albedo),
         lights_(lights),
         shadows_(options.shadows),
         ground_shadow_(options.ground_shadow),
@@ -408,10 +416,10 @@ class Shader {
   const embree::Scene& scene() const { return scene_; }
   const CutPlane* cut() const { return cut_; }
 
-  // The sample of a camera `ray` and its `hit`: the surface point and its colour, or the background, with
-  // the shadow and occlusion rays it needs queued in `shadow` and `occlusion`.
-  Sample begin(const Ray& ray, const CameraHit& hit, const SampleIndex& index, Probes& probes,
-               OcclusionBatch& shadow, OcclusionBatch& occlusion) const {
+  // The sample of a camera `ray` and its `hit`: the surface point, or the background, with the shadow and
+  // occlusion rays it needs queued in `shadow` and `occlusion`.
+  Sample begin(const Ray& ray, const CameraHit& hit, const SampleIndex& index, OcclusionBatch& shadow,
+               OcclusionBatch& occlusion) const {
     Sample s;
     if (!hit.hit) {
       queue_ground_shadow(ray, index, s, shadow);
@@ -422,7 +430,6 @@ class Shader {
     s.geometric = hit.face_normal.normalized();
     if (s.geometric.dot(ray.direction) > 0.0f) s.geometric = -s.geometric;  // face the viewer
     s.normal = hit.cap ? s.geometric : shading_normal(hit, s.geometric);
-    s.albedo = albedo_(s.point, -s.geometric, probes, s.value);
     s.t = hit.t;
     s.to_eye = -ray.direction;
     const Vec3 origin = s.point + offset_ * s.geometric;
@@ -464,8 +471,8 @@ class Shader {
     return s.shadow_ray >= 0 && shadow.occluded(s.shadow_ray) ? 1.0f - lights_.ground_shadow : 1.0f;
   }
 
-  // The radiance (linear) of a sample on the part, once its shadow and occlusion rays are traced.
-  Vec3 finish(const Sample& s, const OcclusionBatch& shadow, const OcclusionBatch& occlusion) const {
+  // The light of a sample on the part, once its shadow and occlusion rays are traced.
+  SampleLight finish(const Sample& s, const OcclusionBatch& shadow, const OcclusionBatch& occlusion) const {
     const bool shadowed = s.shadow_ray >= 0 && shadow.occluded(s.shadow_ray);
     const float key = s.shadow_ray >= 0 ? (shadowed ? 0.0f : 1.0f) : s.key_lit;
     float open = 1.0f;
@@ -475,25 +482,24 @@ class Shader {
         blocked += occlusion.occluded(s.first_occlusion_ray + k) ? 1 : 0;
       open = 1.0f - static_cast<float>(blocked) / static_cast<float>(s.occlusion_rays);
     }
-    return radiance(s, key, open);
+    return light(s, key, open);
   }
 
   // The light leaving a surface point towards the eye, given how much of the key light reaches it (0..1)
   // and what fraction of the sky and ground (0..1) its surroundings leave open.
-  Vec3 radiance(const Sample& s, float key, float open) const {
+  SampleLight light(const Sample& s, float key, float open) const {
     const float hemisphere = 0.5f + 0.5f * s.normal.z();  // machine frame: z up
-    Vec3 light = open * (lights_.ground + hemisphere * (lights_.sky - lights_.ground));
+    Vec3 diffuse = open * (lights_.ground + hemisphere * (lights_.sky - lights_.ground));
     const float lambert = s.normal.dot(lights_.to_key);
     float highlight = 0.0f;
     if (lambert > 0.0f && key > 0.0f) {
-      light += key * lambert * lights_.key;
+      diffuse += key * lambert * lights_.key;
       const Vec3 half = (lights_.to_key + s.to_eye).normalized();
       highlight = key * lights_.specular * whole_power(std::max(0.0f, s.normal.dot(half)), lights_.shininess);
     }
     const float facing = 1.0f - std::clamp(s.normal.dot(s.to_eye), 0.0f, 1.0f);
     const float rim = lights_.rim * (facing * facing) * (facing * facing);
-    return s.albedo.cwiseProduct(light) + Vec3::Constant(highlight) +
-           rim * (0.6f * s.albedo + Vec3::Constant(0.4f));
+    return {diffuse + Vec3::Constant(0.6f * rim), highlight + 0.4f * rim};  // the rim: 0.6 tinted, 0.4 white
   }
 
  private:
@@ -553,7 +559,6 @@ class Shader {
   const CutPlane* cut_;
   const embree::Scene& scene_;
   const SurfaceMesh& mesh_;
-  const Albedo& albedo_;
   const Lights& lights_;
   bool shadows_;
   bool ground_shadow_;

@@ -1,6 +1,7 @@
 #include "render/surface.hpp"
 
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <openvdb/tools/VolumeToMesh.h>
@@ -72,18 +73,19 @@ SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue) {
 
 namespace {
 
-// The value of the voxel half a voxel inside `point` along `inward` if `holds` accepts it (an active voxel
-// and its value), else of the nearest accepted voxel in its 3x3x3 neighbourhood (the step landed in a void
-// or outside: thin features, corners), else `none`.
+// The voxel half a voxel inside `point` along `inward` if `holds` accepts it (an active voxel and its
+// value), else the nearest accepted voxel in its 3x3x3 neighbourhood (the step landed in a void or outside:
+// thin features, corners), else none; its value in `value`.
 template <class Accessor, class Value, class Holds>
-Value probe(Accessor& accessor, const openvdb::math::Transform& transform, double half_voxel_mm,
-            const Eigen::Vector3f& point, const Eigen::Vector3f& inward, Value none, const Holds& holds) {
+std::optional<openvdb::Coord> probe(Accessor& accessor, const openvdb::math::Transform& transform,
+                                    double half_voxel_mm, const Eigen::Vector3f& point,
+                                    const Eigen::Vector3f& inward, Value& value, const Holds& holds) {
   const Eigen::Vector3d inside = point.cast<double>() + half_voxel_mm * inward.cast<double>();
   const openvdb::Vec3d index = transform.worldToIndex(openvdb::Vec3d(inside.x(), inside.y(), inside.z()));
   const openvdb::Coord centre = openvdb::Coord::round(index);
-  Value value = none;
-  if (accessor.probeValue(centre, value) && holds(value)) return value;
-  Value best = none;
+  if (accessor.probeValue(centre, value) && holds(value)) return centre;
+  std::optional<openvdb::Coord> best;
+  Value best_value = value;
   double best_distance = std::numeric_limits<double>::max();
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
@@ -93,9 +95,11 @@ Value probe(Accessor& accessor, const openvdb::math::Transform& transform, doubl
         const double distance = (c.asVec3d() - index).lengthSqr();
         if (distance < best_distance) {
           best_distance = distance;
-          best = value;
+          best = c;
+          best_value = value;
         }
       }
+  value = best_value;
   return best;
 }
 
@@ -108,7 +112,10 @@ LayerProbe::LayerProbe(const openvdb::Int32Grid& layer)
 
 int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
   // Material is an active voxel with a layer (>= 0).
-  return probe(accessor_, transform_, half_voxel_mm_, point, inward, -1, [](int v) { return v >= 0; });
+  int layer = -1;
+  return probe(accessor_, transform_, half_voxel_mm_, point, inward, layer, [](int v) { return v >= 0; })
+             ? layer
+             : -1;
 }
 
 FieldProbe::FieldProbe(const openvdb::FloatGrid& field)
@@ -116,10 +123,18 @@ FieldProbe::FieldProbe(const openvdb::FloatGrid& field)
       transform_(field.transform()),
       half_voxel_mm_(0.5 * field.voxelSize()[0]) {}
 
+// Material is an active voxel, whatever its value (NaN: material without a value).
 float FieldProbe::value_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward) {
-  // Material is an active voxel, whatever its value (NaN: material without a value).
-  return probe(accessor_, transform_, half_voxel_mm_, point, inward, std::numeric_limits<float>::quiet_NaN(),
-               [](float) { return true; });
+  float value = 0.0f;
+  return probe(accessor_, transform_, half_voxel_mm_, point, inward, value, [](float) { return true; })
+             ? value
+             : std::numeric_limits<float>::quiet_NaN();
+}
+
+std::optional<openvdb::Coord> FieldProbe::voxel_at(const Eigen::Vector3f& point,
+                                                   const Eigen::Vector3f& inward) {
+  float value = 0.0f;
+  return probe(accessor_, transform_, half_voxel_mm_, point, inward, value, [](float) { return true; });
 }
 
 }  // namespace beadtwin::render

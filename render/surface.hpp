@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -49,6 +50,9 @@ class FieldProbe {
   // The value of the active voxel half a voxel inside `point` along `inward`, else of the nearest active
   // voxel in its 3x3x3 neighbourhood, else NaN. An active voxel's value is taken as it is (NaN included).
   float value_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
+  // The voxel whose value value_at takes, or none (NaN). It depends on the grid's active voxels only, so it
+  // is the voxel of any field active on the same voxels (TracedPicture).
+  std::optional<openvdb::Coord> voxel_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
 
  private:
   openvdb::FloatGrid::ConstAccessor accessor_;

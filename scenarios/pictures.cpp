@@ -268,19 +268,18 @@ std::string view_title(const render::CameraSpec& c) {
   return c.view == render::View::kUser ? "user camera" : std::string(render::to_string(c.view)) + " view";
 }
 
-// One picture: the field drawn on the part from the camera, annotated, with its raw values.
-render::FieldPicture draw(const render::PreparedDeposit& prepared, const Field& field,
-                          const render::CameraSpec& camera, const std::optional<CutSpec>& cut,
-                          const PictureInputs& in, const std::string& title, const std::string& subtitle) {
+// How a picture of the variant is rendered from `camera`: the same for every picture from that camera
+// whatever it shows, as the room kept for the annotation does not depend on it (every picture has a title
+// and subtitle, a legend and a scale bar).
+render::RenderOptions picture_options(const PictureInputs& in, const render::CameraSpec& camera,
+                                      const std::optional<CutSpec>& cut) {
   const RenderSpec& spec = in.variant->render;
-  render::Annotation note;
-  note.title = title;
-  note.subtitle = subtitle;
-  note.legend = field.legend();
-  note.length_unit = in.frame->length_unit;
-  note.mm_per_pixel = 1.0;  // a placeholder for the layout: the real scale is known once framed
+  render::Annotation any;
+  any.title = any.subtitle = "-";
+  any.legend.emplace();
+  any.mm_per_pixel = 1.0;  // a placeholder for the layout: the real scale is known once framed
   const render::AnnotationLayout layout =
-      spec.legend ? render::layout_for(spec.width, spec.height, note) : render::AnnotationLayout{};
+      spec.legend ? render::layout_for(spec.width, spec.height, any) : render::AnnotationLayout{};
   render::RenderOptions o = render_options(spec);
   o.camera = camera;
   o.frame = in.frame->bounds;
@@ -289,12 +288,33 @@ render::FieldPicture draw(const render::PreparedDeposit& prepared, const Field& 
                0.03 + static_cast<double>(layout.title_band_px) / spec.height,
                0.03 + static_cast<double>(layout.scale_band_px) / spec.height};
   if (cut) o.cut = render::Cutaway{cut->point.cast<float>(), cut->normal.cast<float>()};
+  return o;
+}
+
+render::SurfaceField surface_field(const Field& field) {
   render::SurfaceField sf;
   sf.voxels = field.voxels.get();
   sf.at_point = field.at_point;
   sf.colour = [&field](double v) { return field.colour(v); };
-  render::FieldPicture picture = render::render_field(prepared, sf, o);
-  if (spec.legend) {
+  return sf;
+}
+
+// One picture: the field drawn on the part from the camera (or coloured on the rays traced from it before),
+// annotated, with its raw values.
+render::FieldPicture draw(const render::PreparedDeposit& prepared, const render::TracedPicture* traced,
+                          const Field& field, const render::CameraSpec& camera,
+                          const std::optional<CutSpec>& cut, const PictureInputs& in,
+                          const std::string& title, const std::string& subtitle) {
+  const render::SurfaceField sf = surface_field(field);
+  render::FieldPicture picture = traced != nullptr && traced->colours(sf)
+                                     ? traced->colour(sf)
+                                     : render::render_field(prepared, sf, picture_options(in, camera, cut));
+  if (in.variant->render.legend) {
+    render::Annotation note;
+    note.title = title;
+    note.subtitle = subtitle;
+    note.legend = field.legend();
+    note.length_unit = in.frame->length_unit;
     note.mm_per_pixel = picture.mm_per_pixel;
     render::annotate(picture.image, note);
   }
@@ -380,6 +400,23 @@ bool needs_thermal(Colouring colouring) {
   return true;
 }
 
+namespace {
+
+bool same_camera(const render::CameraSpec& a, const render::CameraSpec& b) {
+  const auto same_point = [](const std::optional<Eigen::Vector3f>& p,
+                             const std::optional<Eigen::Vector3f>& q) {
+    return p.has_value() == q.has_value() && (!p || *p == *q);
+  };
+  return a.view == b.view && same_point(a.position, b.position) && same_point(a.target, b.target) &&
+         a.direction == b.direction && a.field_of_view_deg == b.field_of_view_deg;
+}
+
+bool same_cut(const std::optional<CutSpec>& a, const std::optional<CutSpec>& b) {
+  return a.has_value() == b.has_value() && (!a || (a->point == b->point && a->normal == b->normal));
+}
+
+}  // namespace
+
 // The part as a picture shows it, prepared once per shape: whole, as it stood when a layer was done, or as
 // it stood at a moment (the material landed by then); by (last layer or -1, moment or infinity).
 struct PictureWriter::State {
@@ -390,6 +427,17 @@ struct PictureWriter::State {
     render::PreparedDeposit prepared;
   };
   std::map<std::pair<int, double>, Shown> shapes;
+  // The views traced once for several pictures (of one shape, from one camera, cut alike), and for the
+  // pictures drawn after the thermal run, traced beside it: each picture then only colours the rays (which
+  // is most of what is left for the pictures once the thermal stage is done). Dropped once their last picture
+  // is drawn.
+  struct View {
+    std::size_t first;  // the first picture of the render block from it
+    int pictures = 0;   // its pictures not yet drawn
+    std::optional<render::TracedPicture> traced;
+  };
+  std::vector<View> views;
+  std::vector<int> view_of;  // per picture of the render block: its view, or -1 when drawn on its own
   // Per picture of the render block: its files once drawn (none for one left out).
   std::vector<PictureFiles> drawn;
   PictureFiles progress;  // the progress frames, once drawn
@@ -420,8 +468,55 @@ struct PictureWriter::State {
     return im.up_to_layer < 0 && im.colour == Colouring::kTemperature &&
            moment_s(im) < toolpath().total_time_s();
   }
+  std::pair<int, double> shape_key(const ImageSpec& im) const {
+    return {im.up_to_layer, at_moment(im) ? moment_s(im) : std::numeric_limits<double>::infinity()};
+  }
   const Shown& shape_of(const ImageSpec& im) {
-    return shape(im.up_to_layer, at_moment(im) ? moment_s(im) : std::numeric_limits<double>::infinity());
+    const auto [last_layer, until_s] = shape_key(im);
+    return shape(last_layer, until_s);
+  }
+
+  // Which pictures share a view and are coloured on its traced rays: those of the voxel fields (all but the
+  // deviation from the CAD, a function of the surface point), when two or more share the view or one is
+  // drawn after the thermal run.
+  void plan_views() {
+    const std::vector<ImageSpec>& images = variant().render.images;
+    view_of.assign(images.size(), -1);
+    std::vector<bool> after_thermal;
+    for (std::size_t k = 0; k < images.size(); ++k) {
+      const ImageSpec& im = images[k];
+      if (left_out(im) || im.colour == Colouring::kDeviation) continue;
+      const auto same = std::find_if(views.begin(), views.end(), [&](const View& v) {
+        const ImageSpec& other = images[v.first];
+        return shape_key(other) == shape_key(im) && same_camera(other.camera, im.camera) &&
+               same_cut(other.cut, im.cut);
+      });
+      const auto v = static_cast<std::size_t>(same - views.begin());
+      if (v == views.size()) {
+        views.push_back({k, 0, std::nullopt});
+        after_thermal.push_back(false);
+      }
+      ++views[v].pictures;
+      if (needs_thermal(im.colour)) after_thermal[v] = true;
+      view_of[k] = static_cast<int>(v);
+    }
+    for (std::size_t k = 0; k < images.size(); ++k)
+      if (view_of[k] >= 0 && views[view_of[k]].pictures < 2 && !after_thermal[view_of[k]]) view_of[k] = -1;
+  }
+
+  // The traced rays of picture k's view, traced now if they are not yet; null when it is drawn on its own.
+  const render::TracedPicture* traced_for(std::size_t k) {
+    if (view_of[k] < 0) return nullptr;
+    View& v = views[static_cast<std::size_t>(view_of[k])];
+    const ImageSpec& im = variant().render.images[k];
+    if (!v.traced) v.traced.emplace(shape_of(im).prepared, picture_options(in, im.camera, im.cut));
+    return &*v.traced;
+  }
+  // Picture k is drawn: its view's rays go with its last picture.
+  void drawn_from_view(std::size_t k) {
+    if (view_of[k] < 0) return;
+    View& v = views[static_cast<std::size_t>(view_of[k])];
+    if (--v.pictures == 0) v.traced.reset();
   }
 
   std::string scenario_line() const {
@@ -438,7 +533,8 @@ struct PictureWriter::State {
     if (at_moment(im)) subtitle += ", as it stood then";
     if (im.cut) subtitle += ", cut away";
     const render::FieldPicture picture =
-        draw(shown.prepared, field, im.camera, im.cut, in, field.heading, subtitle);
+        draw(shown.prepared, traced_for(k), field, im.camera, im.cut, in, field.heading, subtitle);
+    drawn_from_view(k);
     write_picture(picture, dir, im.name, v.render.exr, v.name, drawn[k]);
   }
 
@@ -456,7 +552,7 @@ struct PictureWriter::State {
       const Field field =
           make_field(p.colour, in, thermal, *shown.fill, layer_end_s(tp, layer), std::nullopt);
       const render::FieldPicture picture =
-          draw(shown.prepared, field, p.camera, std::nullopt, in, field.heading,
+          draw(shown.prepared, nullptr, field, p.camera, std::nullopt, in, field.heading,
                fmt::format("{}, layer {} of {}, {}", scenario_line(), layer, tp.layers.size(),
                            when(layer_end_s(tp, layer))));
       const std::string stem = fmt::format("frame-{:04}", frame_index++);
@@ -472,6 +568,7 @@ PictureWriter::PictureWriter(const PictureInputs& in, std::filesystem::path dir)
   state_->in = in;
   state_->dir = std::move(dir);
   state_->drawn.resize(in.variant->render.images.size());
+  state_->plan_views();
 }
 
 PictureWriter::~PictureWriter() = default;
@@ -489,10 +586,12 @@ void PictureWriter::without_thermal() {
                                       v.program ? "a program is simulated" : "the sections print outlines"));
       continue;
     }
-    if (needs_thermal(im.colour))
-      (void)s.shape_of(im);  // drawn once the thermal run is done
-    else
+    if (needs_thermal(im.colour)) {  // drawn once the thermal run is done: its shape and rays made now
+      (void)s.shape_of(im);
+      (void)s.traced_for(k);
+    } else {
       s.draw_image(k, nullptr);
+    }
   }
   // The progress frames are drawn in one go (each shape is dropped once drawn, so they are not prepared
   // ahead).

@@ -2,7 +2,10 @@
 // cut face, framing on a given box, and golden images compared with a tolerance.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 
@@ -147,6 +150,95 @@ TEST(RenderField, FramingOnAGivenBox) {
   o.frame = Eigen::AlignedBox3f(Eigen::Vector3f(-200, -200, 0), Eigen::Vector3f(400, 400, 60));
   const FieldPicture larger = render_field(prepared_box(), by_layer(), o);
   EXPECT_GT(larger.mm_per_pixel, 1.5 * own.mm_per_pixel);
+}
+
+// --- a picture traced once, coloured later ---
+
+// The box's layer index on every voxel of its fill, as the pictures' fields are made (over the fill's
+// voxels, NaN where a voxel has no layer); `shift` added, to tell two fields apart.
+openvdb::FloatGrid::Ptr layer_on_fill(float shift) {
+  auto g = openvdb::FloatGrid::create(std::nanf(""));
+  g->setTransform(box().fill->transform().copy());
+  auto at = g->getAccessor();
+  auto layer = box().layer->getConstAccessor();
+  for (auto it = box().fill->cbeginValueOn(); it; ++it) {
+    const int l = layer.getValue(it.getCoord());
+    at.setValue(it.getCoord(), l >= 0 ? static_cast<float>(l) + shift : std::nanf(""));
+  }
+  return g;
+}
+
+SurfaceField field_of(const openvdb::FloatGrid& grid, ColourMap map) {
+  SurfaceField f;
+  f.voxels = &grid;
+  const ScalarScale scale{0.0, 15.0, std::move(map)};
+  f.colour = [scale](double v) { return scale.colour(v); };
+  return f;
+}
+
+// The same values and depths, the same rays, and the same colours but for rounding.
+void expect_same_picture(const FieldPicture& traced, const FieldPicture& direct) {
+  ASSERT_EQ(traced.values.size(), direct.values.size());
+  for (std::size_t i = 0; i < direct.values.size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(traced.values[i]), std::bit_cast<std::uint32_t>(direct.values[i]))
+        << i;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(traced.depth[i]), std::bit_cast<std::uint32_t>(direct.depth[i]))
+        << i;
+  }
+  EXPECT_EQ(traced.stats.rays(), direct.stats.rays());
+  EXPECT_EQ(traced.stats.rays_traced(), direct.stats.rays_traced());
+  EXPECT_EQ(traced.mm_per_pixel, direct.mm_per_pixel);
+  // Apart by float rounding: in an 8-bit file, hardly a pixel one step apart.
+  std::size_t steps_apart = 0;
+  const auto step = [](float c) { return std::lround(255.0f * c); };
+  for (int y = 0; y < direct.image.height; ++y)
+    for (int x = 0; x < direct.image.width; ++x) {
+      const Rgb a = traced.image.at(x, y), b = direct.image.at(x, y);
+      const float d = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      EXPECT_LE(d, 1e-4f) << x << ", " << y;
+      steps_apart += step(a.r) != step(b.r) || step(a.g) != step(b.g) || step(a.b) != step(b.b);
+    }
+  EXPECT_LT(steps_apart, direct.values.size() / 1000);
+}
+
+// One trace coloured by two fields gives each the picture render_field draws of it: from a perspective
+// view with the ground shadow, and cut away.
+TEST(TracedPicture, ColoursEachFieldAsRenderFieldDrawsIt) {
+  const openvdb::FloatGrid::Ptr layers = layer_on_fill(0.0f), shifted = layer_on_fill(4.0f);
+  RenderOptions o = small(View::kIsometric);
+  o.ground_shadow = true;
+  o.background_bottom = Rgb{0.2f, 0.3f, 0.4f};
+  for (const bool cut : {false, true}) {
+    if (cut) o.cut = Cutaway{Eigen::Vector3f(100, 100, 0), -Eigen::Vector3f::UnitY()};
+    const TracedPicture traced(prepared_box(), o);
+    for (const auto* grid : {layers.get(), shifted.get()}) {
+      const SurfaceField f =
+          field_of(*grid, grid == layers.get() ? ColourMap::viridis() : ColourMap::inferno());
+      ASSERT_TRUE(traced.colours(f));
+      expect_same_picture(traced.colour(f), render_field(prepared_box(), f, o));
+    }
+  }
+}
+
+// A field on other voxels than the fill's, in another frame, or of points cannot be coloured on a trace:
+// its values would come from other voxels than the trace found.
+TEST(TracedPicture, TakesOnlyFieldsOnTheFillsVoxels) {
+  const TracedPicture traced(prepared_box(), small(View::kFront));
+  const openvdb::FloatGrid::Ptr moved = layer_on_fill(0.0f);
+  moved->setTransform(openvdb::math::Transform::createLinearTransform(2.0 * box().fill->voxelSize()[0]));
+  EXPECT_FALSE(traced.colours(field_of(*moved, ColourMap::viridis())));
+  const openvdb::FloatGrid::Ptr fewer = layer_on_fill(0.0f);
+  fewer->tree().setValueOff(box().fill->cbeginValueOn().getCoord());
+  EXPECT_FALSE(traced.colours(field_of(*fewer, ColourMap::viridis())));
+  SurfaceField points;
+  points.at_point = [](const Eigen::Vector3d&) { return 0.0; };
+  points.colour = [](double) { return Rgb{}; };
+  EXPECT_FALSE(traced.colours(points));
+  EXPECT_TRUE(traced.colours(field_of(*layer_on_fill(0.0f), ColourMap::viridis())));
+  EXPECT_GT(traced.memory_bytes(), 240u * 160u * 16u);
+  RenderOptions bad = small(View::kFront);
+  bad.samples_per_pixel = 0;
+  EXPECT_THROW(TracedPicture(prepared_box(), bad), InputError);
 }
 
 // --- golden images ---

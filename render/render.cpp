@@ -216,9 +216,11 @@ struct TracedPicture::Traced {
     std::uint32_t first = 0;
     float untinted = 0.0f, share = 0.0f, depth = 0.0f;
   };
-  // One voxel of a pixel's samples, and the light its samples send that its colour filters.
+  // One voxel of a pixel's samples: the point of the first of them (where a field of points is taken), and
+  // the light they send that the colour filters.
   struct Voxel {
     openvdb::Coord ijk;
+    Vec3 point;
     Vec3 tinted;
   };
   // A tile's pixels, row by row, and their voxels in the order their first samples came.
@@ -276,7 +278,7 @@ TracedPicture::TracedPicture(const PreparedDeposit& deposit, const RenderOptions
           const auto it =
               std::find_if(mine, out.voxels.end(), [&](const Traced::Voxel& v) { return v.ijk == ijk; });
           if (it == out.voxels.end())
-            out.voxels.push_back({ijk, light.tinted});
+            out.voxels.push_back({ijk, s.point, light.tinted});
           else
             it->tinted += light.tinted;
           pixel.untinted += light.untinted;
@@ -301,7 +303,8 @@ TracedPicture::TracedPicture(TracedPicture&&) noexcept = default;
 TracedPicture& TracedPicture::operator=(TracedPicture&&) noexcept = default;
 
 bool TracedPicture::colours(const SurfaceField& field) const {
-  return field.voxels != nullptr && field.voxels->transform() == traced_->fill->transform() &&
+  if (field.voxels == nullptr) return static_cast<bool>(field.at_point);
+  return field.voxels->transform() == traced_->fill->transform() &&
          same_active_voxels(*field.voxels, *traced_->fill);
 }
 
@@ -317,7 +320,8 @@ FieldPicture TracedPicture::colour(const SurfaceField& field) const {
   picture.depth.resize(count);
   tiles.parallel([&](int tile) {
     const Traced::Tile& in = t.tiles[static_cast<std::size_t>(tile)];
-    openvdb::FloatGrid::ConstAccessor values = field.voxels->getConstAccessor();
+    std::optional<openvdb::FloatGrid::ConstAccessor> values;
+    if (field.voxels != nullptr) values.emplace(field.voxels->getConstAccessor());
     // The last value's colour (a pixel's voxels, and the pixels along a bead, mostly show one value), and the
     // last radiance encoded (the background's rows).
     std::optional<std::uint64_t> last_value;
@@ -334,8 +338,9 @@ FieldPicture TracedPicture::colour(const SurfaceField& field) const {
         Vec3 part = Vec3::Zero();
         for (std::size_t k = pixel.first; k < end; ++k) {
           const Traced::Voxel& v = in.voxels[k];
-          const double at = v.ijk == kNoVoxel ? std::numeric_limits<double>::quiet_NaN()
-                                              : static_cast<double>(values.getValue(v.ijk));
+          const double at = !values             ? field.at_point(v.point.cast<double>())
+                            : v.ijk == kNoVoxel ? std::numeric_limits<double>::quiet_NaN()
+                                                : static_cast<double>(values->getValue(v.ijk));
           if (k == pixel.first) value = static_cast<float>(at);
           const auto bits = std::bit_cast<std::uint64_t>(at);
           if (last_value != bits) {

@@ -174,12 +174,12 @@ FieldPicture render_field(const PreparedDeposit& deposit, const SurfaceField& fi
                           const RenderOptions& options = {});
 
 // One picture's rays traced once, to be coloured by several fields (the pictures of one view of a part: its
-// sections, its fusion verdicts, its substrate temperature) without tracing them again: for every pixel the
-// light each of its samples receives and the voxel of the deposit's fill under each (the voxel render_field
-// takes a field's value from, when the field is active on the fill's voxels). A pixel's samples on the same
-// voxel are kept as one, so it holds about a pixel's worth of bytes for each of its voxels: some 30 MB for
-// a 1280 x 800 picture of a part filling a third of it. It keeps the deposit's fill grid (shared), not the
-// deposit.
+// sections, its fusion verdicts, its substrate temperature, its stock over the CAD) without tracing them
+// again: for every pixel the light each of its samples receives and the voxel of the deposit's fill under
+// each (the voxel render_field takes a field's value from, when the field is active on the fill's voxels).
+// A pixel's samples on the same voxel are kept as one, with the point of the first of them, so it holds
+// about 40 bytes a pixel and as many again for each voxel it shows: some 40 MB for a 1280 x 800 picture of
+// a part filling half of it. It keeps the deposit's fill grid (shared), not the deposit.
 class TracedPicture {
  public:
   // Traces `deposit` as render_field would with `options`. Throws InputError naming options out of range.
@@ -189,11 +189,13 @@ class TracedPicture {
   TracedPicture& operator=(TracedPicture&&) noexcept;
 
   // Whether `field` can be coloured here: a field of voxels active on exactly the fill's voxels, with its
-  // transform (as the pictures' fields are, made over the fill's voxels).
+  // transform (as the pictures' fields are, made over the fill's voxels), or of points.
   bool colours(const SurfaceField& field) const;
-  // The picture render_field would draw of `field` (colours() must hold): the same values and depths; the
-  // same colours but for rounding (each voxel's colour multiplies the sum of its samples' light), rarely one
-  // step of 255 apart.
+  // The picture render_field would draw of `field` (colours() must hold), with the same values and depths.
+  // Of voxels: the same colours but for rounding (each voxel's colour multiplies the sum of its samples'
+  // light), rarely one step of 255 apart. Of points: the colour of a pixel's samples on one voxel is taken
+  // at the first of them (the light is still each sample's): a colour that changes within a pixel is not
+  // smoothed across it.
   FieldPicture colour(const SurfaceField& field) const;
 
   std::size_t memory_bytes() const;

@@ -7,6 +7,8 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <openvdb/tree/LeafManager.h>
+#include <tbb/parallel_for.h>
 
 #include "render/colormap.hpp"
 #include "render/image.hpp"
@@ -59,14 +61,24 @@ struct Field {
   }
 };
 
-// A value on every material voxel of `fill`: value_at(voxel).
-template <class ValueAt>
-openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const ValueAt& value_at) {
-  auto out = openvdb::FloatGrid::create(std::numeric_limits<float>::quiet_NaN());
+// A value on every material voxel of `fill` (active on exactly its voxels, NaN elsewhere), leaf by leaf on
+// TBB's threads: read(voxel) of a reader each task makes with make_reader() (its accessors of the grids it
+// reads). Made voxel by voxel through the tree's iterator and one accessor, the three fields of the default
+// scenario's pictures drawn after the thermal stage took a third of what was left of the run then.
+template <class MakeReader>
+openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const MakeReader& make_reader) {
+  constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+  const auto tree = std::make_shared<openvdb::FloatTree>(fill.tree(), kNaNf, kNaNf, openvdb::TopologyCopy());
+  const openvdb::tree::LeafManager<openvdb::FloatTree> leaves(*tree);
+  tbb::parallel_for(leaves.leafRange(),
+                    [&](const openvdb::tree::LeafManager<openvdb::FloatTree>::LeafRange& r) {
+                      auto read = make_reader();
+                      for (auto leaf = r.begin(); leaf; ++leaf)
+                        for (auto it = leaf->beginValueOn(); it; ++it)
+                          it.setValue(static_cast<float>(read(it.getCoord())));
+                    });
+  openvdb::FloatGrid::Ptr out = openvdb::FloatGrid::create(tree);
   out->setTransform(fill.transform().copy());
-  auto out_at = out->getAccessor();
-  for (auto it = fill.cbeginValueOn(); it; ++it)
-    out_at.setValue(it.getCoord(), static_cast<float>(value_at(it.getCoord())));
   return out;
 }
 
@@ -74,20 +86,24 @@ openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const ValueAt&
 // the table.
 openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
                                         const std::vector<double>& by_label) {
-  auto label_at = labels.getConstAccessor();
-  return values_on(fill, [&](const openvdb::Coord& ijk) {
-    const int label = label_at.getValue(ijk);
-    return label >= 0 && static_cast<std::size_t>(label) < by_label.size()
-               ? by_label[static_cast<std::size_t>(label)]
-               : kNaN;
+  return values_on(fill, [&] {
+    return [label_at = labels.getConstAccessor(), &by_label](const openvdb::Coord& ijk) {
+      const int label = label_at.getValue(ijk);
+      return label >= 0 && static_cast<std::size_t>(label) < by_label.size()
+                 ? by_label[static_cast<std::size_t>(label)]
+                 : kNaN;
+    };
   });
 }
 
 // `grid`'s values on the material voxels, divided by `unit`.
 openvdb::FloatGrid::Ptr values_of(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& grid,
                                   double unit) {
-  auto grid_at = grid.getConstAccessor();
-  return values_on(fill, [&](const openvdb::Coord& ijk) { return grid_at.getValue(ijk) / unit; });
+  return values_on(fill, [&] {
+    return [grid_at = grid.getConstAccessor(), unit](const openvdb::Coord& ijk) {
+      return grid_at.getValue(ijk) / unit;
+    };
+  });
 }
 
 // A duration in the unit that reads best for `longest_s`.
@@ -476,16 +492,15 @@ struct PictureWriter::State {
     return shape(last_layer, until_s);
   }
 
-  // Which pictures share a view and are coloured on its traced rays: those of the voxel fields (all but the
-  // deviation from the CAD, a function of the surface point), when two or more share the view or one is
-  // drawn after the thermal run.
+  // Which pictures share a view and are coloured on its traced rays: all that share it with another, and
+  // those drawn after the thermal run.
   void plan_views() {
     const std::vector<ImageSpec>& images = variant().render.images;
     view_of.assign(images.size(), -1);
     std::vector<bool> after_thermal;
     for (std::size_t k = 0; k < images.size(); ++k) {
       const ImageSpec& im = images[k];
-      if (left_out(im) || im.colour == Colouring::kDeviation) continue;
+      if (left_out(im)) continue;
       const auto same = std::find_if(views.begin(), views.end(), [&](const View& v) {
         const ImageSpec& other = images[v.first];
         return shape_key(other) == shape_key(im) && same_camera(other.camera, im.camera) &&

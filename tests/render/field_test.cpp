@@ -220,8 +220,8 @@ TEST(TracedPicture, ColoursEachFieldAsRenderFieldDrawsIt) {
   }
 }
 
-// A field on other voxels than the fill's, in another frame, or of points cannot be coloured on a trace:
-// its values would come from other voxels than the trace found.
+// A field on other voxels than the fill's or in another frame cannot be coloured on a trace: its values
+// would come from other voxels than the trace found.
 TEST(TracedPicture, TakesOnlyFieldsOnTheFillsVoxels) {
   const TracedPicture traced(prepared_box(), small(View::kFront));
   const openvdb::FloatGrid::Ptr moved = layer_on_fill(0.0f);
@@ -230,15 +230,39 @@ TEST(TracedPicture, TakesOnlyFieldsOnTheFillsVoxels) {
   const openvdb::FloatGrid::Ptr fewer = layer_on_fill(0.0f);
   fewer->tree().setValueOff(box().fill->cbeginValueOn().getCoord());
   EXPECT_FALSE(traced.colours(field_of(*fewer, ColourMap::viridis())));
-  SurfaceField points;
-  points.at_point = [](const Eigen::Vector3d&) { return 0.0; };
-  points.colour = [](double) { return Rgb{}; };
-  EXPECT_FALSE(traced.colours(points));
   EXPECT_TRUE(traced.colours(field_of(*layer_on_fill(0.0f), ColourMap::viridis())));
   EXPECT_GT(traced.memory_bytes(), 240u * 160u * 16u);
   RenderOptions bad = small(View::kFront);
   bad.samples_per_pixel = 0;
   EXPECT_THROW(TracedPicture(prepared_box(), bad), InputError);
+}
+
+// A field of points coloured on a trace: each pixel's value and depth as render_field gives them (the first
+// sample's on the part), and its colour taken at the first sample on each voxel rather than smoothed over
+// the samples: the same but along the line where the colour changes within a pixel.
+TEST(TracedPicture, ColoursAFieldOfPointsAtTheFirstSampleOnEachVoxel) {
+  SurfaceField f;  // the line inside a column of voxels
+  f.at_point = [](const Eigen::Vector3d& p) { return p.x() < 101.7 ? 0.0 : 1.0; };
+  f.colour = [](double v) { return v < 0.5 ? Rgb{0.9f, 0.2f, 0.2f} : Rgb{0.2f, 0.3f, 0.9f}; };
+  const RenderOptions o = small(View::kFront);
+  const TracedPicture traced(prepared_box(), o);
+  ASSERT_TRUE(traced.colours(f));
+  const FieldPicture a = traced.colour(f), b = render_field(prepared_box(), f, o);
+  ASSERT_EQ(a.values.size(), b.values.size());
+  for (std::size_t i = 0; i < a.values.size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(a.values[i]), std::bit_cast<std::uint32_t>(b.values[i])) << i;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(a.depth[i]), std::bit_cast<std::uint32_t>(b.depth[i])) << i;
+  }
+  std::size_t apart = 0;
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const Rgb p = a.image.at(x, y), q = b.image.at(x, y);
+      if (std::max({std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)}) < 1e-4f) continue;
+      ++apart;
+      EXPECT_LE(std::abs(x - 120), 2) << x << ", " << y;  // the box's front, 0..200 mm, is centred
+    }
+  EXPECT_GT(apart, 0u);  // some pixels on the line are smoothed in one and not the other
+  EXPECT_LT(apart, 4u * static_cast<std::size_t>(o.height));
 }
 
 // --- golden images ---

@@ -34,6 +34,9 @@ target_link_libraries(OpenImageIO::OpenImageIO INTERFACE ${OIIO_LIBRARY} ${OIIO_
 # FreeType draws the images' text (render/text.hpp says why not through OpenImageIO).
 find_package(Freetype REQUIRED)
 
+# libpng writes the pictures (render/image.cpp says why not through OpenImageIO).
+find_package(PNG REQUIRED)
+
 # SUNDIALS 6: CVODE with the serial vector and the dense/band/Krylov solvers.
 find_package(SUNDIALS 6 REQUIRED CONFIG)
 

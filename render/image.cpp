@@ -2,13 +2,19 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <set>
 #include <stdexcept>
 #include <string>
 
+#include <csetjmp>
+#include <cstdio>
+
 #include <dlfcn.h>
+#include <png.h>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -111,17 +117,69 @@ void write_atomically(const char* format, const std::string& label, const std::f
 
 }  // namespace
 
+namespace {
+
+// libpng reports an error by calling this, which must not return: the message is kept and the writer jumps
+// back to where it set the jump buffer.
+struct PngErrors {
+  std::jmp_buf jump;
+  char message[256] = "";
+};
+
+[[noreturn]] void png_failed(png_structp png, png_const_charp message) {
+  auto* errors = static_cast<PngErrors*>(png_get_error_ptr(png));
+  std::snprintf(errors->message, sizeof errors->message, "%s", message);
+  std::longjmp(errors->jump, 1);
+}
+
+void png_warned(png_structp, png_const_charp) {}
+
+// `rows` (8-bit RGB, top row first) as a PNG on `file`, with the sRGB chunk and the Software text; an empty
+// string or what libpng said went wrong. Plain C between setjmp and longjmp: nothing here has a destructor
+// the jump could skip.
+std::string write_png_rows(std::FILE* file, int width, int height, const std::vector<png_bytep>& rows,
+                           const char* software) {
+  PngErrors errors;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &errors, png_failed, png_warned);
+  if (png == nullptr) return "libpng could not start";
+  png_infop info = png_create_info_struct(png);
+  if (info == nullptr || setjmp(errors.jump) != 0) {
+    png_destroy_write_struct(&png, info != nullptr ? &info : nullptr);
+    return errors.message[0] != '\0' ? errors.message : "libpng could not start";
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_text text{};
+  text.compression = PNG_TEXT_COMPRESSION_NONE;
+  text.key = const_cast<png_charp>("Software");
+  text.text = const_cast<png_charp>(software);
+  png_set_text(png, info, &text, 1);
+  png_set_rows(png, info, const_cast<png_bytepp>(rows.data()));
+  png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return {};
+}
+
+}  // namespace
+
+// PNG through libpng itself rather than the codec module: the pictures of a run are PNGs, and loading the
+// module (OpenImageIO and the 260 libraries it brings) cost 0.4 s of CPU time, 4 % of the default scenario.
 void write_png(const Image& image, const std::filesystem::path& path) {
   check_not_empty(image, path);
   std::vector<std::uint8_t> bytes(image.pixels.size());
   std::transform(image.pixels.begin(), image.pixels.end(), bytes.begin(), to_byte);
-  codec::Pixels pixels;
-  pixels.width = image.width;
-  pixels.height = image.height;
-  pixels.channels = 3;
-  pixels.data = bytes.data();
-  pixels.colour_space = "sRGB";
-  write_atomically("png", "PNG", path, std::move(pixels));
+  std::vector<png_bytep> rows(static_cast<std::size_t>(image.height));
+  for (std::size_t y = 0; y < rows.size(); ++y)
+    rows[y] = bytes.data() + y * static_cast<std::size_t>(image.width) * 3;
+  AtomicPath out(path);
+  std::FILE* file = std::fopen(out.temp().c_str(), "wb");
+  if (file == nullptr) fail("cannot write PNG", path, std::strerror(errno));
+  std::string why = write_png_rows(file, image.width, image.height, rows, "beadtwin " BEADTWIN_VERSION);
+  if (std::fclose(file) != 0 && why.empty()) why = std::strerror(errno);
+  if (!why.empty()) fail("cannot write PNG", path, why);
+  out.commit();
 }
 
 namespace {

@@ -2,9 +2,9 @@
 //
 // An Image holds display-encoded sRGB (what a screen shows and a PNG stores), 0..1 per channel, three
 // channels interleaved, row 0 at the top. Shading happens in linear light; srgb_to_linear and
-// linear_to_srgb convert at the two ends. Files go through OpenImageIO (in a module loaded on first use,
-// render/image_codec.hpp) and are written atomically, so an interrupted run never leaves half an image
-// behind.
+// linear_to_srgb convert at the two ends. PNGs are written with libpng; EXRs, and every file read, go
+// through OpenImageIO (in a module loaded on first use, render/image_codec.hpp). Files are written
+// atomically, so an interrupted run never leaves half an image behind.
 #pragma once
 
 #include <filesystem>
@@ -38,9 +38,9 @@ struct Image {
 float srgb_to_linear(float encoded);
 float linear_to_srgb(float linear);
 
-// Writes `image` as an 8-bit sRGB PNG through OpenImageIO: to a temporary file beside `path`, renamed into
-// place when complete. Throws InputError for an empty image and std::runtime_error naming the path when the
-// file cannot be written.
+// Writes `image` as an 8-bit sRGB PNG (with the sRGB chunk and beadtwin's name as its Software) through
+// libpng: to a temporary file beside `path`, renamed into place when complete. Throws InputError for an empty
+// image and std::runtime_error naming the path when the file cannot be written.
 void write_png(const Image& image, const std::filesystem::path& path);
 
 // A named float channel written beside the colours of an EXR: raw values for other programs, such as the

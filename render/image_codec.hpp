@@ -1,5 +1,5 @@
 // The OpenImageIO half of image files: a module of its own (libbeadtwin_image_codec.so), loaded the first
-// time an image is written or read.
+// time an EXR is written or an image is read (PNGs are written with libpng: render/image.cpp).
 //
 // Why a module: OpenImageIO as Debian builds it brings 260 shared libraries (OpenCV, FFmpeg, GStreamer,
 // DCMTK, ...). Linked into beadtwin, the dynamic loader bound them all at every start, 0.2 s before any

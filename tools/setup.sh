@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libfmt-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev
   libtbb-dev libopenvdb-dev libboost-dev libboost-iostreams-dev libblosc-dev
   libembree-dev libopenimageio-dev libsundials-dev libpolyclipping-dev libassimp-dev
-  libmeshoptimizer-dev libfreetype-dev fonts-dejavu-core
+  libmeshoptimizer-dev libfreetype-dev libpng-dev fonts-dejavu-core
   libgtest-dev libgmock-dev libxml2-dev libjs-chart.js
   libopenmpi-dev openmpi-bin
 )

@@ -68,6 +68,21 @@ TEST_F(ImageFiles, PngRoundTripsTo8Bits) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_), {}), 1);
 }
 
+// The PNG says its colours are sRGB and which program wrote it, as another program reads it.
+TEST_F(ImageFiles, PngSaysItIsSrgbAndWhoWroteIt) {
+  const auto path = dir_ / "tagged.png";
+  write_png(gradient(16, 8), path);
+  auto in = OIIO::ImageInput::open(path.string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  EXPECT_EQ(std::string(in->format_name()), "png");
+  EXPECT_EQ(spec.nchannels, 3);
+  EXPECT_EQ(spec.format, OIIO::TypeDesc::UINT8);
+  EXPECT_EQ(spec.get_string_attribute("oiio:ColorSpace"), "sRGB");
+  const std::string software(spec.get_string_attribute("Software"));
+  EXPECT_EQ(software.rfind("beadtwin ", 0), 0u) << software;
+}
+
 TEST_F(ImageFiles, ReplacesAnExistingFile) {
   const auto path = dir_ / "twice.png";
   write_png(gradient(8, 8), path);

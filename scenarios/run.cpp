@@ -477,12 +477,13 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
       stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
   // Only the thermal stage and the pictures coloured by its results need it: the rest reads the deposit
   // alone and runs on a thread of its own beside the thermal stage: the CAD comparison, the pictures' shapes
-  // (surfaces and ray-tracing scenes) and the pictures that need no thermal result, and the deposit's files
-  // (shared, below). The thermal stage keeps both cores busy only in its short parallel loops between the
-  // integrator's serial steps, so the other thread mostly fills the gaps (docs/PERFORMANCE.md). The main
-  // thread touches none of what that thread writes until it is done. The times of its stages are recorded
-  // once both are done, so the stages keep one order; the render stage's time is both of its goes. An error
-  // of either is thrown after both have finished (the future waits as it is destroyed).
+  // (surfaces and ray-tracing scenes), the pictures that need no thermal result, the rays of those that do
+  // (traced now, coloured once it is done: PictureWriter), and the deposit's files (shared, below). The
+  // thermal stage keeps both cores busy only in its short parallel loops between the integrator's serial
+  // steps, so the other thread mostly fills the gaps (docs/PERFORMANCE.md). The main thread touches none of
+  // what that thread writes until it is done. The times of its stages are recorded once both are done, so the
+  // stages keep one order; the render stage's time is both of its goes. An error of either is thrown after
+  // both have finished (the future waits as it is destroyed).
   PictureInputs pictures_in;
   pictures_in.scenario = &sc;
   pictures_in.variant = &v;

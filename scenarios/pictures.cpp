@@ -493,10 +493,14 @@ struct PictureWriter::State {
   }
 
   // Which pictures share a view and are coloured on its traced rays: all that share it with another, and
-  // those drawn after the thermal run.
+  // those drawn after the thermal run. Not for pictures larger than 4K UHD: a traced view holds some 40
+  // bytes a pixel (render::TracedPicture), and those of the thermal pictures are held through the thermal
+  // stage; such pictures are each traced when drawn, as before.
   void plan_views() {
+    constexpr long kMostTracedPixels = 3840L * 2160L;
     const std::vector<ImageSpec>& images = variant().render.images;
     view_of.assign(images.size(), -1);
+    if (static_cast<long>(variant().render.width) * variant().render.height > kMostTracedPixels) return;
     std::vector<bool> after_thermal;
     for (std::size_t k = 0; k < images.size(); ++k) {
       const ImageSpec& im = images[k];

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -384,6 +385,28 @@ class PixelSampler {
   std::vector<shading::Sample> samples_;
   shading::OcclusionBatch shadow_, occlusion_;
   std::uint64_t camera_rays_outside_ = 0, shadow_rays_ = 0, occlusion_rays_ = 0;
+};
+
+// The rays of a picture's tiles, counted from their samplers on any thread.
+class RayCounter {
+ public:
+  void add(const PixelSampler& sampler) {
+    outside_ += sampler.camera_rays_outside();
+    shadow_ += sampler.shadow_rays();
+    occlusion_ += sampler.occlusion_rays();
+  }
+  RenderStats stats(const RenderOptions& options) const {
+    RenderStats s;
+    s.primary_rays = static_cast<std::uint64_t>(options.width) * static_cast<std::uint64_t>(options.height) *
+                     static_cast<std::uint64_t>(options.samples_per_pixel);
+    s.primary_rays_outside = outside_;
+    s.shadow_rays = shadow_;
+    s.occlusion_rays = occlusion_;
+    return s;
+  }
+
+ private:
+  std::atomic<std::uint64_t> outside_{0}, shadow_{0}, occlusion_{0};
 };
 
 }  // namespace pixels

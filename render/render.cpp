@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -102,7 +101,7 @@ FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32
     picture.values.resize(count);
     picture.depth.resize(count);
   }
-  std::atomic<std::uint64_t> outside{0}, shadow_rays{0}, occlusion_rays{0};
+  pixels::RayCounter rays;
   tiles.parallel([&](int tile) {
     pixels::PixelSampler sampler(setup);
     Probes probes(labels, albedo.field_grid());
@@ -145,16 +144,9 @@ FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32
         }
       }
     }
-    outside += sampler.camera_rays_outside();
-    shadow_rays += sampler.shadow_rays();
-    occlusion_rays += sampler.occlusion_rays();
+    rays.add(sampler);
   });
-  picture.stats.primary_rays = static_cast<std::uint64_t>(options.width) *
-                               static_cast<std::uint64_t>(options.height) *
-                               static_cast<std::uint64_t>(options.samples_per_pixel);
-  picture.stats.primary_rays_outside = outside;
-  picture.stats.shadow_rays = shadow_rays;
-  picture.stats.occlusion_rays = occlusion_rays;
+  picture.stats = rays.stats(options);
   picture.mm_per_pixel = setup.mm_per_pixel();
   return picture;
 }
@@ -251,7 +243,7 @@ TracedPicture::TracedPicture(const PreparedDeposit& deposit, const RenderOptions
   const pixels::PictureSetup setup(deposit, options);
   const pixels::Tiles tiles(options.width, options.height);
   t.tiles.resize(static_cast<std::size_t>(tiles.count()));
-  std::atomic<std::uint64_t> outside{0}, shadow_rays{0}, occlusion_rays{0};
+  pixels::RayCounter rays;
   tiles.parallel([&](int tile) {
     pixels::PixelSampler sampler(setup);
     FieldProbe voxels(deposit.fill());
@@ -285,16 +277,9 @@ TracedPicture::TracedPicture(const PreparedDeposit& deposit, const RenderOptions
           if (std::isnan(pixel.depth)) pixel.depth = s.t;
         }
       }
-    outside += sampler.camera_rays_outside();
-    shadow_rays += sampler.shadow_rays();
-    occlusion_rays += sampler.occlusion_rays();
+    rays.add(sampler);
   });
-  t.stats.primary_rays = static_cast<std::uint64_t>(options.width) *
-                         static_cast<std::uint64_t>(options.height) *
-                         static_cast<std::uint64_t>(options.samples_per_pixel);
-  t.stats.primary_rays_outside = outside;
-  t.stats.shadow_rays = shadow_rays;
-  t.stats.occlusion_rays = occlusion_rays;
+  t.stats = rays.stats(options);
   t.mm_per_pixel = setup.mm_per_pixel();
 }
 

@@ -269,7 +269,7 @@ class PixelSampler {
  public:
   explicit PixelSampler(const PictureSetup& setup)
       : setup_(setup),
-        fill_(setup.deposit().fill().getConstAccessor()),
+        fill_(setup.deposit().fill().getConstUnsafeAccessor()),
         spp_(static_cast<std::uint32_t>(setup.options().samples_per_pixel)) {
     samples_.reserve(spp_);
   }
@@ -377,7 +377,7 @@ class PixelSampler {
   }
 
   const PictureSetup& setup_;
-  openvdb::FloatGrid::ConstAccessor fill_;
+  openvdb::FloatGrid::ConstUnsafeAccessor fill_;
   std::array<bool, shading::OcclusionBatch::kLanes> caps_{};
   std::array<float, shading::OcclusionBatch::kLanes> cap_t_{};
   std::uint32_t spp_;

@@ -305,8 +305,9 @@ FieldPicture TracedPicture::colour(const SurfaceField& field) const {
   picture.depth.resize(count);
   tiles.parallel([&](int tile) {
     const Traced::Tile& in = t.tiles[static_cast<std::size_t>(tile)];
-    std::optional<openvdb::FloatGrid::ConstAccessor> values;
-    if (field.voxels != nullptr) values.emplace(field.voxels->getConstAccessor());
+    // Unregistered with the field's tree, as the probes' (render/surface.hpp).
+    std::optional<openvdb::FloatGrid::ConstUnsafeAccessor> values;
+    if (field.voxels != nullptr) values.emplace(field.voxels->getConstUnsafeAccessor());
     // The last value's colour (a pixel's voxels, and the pixels along a bead, mostly show one value), and the
     // last radiance encoded (the background's rows).
     std::optional<std::uint64_t> last_value;

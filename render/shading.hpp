@@ -167,7 +167,7 @@ class CutPlane {
   }
 
   // The fill at `point` (world, mm), trilinear between voxel centres.
-  float fill_at(const Vec3& point, openvdb::FloatGrid::ConstAccessor& accessor) const {
+  float fill_at(const Vec3& point, openvdb::FloatGrid::ConstUnsafeAccessor& accessor) const {
     const openvdb::Vec3d index =
         fill_.transform().worldToIndex(openvdb::Vec3d(point.x(), point.y(), point.z()));
     return openvdb::tools::BoxSampler::sample(accessor, index);

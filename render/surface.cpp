@@ -106,7 +106,7 @@ std::optional<openvdb::Coord> probe(Accessor& accessor, const openvdb::math::Tra
 }  // namespace
 
 LayerProbe::LayerProbe(const openvdb::Int32Grid& layer)
-    : accessor_(layer.getConstAccessor()),
+    : accessor_(layer.getConstUnsafeAccessor()),
       transform_(layer.transform()),
       half_voxel_mm_(0.5 * layer.voxelSize()[0]) {}
 
@@ -119,7 +119,7 @@ int LayerProbe::layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& in
 }
 
 FieldProbe::FieldProbe(const openvdb::FloatGrid& field)
-    : accessor_(field.getConstAccessor()),
+    : accessor_(field.getConstUnsafeAccessor()),
       transform_(field.transform()),
       half_voxel_mm_(0.5 * field.voxelSize()[0]) {}
 

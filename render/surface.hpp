@@ -26,7 +26,10 @@ struct SurfaceMesh {
 // when the grid has no active voxels or no surface at `isovalue`.
 SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue = 0.5);
 
-// Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes).
+// Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes), and
+// only while the grid does not change: its accessor is not registered with the tree (a registration per
+// tile, in a table every thread shares, cost more than it saved, and trips UndefinedBehaviorSanitizer in
+// TBB's table when the tree goes).
 class LayerProbe {
  public:
   explicit LayerProbe(const openvdb::Int32Grid& layer);
@@ -36,7 +39,7 @@ class LayerProbe {
   int layer_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
 
  private:
-  openvdb::Int32Grid::ConstAccessor accessor_;
+  openvdb::Int32Grid::ConstUnsafeAccessor accessor_;
   const openvdb::math::Transform& transform_;
   double half_voxel_mm_;
 };
@@ -55,7 +58,7 @@ class FieldProbe {
   std::optional<openvdb::Coord> voxel_at(const Eigen::Vector3f& point, const Eigen::Vector3f& inward);
 
  private:
-  openvdb::FloatGrid::ConstAccessor accessor_;
+  openvdb::FloatGrid::ConstUnsafeAccessor accessor_;
   const openvdb::math::Transform& transform_;
   double half_voxel_mm_;
 };

@@ -387,6 +387,23 @@ class PixelSampler {
   std::uint64_t camera_rays_outside_ = 0, shadow_rays_ = 0, occlusion_rays_ = 0;
 };
 
+// A pixel's radiance (linear) as display sRGB, the last one kept: runs of pixels of the same radiance (the
+// background's rows) are encoded once. One per thread.
+class SrgbEncoder {
+ public:
+  Rgb operator()(const Vec3& c) {
+    if (c != last_) {
+      encoded_ = {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())};
+      last_ = c;
+    }
+    return encoded_;
+  }
+
+ private:
+  Vec3 last_ = Vec3::Constant(std::numeric_limits<float>::quiet_NaN());
+  Rgb encoded_{};
+};
+
 // The rays of a picture's tiles, counted from their samplers on any thread.
 class RayCounter {
  public:

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -104,11 +103,9 @@ FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32
   pixels::RayCounter rays;
   tiles.parallel([&](int tile) {
     pixels::PixelSampler sampler(setup);
-    Probes probes(labels, albedo.field_grid());
+    Probes probes(labels, albedo.field());
     const auto n = static_cast<float>(sampler.samples_per_pixel());
-    // The last colour encoded: runs of pixels of the same radiance (the background's rows) are encoded once.
-    Vec3 last = Vec3::Constant(std::numeric_limits<float>::quiet_NaN());
-    Rgb encoded{};
+    pixels::SrgbEncoder encode;
     for (int y = tiles.y0(tile); y < tiles.y1(tile); ++y) {
       const Vec3 background = setup.background(y);
       for (int x = tiles.x0(tile); x < tiles.x1(tile); ++x) {
@@ -131,11 +128,7 @@ FieldPicture render_surface(const PreparedDeposit& deposit, const openvdb::Int32
           }
           c = part / n + (share / n) * background;
         }
-        if (c != last) {
-          encoded = {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())};
-          last = c;
-        }
-        picture.image.set(x, y, encoded);
+        picture.image.set(x, y, encode(c));
         if (values) {
           const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(options.width) +
                                 static_cast<std::size_t>(x);
@@ -308,12 +301,8 @@ FieldPicture TracedPicture::colour(const SurfaceField& field) const {
     // Unregistered with the field's tree, as the probes' (render/surface.hpp).
     std::optional<openvdb::FloatGrid::ConstUnsafeAccessor> values;
     if (field.voxels != nullptr) values.emplace(field.voxels->getConstUnsafeAccessor());
-    // The last value's colour (a pixel's voxels, and the pixels along a bead, mostly show one value), and the
-    // last radiance encoded (the background's rows).
-    std::optional<std::uint64_t> last_value;
-    Vec3 albedo = Vec3::Zero();
-    Vec3 last = Vec3::Constant(std::numeric_limits<float>::quiet_NaN());
-    Rgb encoded{};
+    ValueColours albedo(field.colour);
+    pixels::SrgbEncoder encode;
     std::size_t p = 0;
     for (int y = tiles.y0(tile); y < tiles.y1(tile); ++y) {
       const Vec3 background = pixels::background_row(t.top, t.bottom, y, t.height);
@@ -328,20 +317,10 @@ FieldPicture TracedPicture::colour(const SurfaceField& field) const {
                             : v.ijk == kNoVoxel ? std::numeric_limits<double>::quiet_NaN()
                                                 : static_cast<double>(values->getValue(v.ijk));
           if (k == pixel.first) value = static_cast<float>(at);
-          const auto bits = std::bit_cast<std::uint64_t>(at);
-          if (last_value != bits) {
-            albedo = to_linear(field.colour(at));
-            last_value = bits;
-          }
-          part += albedo.cwiseProduct(v.tinted);
+          part += albedo(at).cwiseProduct(v.tinted);
         }
         part += Vec3::Constant(pixel.untinted);
-        const Vec3 c = part / t.samples + (pixel.share / t.samples) * background;
-        if (c != last) {
-          encoded = {linear_to_srgb(c.x()), linear_to_srgb(c.y()), linear_to_srgb(c.z())};
-          last = c;
-        }
-        picture.image.set(x, y, encoded);
+        picture.image.set(x, y, encode(part / t.samples + (pixel.share / t.samples) * background));
         const std::size_t i =
             static_cast<std::size_t>(y) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(x);
         picture.values[i] = value;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -91,19 +92,41 @@ class Palette {
   Vec3 unknown_;
 };
 
+// A field's values in linear light, through its colour function (display sRGB), the last value's colour kept
+// (by its bits, so that NaN is a value too): the samples of a pixel, and the pixels along a bead, mostly show
+// the same voxel's value, and the colour function and the sRGB decoding were a large part of a sample's
+// cost. One per thread.
+class ValueColours {
+ public:
+  explicit ValueColours(const std::function<Rgb(double)>& colour) : colour_(colour) {}
+
+  const Vec3& operator()(double value) {
+    const auto bits = std::bit_cast<std::uint64_t>(value);
+    if (!has_last_ || last_bits_ != bits) {
+      last_ = to_linear(colour_(value));
+      last_bits_ = bits;
+      has_last_ = true;
+    }
+    return last_;
+  }
+
+ private:
+  const std::function<Rgb(double)>& colour_;
+  bool has_last_ = false;
+  std::uint64_t last_bits_ = 0;
+  Vec3 last_ = Vec3::Zero();
+};
+
 // What lies under surface points, for one thread: the label (layer or cell) and the field's value.
 struct Probes {
   LayerProbe labels;
   std::optional<FieldProbe> field;
-  // The field's last value (its bits, so that NaN is a value too) and its colour in linear light: the
-  // samples of a pixel, and the pixels along a bead, mostly show the same voxel's value, and the colour
-  // function and the sRGB decoding were a large part of a sample's cost.
-  std::uint64_t last_value_bits = 0;
-  bool has_last = false;
-  Vec3 last_colour = Vec3::Zero();
+  std::optional<ValueColours> colours;  // the field's
 
-  Probes(const openvdb::Int32Grid& label_grid, const openvdb::FloatGrid* field_grid) : labels(label_grid) {
-    if (field_grid != nullptr) field.emplace(*field_grid);
+  Probes(const openvdb::Int32Grid& label_grid, const SurfaceField* surface_field) : labels(label_grid) {
+    if (surface_field == nullptr) return;
+    if (surface_field->voxels != nullptr) field.emplace(*surface_field->voxels);
+    colours.emplace(surface_field->colour);
   }
 };
 
@@ -116,7 +139,7 @@ class Albedo {
   explicit Albedo(const SurfaceColour& colour) : colour_(&colour) {}
   explicit Albedo(const SurfaceField& field) : field_(&field) {}
 
-  const openvdb::FloatGrid* field_grid() const { return field_ ? field_->voxels : nullptr; }
+  const SurfaceField* field() const { return field_; }
 
   // `inward`: the unit direction into the material at `point`.
   Vec3 operator()(const Vec3& point, const Vec3& inward, Probes& probes, float& value) const {
@@ -124,13 +147,7 @@ class Albedo {
       const double v = field_->voxels ? static_cast<double>(probes.field->value_at(point, inward))
                                       : field_->at_point(point.cast<double>());
       value = static_cast<float>(v);
-      const auto bits = std::bit_cast<std::uint64_t>(v);
-      if (!probes.has_last || bits != probes.last_value_bits) {
-        probes.last_colour = to_linear(field_->colour(v));
-        probes.last_value_bits = bits;
-        probes.has_last = true;
-      }
-      return probes.last_colour;
+      return (*probes.colours)(v);
     }
     const int label = probes.labels.layer_at(point, inward);
     if (colour_) {

@@ -63,8 +63,9 @@ struct Field {
 
 // A value on every material voxel of `fill` (active on exactly its voxels, NaN elsewhere), leaf by leaf on
 // TBB's threads: read(voxel) of a reader each task makes with make_reader() (its accessors of the grids it
-// reads). Made voxel by voxel through the tree's iterator and one accessor, the three fields of the default
-// scenario's pictures drawn after the thermal stage took a third of what was left of the run then.
+// reads, unregistered with their trees, as the renderer's: render/surface.hpp). Made voxel by voxel through
+// the tree's iterator and one accessor, the three fields of the default scenario's pictures drawn after the
+// thermal stage took a third of what was left of the run then.
 template <class MakeReader>
 openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const MakeReader& make_reader) {
   constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
@@ -87,7 +88,7 @@ openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const MakeRead
 openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
                                         const std::vector<double>& by_label) {
   return values_on(fill, [&] {
-    return [label_at = labels.getConstAccessor(), &by_label](const openvdb::Coord& ijk) {
+    return [label_at = labels.getConstUnsafeAccessor(), &by_label](const openvdb::Coord& ijk) {
       const int label = label_at.getValue(ijk);
       return label >= 0 && static_cast<std::size_t>(label) < by_label.size()
                  ? by_label[static_cast<std::size_t>(label)]
@@ -100,7 +101,7 @@ openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const op
 openvdb::FloatGrid::Ptr values_of(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& grid,
                                   double unit) {
   return values_on(fill, [&] {
-    return [grid_at = grid.getConstAccessor(), unit](const openvdb::Coord& ijk) {
+    return [grid_at = grid.getConstUnsafeAccessor(), unit](const openvdb::Coord& ijk) {
       return grid_at.getValue(ijk) / unit;
     };
   });
@@ -448,8 +449,9 @@ struct PictureWriter::State {
   // is most of what is left for the pictures once the thermal stage is done). Dropped once their last picture
   // is drawn.
   struct View {
-    std::size_t first;  // the first picture of the render block from it
-    int pictures = 0;   // its pictures not yet drawn
+    std::size_t first;           // the first picture of the render block from it
+    int pictures = 0;            // its pictures not yet drawn
+    bool after_thermal = false;  // one of them is drawn after the thermal run
     std::optional<render::TracedPicture> traced;
   };
   std::vector<View> views;
@@ -501,7 +503,6 @@ struct PictureWriter::State {
     const std::vector<ImageSpec>& images = variant().render.images;
     view_of.assign(images.size(), -1);
     if (static_cast<long>(variant().render.width) * variant().render.height > kMostTracedPixels) return;
-    std::vector<bool> after_thermal;
     for (std::size_t k = 0; k < images.size(); ++k) {
       const ImageSpec& im = images[k];
       if (left_out(im)) continue;
@@ -511,16 +512,13 @@ struct PictureWriter::State {
                same_cut(other.cut, im.cut);
       });
       const auto v = static_cast<std::size_t>(same - views.begin());
-      if (v == views.size()) {
-        views.push_back({k, 0, std::nullopt});
-        after_thermal.push_back(false);
-      }
+      if (v == views.size()) views.push_back({k, 0, false, std::nullopt});
       ++views[v].pictures;
-      if (needs_thermal(im.colour)) after_thermal[v] = true;
+      views[v].after_thermal |= needs_thermal(im.colour);
       view_of[k] = static_cast<int>(v);
     }
-    for (std::size_t k = 0; k < images.size(); ++k)
-      if (view_of[k] >= 0 && views[view_of[k]].pictures < 2 && !after_thermal[view_of[k]]) view_of[k] = -1;
+    for (int& v : view_of)
+      if (v >= 0 && views[v].pictures < 2 && !views[v].after_thermal) v = -1;
   }
 
   // The traced rays of picture k's view, traced now if they are not yet; null when it is drawn on its own.

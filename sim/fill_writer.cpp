@@ -14,6 +14,74 @@ FillWriter::FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openv
       layer_(layer.getAccessor()),
       move_(move.getAccessor()) {}
 
+FillWriter::~FillWriter() {
+  if (counts_.empty()) return;
+  for (auto leaf = fill_.tree().beginLeaf(); leaf; ++leaf) leaf->setTransientData(0);
+}
+
+FillWriter::LevelWindow::FirstRings FillWriter::LevelWindow::reset(const openvdb::Coord& centre, int radius) {
+  static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3, "blocks of 8 voxels");
+  bx0_ = (centre.x() - radius) >> 3;
+  by0_ = (centre.y() - radius) >> 3;
+  k_ = centre.z();
+  across_ = std::max(((centre.x() + radius) >> 3) - bx0_, ((centre.y() + radius) >> 3) - by0_) + 1;
+  blocks_.assign(static_cast<std::size_t>(across_) * static_cast<std::size_t>(across_), Block{});
+  FirstRings first{radius + 1, radius + 1};
+  for (int by = by0_; by < by0_ + across_; ++by)
+    for (int bx = bx0_; bx < bx0_ + across_; ++bx) {
+      // The L1 distance from the centre to the nearest voxel of the block.
+      const int dx = std::max({0, bx * 8 - centre.x(), centre.x() - (bx * 8 + 7)});
+      const int dy = std::max({0, by * 8 - centre.y(), centre.y() - (by * 8 + 7)});
+      const int d = dx + dy;
+      if (d >= first.gap && d >= first.room) continue;
+      const Block& b = block(bx * 8, by * 8);
+      if (b.gaps) first.gap = std::min(first.gap, d);
+      if (!b.full) first.room = std::min(first.room, d);
+    }
+  return first;
+}
+
+const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y) {
+  const int bx = (x >> 3) - bx0_, by = (y >> 3) - by0_;
+  BT_CHECK(bx >= 0 && by >= 0 && bx < across_ && by < across_);
+  Block& b = blocks_[index(x, y)];
+  b.looked = true;
+  const openvdb::Coord ijk(x, y, k_);
+  if (const auto* leaf = fill_.probeConstLeaf(ijk)) {
+    b.data = leaf->buffer().data();
+    const openvdb::Index32 tag = leaf->transientData();
+    const auto z = static_cast<std::size_t>(k_ & 7);
+    b.full = tag > 0 && counts_[tag - 1].full[z] == 64;
+    b.gaps = tag > 0 && counts_[tag - 1].gaps[z] > 0;
+  } else {
+    b.data = nullptr;
+    b.uniform = fill_.getValue(ijk);
+    b.full = b.uniform >= 1.0f;
+    b.gaps = b.uniform > 0.0f && b.uniform < 1.0f;
+  }
+  return b;
+}
+
+void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) {
+  fill_.setValue(ijk, value);
+  // Material is only ever added: a voxel goes from empty to a gap to full, or skips a step.
+  const bool was_gap = before > 0.0f && before<1.0f, is_gap = value> 0.0f && value < 1.0f;
+  const bool filled = before < 1.0f && value >= 1.0f;
+  if (was_gap == is_gap && !filled) return;
+  auto* leaf = fill_.probeLeaf(ijk);
+  BT_CHECK(leaf != nullptr);
+  openvdb::Index32 tag = leaf->transientData();
+  if (tag == 0) {
+    counts_.push_back({});
+    tag = static_cast<openvdb::Index32>(counts_.size());
+    leaf->setTransientData(tag);
+  }
+  SliceCounts& c = counts_[tag - 1];
+  const auto z = static_cast<std::size_t>(ijk.z() & 7);
+  c.gaps[z] = static_cast<std::uint8_t>(c.gaps[z] + (is_gap ? 1 : 0) - (was_gap ? 1 : 0));
+  if (filled) ++c.full[z];
+}
+
 void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of) {
   time_.setValue(ijk, time_s);
   layer_.setValue(ijk, of.layer);
@@ -31,15 +99,16 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
   ploughed_ = 0.0;
   roller_k_ = roller_k;
   for (const CoverageCell& cell : cells) {
-    const double before = fill_.getValue(cell.ijk);
+    const float held = fill_.getValue(cell.ijk);
+    const double before = held;
     const double after = before + cell.fraction * fill_per_fraction;
     const auto time_s = static_cast<float>(stamp_of_move.start_s + cell.along * stamp_of_move.duration_s);
     if (before < 1.0) stamp(cell.ijk, time_s, stamp_of_move);
     if (after > 1.0) {
-      fill_.setValue(cell.ijk, 1.0f);
+      set_fill(cell.ijk, held, 1.0f);
       overflow_.push_back({cell.ijk, after - 1.0, time_s});
     } else {
-      fill_.setValue(cell.ijk, static_cast<float>(after));
+      set_fill(cell.ijk, held, static_cast<float>(after));
     }
   }
   for (const Overflow& overflow : overflow_) spread(overflow, stamp_of_move, spread_radius, squeeze_radius);
@@ -53,13 +122,17 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // squeezed out of a voxel spreads evenly to every side (a fixed visiting order would pile it up on one).
   // `gaps_only` offers only voxels that already hold some material: the gaps between laid beads.
   // Returns true when nothing is left.
-  std::vector<std::pair<openvdb::Coord, double>> ring_cells;
+  std::vector<std::pair<openvdb::Coord, double>>& ring_cells = ring_cells_;
+  const int k0 = overflow.ijk.z();
+  // The rings inside the first that reaches a slice with a gap (or one not full) offer nothing to the
+  // first phase (or the second).
+  const LevelWindow::FirstRings first = window_.reset(overflow.ijk, std::max(spread_radius, squeeze_radius));
   const auto offer_ring = [&](int ring, int k, bool gaps_only) {
     ring_cells.clear();
     double room = 0.0;
     const auto consider = [&](int di, int dj) {
       const openvdb::Coord ijk(overflow.ijk.x() + di, overflow.ijk.y() + dj, k);
-      const double held = fill_.getValue(ijk);
+      const double held = k == k0 ? window_.value(ijk.x(), ijk.y()) : fill_.getValue(ijk);
       if (held >= 1.0 || (gaps_only && held <= 0.0)) return;
       ring_cells.emplace_back(ijk, 1.0 - held);
       room += 1.0 - held;
@@ -76,7 +149,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
     if (room <= 0.0) return false;
     const double share = std::min(1.0, excess / room);
     for (const auto& [ijk, free] : ring_cells) {
-      fill_.setValue(ijk, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
+      set_fill(ijk, static_cast<float>(1.0 - free),
+               share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
+      if (k == k0) window_.written(ijk.x(), ijk.y());
       stamp(ijk, overflow.time_s, of);
     }
     excess -= share * room;
@@ -86,10 +161,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty
   // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
   // running ahead into space later beads will need, only to be pushed on again.
-  const int k0 = overflow.ijk.z();
-  for (int ring = 1; ring <= spread_radius; ++ring)
+  for (int ring = std::max(1, first.gap); ring <= spread_radius; ++ring)
     if (offer_ring(ring, k0, true)) return;
-  for (int ring = 1; ring <= squeeze_radius; ++ring)
+  for (int ring = std::max(1, first.room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;
   // Above the deposit every voxel is free, so this ends; the bound only guards against a broken grid.
   constexpr int kMaxSlabsUp = 1 << 20;

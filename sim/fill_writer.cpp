@@ -1,6 +1,7 @@
 #include "sim/fill_writer.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cstdlib>
 
 #include "core/error.hpp"
@@ -15,30 +16,36 @@ FillWriter::FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openv
       move_(move.getAccessor()) {}
 
 FillWriter::~FillWriter() {
-  if (counts_.empty()) return;
+  if (masks_.empty()) return;
   for (auto leaf = fill_.tree().beginLeaf(); leaf; ++leaf) leaf->setTransientData(0);
 }
 
-FillWriter::LevelWindow::FirstRings FillWriter::LevelWindow::reset(const openvdb::Coord& centre, int radius) {
+FillWriter::LevelWindow::Rings FillWriter::LevelWindow::reset(const openvdb::Coord& centre, int radius) {
   static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3, "blocks of 8 voxels");
   bx0_ = (centre.x() - radius) >> 3;
   by0_ = (centre.y() - radius) >> 3;
   k_ = centre.z();
   across_ = std::max(((centre.x() + radius) >> 3) - bx0_, ((centre.y() + radius) >> 3) - by0_) + 1;
   blocks_.assign(static_cast<std::size_t>(across_) * static_cast<std::size_t>(across_), Block{});
-  FirstRings first{radius + 1, radius + 1};
+  Rings rings;
+  rings.first_room = radius + 1;
+  const auto mark = [&](int d) {
+    if (d <= radius && d <= 63) rings.with_gaps |= std::uint64_t{1} << d;
+  };
   for (int by = by0_; by < by0_ + across_; ++by)
     for (int bx = bx0_; bx < bx0_ + across_; ++bx) {
       // The L1 distance from the centre to the nearest voxel of the block.
       const int dx = std::max({0, bx * 8 - centre.x(), centre.x() - (bx * 8 + 7)});
       const int dy = std::max({0, by * 8 - centre.y(), centre.y() - (by * 8 + 7)});
-      const int d = dx + dy;
-      if (d >= first.gap && d >= first.room) continue;
+      if (dx + dy > radius) continue;
       const Block& b = block(bx * 8, by * 8);
-      if (b.gaps) first.gap = std::min(first.gap, d);
-      if (!b.full) first.room = std::min(first.room, d);
+      if (!b.full) rings.first_room = std::min(rings.first_room, dx + dy);
+      for (std::uint64_t bits = b.gaps; bits != 0; bits &= bits - 1) {
+        const int bit = std::countr_zero(bits);
+        mark(std::abs(bx * 8 + (bit >> 3) - centre.x()) + std::abs(by * 8 + (bit & 7) - centre.y()));
+      }
     }
-  return first;
+  return rings;
 }
 
 const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y) {
@@ -51,13 +58,13 @@ const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y
     b.data = leaf->buffer().data();
     const openvdb::Index32 tag = leaf->transientData();
     const auto z = static_cast<std::size_t>(k_ & 7);
-    b.full = tag > 0 && counts_[tag - 1].full[z] == 64;
-    b.gaps = tag > 0 && counts_[tag - 1].gaps[z] > 0;
+    b.full = tag > 0 && masks_[tag - 1].full[z] == ~std::uint64_t{0};
+    b.gaps = tag > 0 ? masks_[tag - 1].gaps[z] : 0;
   } else {
     b.data = nullptr;
     b.uniform = fill_.getValue(ijk);
     b.full = b.uniform >= 1.0f;
-    b.gaps = b.uniform > 0.0f && b.uniform < 1.0f;
+    b.gaps = b.uniform > 0.0f && b.uniform < 1.0f ? ~std::uint64_t{0} : 0;
   }
   return b;
 }
@@ -72,14 +79,15 @@ void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) 
   BT_CHECK(leaf != nullptr);
   openvdb::Index32 tag = leaf->transientData();
   if (tag == 0) {
-    counts_.push_back({});
-    tag = static_cast<openvdb::Index32>(counts_.size());
+    masks_.push_back({});
+    tag = static_cast<openvdb::Index32>(masks_.size());
     leaf->setTransientData(tag);
   }
-  SliceCounts& c = counts_[tag - 1];
+  SliceMasks& m = masks_[tag - 1];
   const auto z = static_cast<std::size_t>(ijk.z() & 7);
-  c.gaps[z] = static_cast<std::uint8_t>(c.gaps[z] + (is_gap ? 1 : 0) - (was_gap ? 1 : 0));
-  if (filled) ++c.full[z];
+  const std::uint64_t bit = std::uint64_t{1} << (((ijk.x() & 7) << 3) | (ijk.y() & 7));
+  m.gaps[z] = is_gap ? m.gaps[z] | bit : m.gaps[z] & ~bit;
+  if (filled) m.full[z] |= bit;
 }
 
 void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of) {
@@ -124,9 +132,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // Returns true when nothing is left.
   std::vector<std::pair<openvdb::Coord, double>>& ring_cells = ring_cells_;
   const int k0 = overflow.ijk.z();
-  // The rings inside the first that reaches a slice with a gap (or one not full) offer nothing to the
-  // first phase (or the second).
-  const LevelWindow::FirstRings first = window_.reset(overflow.ijk, std::max(spread_radius, squeeze_radius));
+  // A ring that holds no gap offers nothing to the first phase; the rings inside the first that reaches a
+  // slice not full offer nothing to the second. (The first phase only fills gaps: it makes none.)
+  const LevelWindow::Rings rings = window_.reset(overflow.ijk, std::max(spread_radius, squeeze_radius));
   const auto offer_ring = [&](int ring, int k, bool gaps_only) {
     ring_cells.clear();
     double room = 0.0;
@@ -161,9 +169,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty
   // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
   // running ahead into space later beads will need, only to be pushed on again.
-  for (int ring = std::max(1, first.gap); ring <= spread_radius; ++ring)
-    if (offer_ring(ring, k0, true)) return;
-  for (int ring = std::max(1, first.room); ring <= squeeze_radius; ++ring)
+  for (int ring = 1; ring <= spread_radius; ++ring)
+    if (rings.holds_gap(ring) && offer_ring(ring, k0, true)) return;
+  for (int ring = std::max(1, rings.first_room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;
   // Above the deposit every voxel is free, so this ends; the bound only guards against a broken grid.
   constexpr int kMaxSlabsUp = 1 << 20;

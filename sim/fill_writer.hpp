@@ -33,7 +33,7 @@ class FillWriter {
   // The four grids share one active topology: a voxel is active iff it holds material.
   FillWriter(openvdb::FloatGrid& fill, openvdb::FloatGrid& time, openvdb::Int32Grid& layer,
              openvdb::Int32Grid& move);
-  ~FillWriter();  // clears the leaves' transient data (SliceCounts)
+  ~FillWriter();  // clears the leaves' transient data (SliceMasks)
   FillWriter(const FillWriter&) = delete;
   FillWriter& operator=(const FillWriter&) = delete;
 
@@ -56,31 +56,33 @@ class FillWriter {
     float time_s = 0.0f;
   };
 
-  // How many voxels of each slice of a leaf (its 8×8 voxels at one level) are full and how many partly full
-  // (a gap), kept as they fill: a slice with none of the one offers no gap to spread into, and one whose 64
-  // voxels are all full no room at all. A leaf's counts are found through its transient data (1 + their
-  // index; 0: none yet), a word OpenVDB keeps for its users and never stores.
-  struct SliceCounts {
-    std::array<std::uint8_t, 8> full{}, gaps{};
+  // Which voxels of each slice of a leaf (its 8×8 voxels at one level; bit 8·(x mod 8) + (y mod 8)) are full
+  // and which partly full (a gap), kept as they fill. A leaf's masks are found through its transient data
+  // (1 + their index; 0: none yet), a word OpenVDB keeps for its users and never stores.
+  struct SliceMasks {
+    std::array<std::uint64_t, 8> full{}, gaps{};
   };
 
   // The fill of one level around an overflowing voxel, read straight from its leaves' buffers. Most of a
   // deposit's time went into spread()'s lookups: on the LSAM mould a third of its 9 million overflows read
   // the 264 voxels of every gap ring before finding no room and going up. The window looks each leaf up once
   // (an 8×8×8 block with no leaf holds one value throughout, its tile's or the background), so a read is an
-  // index into a buffer, and it knows which of its slices are full, so the rings that lie in full slices
-  // alone are not read at all. Writes go through the accessor, into the same buffers; written() forgets a
-  // block that had no leaf, since the write made one.
+  // index into a buffer, and it knows where the level's gaps are and which of its slices are full, so the
+  // rings that hold no gap (or lie in full slices alone) are not read at all. Writes go through the accessor,
+  // into the same buffers; written() forgets a block that had no leaf, since the write made one.
   class LevelWindow {
    public:
-    LevelWindow(const openvdb::FloatGrid::Accessor& fill, const std::vector<SliceCounts>& counts)
-        : fill_(fill), counts_(counts) {}
+    LevelWindow(const openvdb::FloatGrid::Accessor& fill, const std::vector<SliceMasks>& masks)
+        : fill_(fill), masks_(masks) {}
     // Covers the voxels within `radius` (in plan, L1) of `centre` in its level.
-    struct FirstRings {
-      int gap = 0;   // the first ring (L1 distance from the centre) that reaches a slice with a gap
-      int room = 0;  // the first that reaches a slice not full; the rings inside have no room
+    struct Rings {
+      // Bit r: ring r (the voxels at L1 distance r from the centre) holds a gap. Rings past 63 are not
+      // known and must be read.
+      std::uint64_t with_gaps = 0;
+      int first_room = 0;  // the first ring that reaches a slice not full; the rings inside have no room
+      bool holds_gap(int ring) const { return ring > 63 || ((with_gaps >> ring) & 1u) != 0; }
     };
-    FirstRings reset(const openvdb::Coord& centre, int radius);
+    Rings reset(const openvdb::Coord& centre, int radius);
     float value(int x, int y) {
       const Block& b = block(x, y);
       return b.data ? b.data[((x & 7) << 6) | ((y & 7) << 3) | (k_ & 7)] : b.uniform;
@@ -94,7 +96,7 @@ class FillWriter {
     struct Block {
       bool looked = false;
       bool full = false;            // every voxel of the block's slice holds at least its volume
-      bool gaps = false;            // some voxel of it holds material, less than its volume
+      std::uint64_t gaps = 0;       // its voxels that hold material, less than their volume (SliceMasks)
       const float* data = nullptr;  // the leaf's values; none: `uniform` throughout
       float uniform = 0.0f;
     };
@@ -108,7 +110,7 @@ class FillWriter {
     }
     const Block& look(int x, int y);
     const openvdb::FloatGrid::Accessor& fill_;
-    const std::vector<SliceCounts>& counts_;
+    const std::vector<SliceMasks>& masks_;
     int bx0_ = 0, by0_ = 0, k_ = 0;  // the first block's index (voxel index / 8) in x and y; the level
     int across_ = 0;                 // blocks across, each way
     std::vector<Block> blocks_;
@@ -123,8 +125,8 @@ class FillWriter {
   openvdb::FloatGrid::Accessor time_;
   openvdb::Int32Grid::Accessor layer_;
   openvdb::Int32Grid::Accessor move_;
-  std::vector<SliceCounts> counts_;
-  LevelWindow window_{fill_, counts_};
+  std::vector<SliceMasks> masks_;
+  LevelWindow window_{fill_, masks_};
   std::vector<Overflow> overflow_;
   std::vector<std::pair<openvdb::Coord, double>> ring_cells_;  // spread()'s, kept for its room
   double redistributed_ = 0.0;

@@ -83,7 +83,8 @@ struct Reference {
 // Beads of random cells, some overfilling, laid over a patch that crosses leaf borders and the origin (the
 // leaves at negative indices), with the radii of a desktop bead and of an LSAM bead on coarse voxels.
 TEST(FillWriter, SpreadsAsItsRuleReadVoxelByVoxel) {
-  for (const auto& [spread_radius, squeeze_radius] : {std::pair{3, 1}, std::pair{11, 1}, std::pair{13, 4}}) {
+  for (const auto& [spread_radius, squeeze_radius] :
+       {std::pair{3, 1}, std::pair{11, 1}, std::pair{13, 4}, std::pair{70, 2}}) {
     Grids g;
     Reference ref;
     double added = 0.0;

@@ -20,17 +20,29 @@ FillWriter::~FillWriter() {
   for (auto leaf = fill_.tree().beginLeaf(); leaf; ++leaf) leaf->setTransientData(0);
 }
 
-FillWriter::LevelWindow::Rings FillWriter::LevelWindow::reset(const openvdb::Coord& centre, int radius) {
+void FillWriter::LevelWindow::reset(const openvdb::Coord& centre, int radius) {
   static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3, "blocks of 8 voxels");
   bx0_ = (centre.x() - radius) >> 3;
   by0_ = (centre.y() - radius) >> 3;
   k_ = centre.z();
   across_ = std::max(((centre.x() + radius) >> 3) - bx0_, ((centre.y() + radius) >> 3) - by0_) + 1;
-  blocks_.assign(static_cast<std::size_t>(across_) * static_cast<std::size_t>(across_), Block{});
+  const std::size_t blocks = static_cast<std::size_t>(across_) * static_cast<std::size_t>(across_);
+  if (blocks_.size() < blocks) blocks_.resize(blocks);
+  if (++generation_ == 0) {  // wrapped: no block may seem looked up
+    for (Block& b : blocks_) b.looked = 0;
+    generation_ = 1;
+  }
+}
+
+FillWriter::LevelWindow::Rings FillWriter::LevelWindow::rings(const openvdb::Coord& centre, int radius) {
   Rings rings;
   rings.first_room = radius + 1;
-  const auto mark = [&](int d) {
-    if (d <= radius && d <= 63) rings.with_gaps |= std::uint64_t{1} << d;
+  // Rings near..far may hold a gap (more rings than do is no harm: they are read).
+  const auto mark = [&](int near, int far) {
+    far = std::min({far, radius, 63});
+    if (near > far) return;
+    const std::uint64_t upto = far == 63 ? ~std::uint64_t{0} : (std::uint64_t{2} << far) - 1;
+    rings.with_gaps |= upto & ~((std::uint64_t{1} << near) - 1);
   };
   for (int by = by0_; by < by0_ + across_; ++by)
     for (int bx = bx0_; bx < bx0_ + across_; ++bx) {
@@ -40,9 +52,15 @@ FillWriter::LevelWindow::Rings FillWriter::LevelWindow::reset(const openvdb::Coo
       if (dx + dy > radius) continue;
       const Block& b = block(bx * 8, by * 8);
       if (!b.full) rings.first_room = std::min(rings.first_room, dx + dy);
-      for (std::uint64_t bits = b.gaps; bits != 0; bits &= bits - 1) {
-        const int bit = std::countr_zero(bits);
-        mark(std::abs(bx * 8 + (bit >> 3) - centre.x()) + std::abs(by * 8 + (bit & 7) - centre.y()));
+      // Row by row of the slice (a byte of the mask: one x, y from by·8 up), the rings its gaps span.
+      for (int row = 0; row < 8; ++row) {
+        const auto bits = static_cast<std::uint8_t>(b.gaps >> (8 * row));
+        if (bits == 0) continue;
+        const int across = std::abs(bx * 8 + row - centre.x());
+        const int low = by * 8 + std::countr_zero(bits) - centre.y();
+        const int high = by * 8 + 7 - std::countl_zero(bits) - centre.y();
+        const int near = low <= 0 && high >= 0 ? 0 : std::min(std::abs(low), std::abs(high));
+        mark(across + near, across + std::max(std::abs(low), std::abs(high)));
       }
     }
   return rings;
@@ -52,7 +70,7 @@ const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y
   const int bx = (x >> 3) - bx0_, by = (y >> 3) - by0_;
   BT_CHECK(bx >= 0 && by >= 0 && bx < across_ && by < across_);
   Block& b = blocks_[index(x, y)];
-  b.looked = true;
+  b.looked = generation_;
   const openvdb::Coord ijk(x, y, k_);
   if (const auto* leaf = fill_.probeConstLeaf(ijk)) {
     b.data = leaf->buffer().data();
@@ -70,13 +88,12 @@ const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y
 }
 
 void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) {
-  fill_.setValue(ijk, value);
+  auto* leaf = fill_.touchLeaf(ijk);  // as fill_.setValue does, keeping the leaf for the masks
+  leaf->setValueOn(ijk, value);
   // Material is only ever added: a voxel goes from empty to a gap to full, or skips a step.
   const bool was_gap = before > 0.0f && before<1.0f, is_gap = value> 0.0f && value < 1.0f;
   const bool filled = before < 1.0f && value >= 1.0f;
   if (was_gap == is_gap && !filled) return;
-  auto* leaf = fill_.probeLeaf(ijk);
-  BT_CHECK(leaf != nullptr);
   openvdb::Index32 tag = leaf->transientData();
   if (tag == 0) {
     masks_.push_back({});
@@ -134,7 +151,8 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   const int k0 = overflow.ijk.z();
   // A ring that holds no gap offers nothing to the first phase; the rings inside the first that reaches a
   // slice not full offer nothing to the second. (The first phase only fills gaps: it makes none.)
-  const LevelWindow::Rings rings = window_.reset(overflow.ijk, std::max(spread_radius, squeeze_radius));
+  const int radius = std::max(spread_radius, squeeze_radius);
+  window_.reset(overflow.ijk, radius);
   const auto offer_ring = [&](int ring, int k, bool gaps_only) {
     ring_cells.clear();
     double room = 0.0;
@@ -169,7 +187,13 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty
   // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
   // running ahead into space later beads will need, only to be pushed on again.
-  for (int ring = 1; ring <= spread_radius; ++ring)
+  // The first rings are read as they are (most spreads end there, and reading a few rings costs less than
+  // asking the window's leaves); the rest only where the leaves say there is a gap (or room).
+  constexpr int kReadRings = 4;
+  for (int ring = 1; ring <= std::min(kReadRings, spread_radius); ++ring)
+    if (offer_ring(ring, k0, true)) return;
+  const LevelWindow::Rings rings = window_.rings(overflow.ijk, radius);
+  for (int ring = kReadRings + 1; ring <= spread_radius; ++ring)
     if (rings.holds_gap(ring) && offer_ring(ring, k0, true)) return;
   for (int ring = std::max(1, rings.first_room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;

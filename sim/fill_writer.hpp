@@ -74,7 +74,10 @@ class FillWriter {
    public:
     LevelWindow(const openvdb::FloatGrid::Accessor& fill, const std::vector<SliceMasks>& masks)
         : fill_(fill), masks_(masks) {}
-    // Covers the voxels within `radius` (in plan, L1) of `centre` in its level.
+    // Covers the voxels within `radius` (in plan, L1) of `centre` in its level; its leaves are looked up
+    // when first read.
+    void reset(const openvdb::Coord& centre, int radius);
+    // What the window's leaves (all looked up now) say of its rings around `centre`, as they stand.
     struct Rings {
       // Bit r: ring r (the voxels at L1 distance r from the centre) holds a gap. Rings past 63 are not
       // known and must be read.
@@ -82,19 +85,19 @@ class FillWriter {
       int first_room = 0;  // the first ring that reaches a slice not full; the rings inside have no room
       bool holds_gap(int ring) const { return ring > 63 || ((with_gaps >> ring) & 1u) != 0; }
     };
-    Rings reset(const openvdb::Coord& centre, int radius);
+    Rings rings(const openvdb::Coord& centre, int radius);
     float value(int x, int y) {
       const Block& b = block(x, y);
       return b.data ? b.data[((x & 7) << 6) | ((y & 7) << 3) | (k_ & 7)] : b.uniform;
     }
     void written(int x, int y) {
       Block& b = blocks_[index(x, y)];
-      if (!b.data) b.looked = false;
+      if (!b.data) b.looked = 0;
     }
 
    private:
     struct Block {
-      bool looked = false;
+      std::uint32_t looked = 0;     // the generation (reset) it was looked up in
       bool full = false;            // every voxel of the block's slice holds at least its volume
       std::uint64_t gaps = 0;       // its voxels that hold material, less than their volume (SliceMasks)
       const float* data = nullptr;  // the leaf's values; none: `uniform` throughout
@@ -106,13 +109,14 @@ class FillWriter {
     }
     const Block& block(int x, int y) {
       const Block& b = blocks_[index(x, y)];
-      return b.looked ? b : look(x, y);
+      return b.looked == generation_ ? b : look(x, y);
     }
     const Block& look(int x, int y);
     const openvdb::FloatGrid::Accessor& fill_;
     const std::vector<SliceMasks>& masks_;
     int bx0_ = 0, by0_ = 0, k_ = 0;  // the first block's index (voxel index / 8) in x and y; the level
     int across_ = 0;                 // blocks across, each way
+    std::uint32_t generation_ = 0;   // of the reset; blocks looked up in an earlier one are forgotten
     std::vector<Block> blocks_;
   };
 

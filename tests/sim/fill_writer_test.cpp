@@ -27,6 +27,10 @@ using Key = std::tuple<int, int, int>;
 // The rule of fill_writer.hpp, read voxel by voxel: every cell first takes what fits; the excess goes ring
 // by ring (L1 in plan) into the gaps of its level within the spread radius, then into any free voxel within
 // the squeeze radius, then up, each ring's voxels sharing it in proportion to their free room.
+int level_of(const std::vector<CoverageCell>& cells) {
+  return cells.empty() ? 0 : cells.front().ijk.z();
+}
+
 struct Reference {
   std::map<Key, float> fill;
   float at(int x, int y, int z) const {
@@ -81,47 +85,70 @@ struct Reference {
 };
 
 // Beads of random cells, some overfilling, laid over a patch that crosses leaf borders and the origin (the
-// leaves at negative indices), with the radii of a desktop bead and of an LSAM bead on coarse voxels.
+// leaves at negative indices). With `full_square`, a square of whole leaf slices at level 0 is filled first,
+// so that spreads from inside it cross full slices on their way out.
+void spread_as_the_rule(int spread_radius, int squeeze_radius, bool full_square) {
+  SCOPED_TRACE(testing::Message() << "radii " << spread_radius << " " << squeeze_radius
+                                  << (full_square ? ", full square" : ""));
+  Grids g;
+  Reference ref;
+  double added = 0.0;
+  {
+    FillWriter writer(*g.fill, *g.time, *g.layer, *g.move);
+    const auto lay = [&](const std::vector<CoverageCell>& cells, double p, int bead) {
+      for (const CoverageCell& c : cells) added += c.fraction * p;
+      writer.add(cells, p, {static_cast<double>(bead), 1.0, level_of(cells), bead}, spread_radius,
+                 squeeze_radius);
+      ref.add(cells, p, spread_radius, squeeze_radius);
+    };
+    if (full_square)
+      for (int y = -16; y < 16; ++y) {
+        std::vector<CoverageCell> row;
+        for (int x = -16; x < 16; ++x) row.push_back({openvdb::Coord(x, y, 0), 1.0f, 0.5f});
+        lay(row, 1.0, y);
+      }
+    std::mt19937 random(static_cast<unsigned>(spread_radius * 100 + squeeze_radius + (full_square ? 7 : 0)));
+    std::uniform_int_distribution<int> plan(-20, 20), level(full_square ? 0 : -3, full_square ? 0 : 2),
+        length(1, 30);
+    std::uniform_real_distribution<float> fraction(0.05f, 1.0f);
+    std::uniform_real_distribution<double> per_fraction(0.2, 2.5);
+    for (int bead = 0; bead < 400; ++bead) {
+      std::vector<CoverageCell> cells;
+      const int x = plan(random), y = plan(random), z = level(random), n = length(random);
+      const bool along_x = bead % 2 == 0;
+      for (int i = 0; i < n; ++i) {
+        const openvdb::Coord ijk(along_x ? x + i : x, along_x ? y : y + i, z);
+        cells.push_back({ijk, fraction(random), 0.5f});
+      }
+      lay(cells, per_fraction(random), bead);
+    }
+  }
+  std::size_t voxels = 0;
+  double held = 0.0;
+  for (const auto& [key, value] : ref.fill) {
+    const auto [x, y, z] = key;
+    ASSERT_EQ(g.fill->tree().getValue({x, y, z}), value) << "voxel " << x << " " << y << " " << z;
+    voxels += value > 0.0f;
+    held += value;
+  }
+  EXPECT_EQ(static_cast<std::size_t>(g.fill->activeVoxelCount()), voxels);
+  EXPECT_NEAR(held, added, 1e-4 * added);  // nothing dropped
+  // The writer's masks lived in the leaves' transient data, cleared when it was done.
+  for (auto leaf = g.fill->tree().cbeginLeaf(); leaf; ++leaf) EXPECT_EQ(leaf->transientData(), 0u);
+}
+
+// The radii of a desktop bead and of an LSAM bead on coarse voxels, and beyond the 63 rings the writer's
+// masks cover.
 TEST(FillWriter, SpreadsAsItsRuleReadVoxelByVoxel) {
   for (const auto& [spread_radius, squeeze_radius] :
-       {std::pair{3, 1}, std::pair{11, 1}, std::pair{13, 4}, std::pair{70, 2}}) {
-    Grids g;
-    Reference ref;
-    double added = 0.0;
-    {
-      FillWriter writer(*g.fill, *g.time, *g.layer, *g.move);
-      std::mt19937 random(static_cast<unsigned>(spread_radius * 100 + squeeze_radius));
-      std::uniform_int_distribution<int> plan(-20, 20), level(-3, 2), length(1, 30);
-      std::uniform_real_distribution<float> fraction(0.05f, 1.0f);
-      std::uniform_real_distribution<double> per_fraction(0.2, 2.5);
-      for (int bead = 0; bead < 400; ++bead) {
-        std::vector<CoverageCell> cells;
-        const int x = plan(random), y = plan(random), z = level(random), n = length(random);
-        const bool along_x = bead % 2 == 0;
-        for (int i = 0; i < n; ++i) {
-          const openvdb::Coord ijk(along_x ? x + i : x, along_x ? y : y + i, z);
-          cells.push_back({ijk, fraction(random), 0.5f});
-        }
-        const double p = per_fraction(random);
-        for (const CoverageCell& c : cells) added += c.fraction * p;
-        writer.add(cells, p, {static_cast<double>(bead), 1.0, z, bead}, spread_radius, squeeze_radius);
-        ref.add(cells, p, spread_radius, squeeze_radius);
-      }
-    }
-    std::size_t voxels = 0;
-    double held = 0.0;
-    for (const auto& [key, value] : ref.fill) {
-      const auto [x, y, z] = key;
-      ASSERT_EQ(g.fill->tree().getValue({x, y, z}), value)
-          << "voxel " << x << " " << y << " " << z << ", radii " << spread_radius << " " << squeeze_radius;
-      voxels += value > 0.0f;
-      held += value;
-    }
-    EXPECT_EQ(static_cast<std::size_t>(g.fill->activeVoxelCount()), voxels);
-    EXPECT_NEAR(held, added, 1e-4 * added);  // nothing dropped
-    // The writer's counts lived in the leaves' transient data, cleared when it was done.
-    for (auto leaf = g.fill->tree().cbeginLeaf(); leaf; ++leaf) EXPECT_EQ(leaf->transientData(), 0u);
-  }
+       {std::pair{3, 1}, std::pair{11, 1}, std::pair{13, 4}, std::pair{70, 2}})
+    spread_as_the_rule(spread_radius, squeeze_radius, false);
+}
+
+// Spreads that start inside full slices and squeeze out past them.
+TEST(FillWriter, SpreadsOutOfFullSlicesAsItsRule) {
+  for (const auto& [spread_radius, squeeze_radius] : {std::pair{2, 6}, std::pair{11, 12}})
+    spread_as_the_rule(spread_radius, squeeze_radius, true);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
@@ -461,8 +462,11 @@ void measure_stock(const std::vector<CadTriangle>& triangles, const openvdb::Flo
   if (kept.empty())
     throw InputError({}, "cad",
                      "every face of the CAD lies on the build plate: there is no surface to measure");
-  std::stable_sort(kept.begin(), kept.end(),
-                   [](const Sample* a, const Sample* b) { return a->stock_mm < b->stock_mm; });
+  // By stock, ties in sample order: the order a stable sort gives, on TBB's threads (7.8 million samples on
+  // the LSAM mould took 1.3 s on one).
+  tbb::parallel_sort(kept.begin(), kept.end(), [](const Sample* a, const Sample* b) {
+    return a->stock_mm < b->stock_mm || (a->stock_mm == b->stock_mm && a < b);
+  });
   out.cad_samples = kept.size();
   out.cad_area_mm2 = area;
   out.min_stock_mm = kept.front()->stock_mm;

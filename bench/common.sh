@@ -7,8 +7,9 @@ trap 'rm -rf "$work"' EXIT
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 
 # build_bench BUILD_DIR TARGET: configures BUILD_DIR with the benchmarks and builds TARGET.
+# (Debian's FindOpenVDB.cmake writes "COMPONENT = openvdb" to standard error at every configure: dropped.)
 build_bench() {
-  cmake -S "$root" -B "$1" -DBEADTWIN_BENCH=ON > /dev/null
+  cmake -S "$root" -B "$1" -DBEADTWIN_BENCH=ON > /dev/null 2> >(grep -v '^COMPONENT = ' >&2)
   cmake --build "$1" --target "$2" > /dev/null
 }
 

@@ -91,7 +91,8 @@ void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) 
   auto* leaf = fill_.touchLeaf(ijk);  // as fill_.setValue does, keeping the leaf for the masks
   leaf->setValueOn(ijk, value);
   // Material is only ever added: a voxel goes from empty to a gap to full, or skips a step.
-  const bool was_gap = before > 0.0f && before<1.0f, is_gap = value> 0.0f && value < 1.0f;
+  const bool was_gap = before > 0.0f && before < 1.0f;
+  const bool is_gap = value > 0.0f && value < 1.0f;
   const bool filled = before < 1.0f && value >= 1.0f;
   if (was_gap == is_gap && !filled) return;
   openvdb::Index32 tag = leaf->transientData();
@@ -147,10 +148,8 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // squeezed out of a voxel spreads evenly to every side (a fixed visiting order would pile it up on one).
   // `gaps_only` offers only voxels that already hold some material: the gaps between laid beads.
   // Returns true when nothing is left.
-  std::vector<std::pair<openvdb::Coord, double>>& ring_cells = ring_cells_;
+  std::vector<std::pair<openvdb::Coord, float>>& ring_cells = ring_cells_;
   const int k0 = overflow.ijk.z();
-  // A ring that holds no gap offers nothing to the first phase; the rings inside the first that reaches a
-  // slice not full offer nothing to the second. (The first phase only fills gaps: it makes none.)
   const int radius = std::max(spread_radius, squeeze_radius);
   window_.reset(overflow.ijk, radius);
   const auto offer_ring = [&](int ring, int k, bool gaps_only) {
@@ -158,9 +157,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
     double room = 0.0;
     const auto consider = [&](int di, int dj) {
       const openvdb::Coord ijk(overflow.ijk.x() + di, overflow.ijk.y() + dj, k);
-      const double held = k == k0 ? window_.value(ijk.x(), ijk.y()) : fill_.getValue(ijk);
-      if (held >= 1.0 || (gaps_only && held <= 0.0)) return;
-      ring_cells.emplace_back(ijk, 1.0 - held);
+      const float held = k == k0 ? window_.value(ijk.x(), ijk.y()) : fill_.getValue(ijk);
+      if (held >= 1.0f || (gaps_only && held <= 0.0f)) return;
+      ring_cells.emplace_back(ijk, held);
       room += 1.0 - held;
     };
     if (ring == 0) {
@@ -174,9 +173,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
     }
     if (room <= 0.0) return false;
     const double share = std::min(1.0, excess / room);
-    for (const auto& [ijk, free] : ring_cells) {
-      set_fill(ijk, static_cast<float>(1.0 - free),
-               share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
+    for (const auto& [ijk, held] : ring_cells) {
+      const double free = 1.0 - held;
+      set_fill(ijk, held, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
       if (k == k0) window_.written(ijk.x(), ijk.y());
       stamp(ijk, overflow.time_s, of);
     }
@@ -188,7 +187,9 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
   // running ahead into space later beads will need, only to be pushed on again.
   // The first rings are read as they are (most spreads end there, and reading a few rings costs less than
-  // asking the window's leaves); the rest only where the leaves say there is a gap (or room).
+  // asking the window's leaves); the rest only where the leaves say there is a gap, or room: a ring that
+  // holds no gap offers nothing to the first phase, the rings inside the first that reaches a slice not full
+  // nothing to the second. (The first phase only fills gaps: it makes none, so what the leaves said holds.)
   constexpr int kReadRings = 4;
   for (int ring = 1; ring <= std::min(kReadRings, spread_radius); ++ring)
     if (offer_ring(ring, k0, true)) return;

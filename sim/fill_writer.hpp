@@ -132,7 +132,7 @@ class FillWriter {
   std::vector<SliceMasks> masks_;
   LevelWindow window_{fill_, masks_};
   std::vector<Overflow> overflow_;
-  std::vector<std::pair<openvdb::Coord, double>> ring_cells_;  // spread()'s, kept for its room
+  std::vector<std::pair<openvdb::Coord, float>> ring_cells_;  // spread()'s ring: voxel, fill held; kept
   double redistributed_ = 0.0;
   double ploughed_ = 0.0;
   int roller_k_ = std::numeric_limits<int>::max();

@@ -7,18 +7,22 @@
 //   deposit_bench SCENARIO mesh      what a user would do instead: every bead as a closed tube of its
 //                                    stadium section (12 sides) in one surface mesh, voxelised with
 //                                    OpenVDB's mesh-to-volume at the same voxel size
+//   deposit_bench SCENARIO compare   the deposit, then the comparison with the CAD as a run makes it
+//                                    (sim::compare_with_cad), timed alone (its CAD distance grid included)
 //   deposit_bench SCENARIO skin DIR  file sizes: the bead-by-bead model above written as binary STL, against
 //                                    the deposit's as-printed skin (sim::extract_skin, the scenario's
 //                                    adaptivity) written as STL and PLY at several simplification tolerances;
 //                                    the files are written into DIR
 //
-// Prints one line (deposit, mesh: route, seconds, bead length (m), active voxels, triangles) or one line per
-// file (skin: what, triangles, bytes).
+// Prints one line (deposit, mesh: route, seconds, bead length (m), active voxels, triangles; compare: the
+// deposit's seconds, the comparison's, CAD samples and stocks) or one line per file (skin: what, triangles,
+// bytes).
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -87,8 +91,9 @@ void write_and_measure(const sim::SkinMesh& mesh, const std::filesystem::path& d
 
 int main(int argc, char** argv) {
   const std::string route = argc >= 3 ? argv[2] : "";
-  if (!(argc == 3 && (route == "deposit" || route == "mesh")) && !(argc == 4 && route == "skin")) {
-    std::fprintf(stderr, "usage: deposit_bench SCENARIO deposit|mesh|skin DIR\n");
+  if (!(argc == 3 && (route == "deposit" || route == "mesh" || route == "compare")) &&
+      !(argc == 4 && route == "skin")) {
+    std::fprintf(stderr, "usage: deposit_bench SCENARIO deposit|mesh|compare|skin DIR\n");
     return 2;
   }
   try {
@@ -111,6 +116,17 @@ int main(int argc, char** argv) {
         const std::string name = fmt::format("skin-{}mm", tolerance_mm);
         for (const sim::MeshFormat f : sim::kMeshFormats) write_and_measure(skin, dir, name, f);
       }
+    } else if (route == "compare") {
+      const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
+      const double deposit_s = seconds_since(t0);
+      const auto t1 = std::chrono::steady_clock::now();
+      const std::optional<sim::CadComparison> c = scenarios::compare_variant_with_cad(v, d);
+      if (!c) throw InputError("the scenario's first variant has no CAD to compare with");
+      std::printf(
+          "compare %.3f s (deposit %.3f s), %zu CAD samples, stock min %.4f p05 %.4f p50 %.4f p95 %.4f "
+          "max %.4f mm, undercut %.5f\n",
+          seconds_since(t1), deposit_s, c->cad_samples, c->min_stock_mm, c->p05_stock_mm, c->median_stock_mm,
+          c->p95_stock_mm, c->max_stock_mm, c->undercut_fraction);
     } else if (route == "deposit") {
       const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
       std::printf("deposit %.3f s, %.1f m of bead, %zu voxels, porosity %.4f, %zu defects\n",

@@ -23,10 +23,10 @@
 #endif
 
 #include "core/error.hpp"
-#include "render/embree.hpp"
 #include "render/render.hpp"
 #include "render/shading.hpp"
 #include "render/surface.hpp"
+#include "sim/embree.hpp"
 
 namespace beadtwin::render {
 

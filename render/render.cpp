@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "render/embree.hpp"
 #include "render/pixels.hpp"
 #include "render/shading.hpp"
 #include "render/surface.hpp"
+#include "sim/embree.hpp"
 
 namespace beadtwin::render {
 

@@ -26,10 +26,10 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "render/camera.hpp"
-#include "render/embree.hpp"
 #include "render/render.hpp"
 #include "render/sampling.hpp"
 #include "render/surface.hpp"
+#include "sim/embree.hpp"
 
 namespace beadtwin::render::shading {
 

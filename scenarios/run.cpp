@@ -621,6 +621,13 @@ sim::DepositOptions deposit_options(const Variant& v) {
   return o;
 }
 
+std::optional<sim::CadComparison> compare_variant_with_cad(const Variant& variant,
+                                                           const sim::Deposit& deposit) {
+  std::optional<CadCheck> check = check_against_cad(variant, deposit, std::nullopt);
+  if (!check) return std::nullopt;
+  return std::move(check->comparison);
+}
+
 Toolpath variant_toolpath(const Variant& v) {
   return slice_variant(v);
 }

@@ -4,10 +4,12 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "scenarios/result.hpp"
+#include "sim/cad_compare.hpp"
 #include "thermal/communicator.hpp"
 
 namespace beadtwin::scenarios {
@@ -42,6 +44,11 @@ Toolpath variant_toolpath(const Variant& variant);
 // How the variant's machine and output settings deposit it: voxel size, what flattens the beads (the
 // machine's kind), roller and nozzle, ooze, memory budget.
 sim::DepositOptions deposit_options(const Variant& variant);
+
+// The print against the variant's CAD, measured as a run measures it (its band and requested stock), or
+// nothing when the variant has no CAD to compare with (a program read as written, an AM Outline section).
+std::optional<sim::CadComparison> compare_variant_with_cad(const Variant& variant,
+                                                           const sim::Deposit& deposit);
 
 // `baseline`: the baseline variant's metrics, for the gates relative to it (null: such a gate fails, saying
 // there is no baseline).

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <openvdb/math/Operators.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/VolumeToMesh.h>
@@ -19,6 +18,7 @@
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
+#include "sim/embree.hpp"
 
 namespace beadtwin::sim {
 namespace {
@@ -29,13 +29,11 @@ constexpr double kDownNormalZ = -0.9;
 // ...and it lies within this many voxels above the bottom of the lowest printed voxel.
 constexpr double kPlateVoxels = 1.0;
 constexpr double kMaxBandVoxels = 256.0;  // half-width of a band, voxels
-constexpr double kMaxBandVolume = 4e8;    // voxels the two bands may hold together (about 3 GB at most)
+constexpr double kMaxBandVolume = 4e8;    // voxels the CAD's band may hold, both sides (about 3 GB at most)
 constexpr double kMaxSamples = 5e7;       // samples on the CAD surface
 constexpr double kMaxDenseVoxels = 4e9;   // the print's bounding box, a bit each, to find its closed voids
 constexpr double kMaxVoxelIndex = 1e9;    // voxel indices are 32-bit: keep well inside them
 constexpr double kMinSpacingVoxels = 1.0 / 16.0;
-// The print's distance grid inside it is built this deep first (voxels; see compare_with_cad).
-constexpr double kPrintInsideFirstVoxels = 4.0;
 
 using Vec3 = Eigen::Vector3d;
 
@@ -49,7 +47,6 @@ struct Geometry {
   double voxel_mm = 0.0;
   double spacing_mm = 0.0;
   double band_mm = 0.0;
-  double print_outside_mm = 0.0;  // the print's band outside it
 };
 
 // A triangle is sampled as the centroids of n² equal triangles of a uniform subdivision, n = ceil(longest
@@ -124,7 +121,6 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
     throw InputError({}, "voxel_size",
                      fmt::format("the deposit's voxel size must be positive, got {}", g.voxel_mm));
   g.band_mm = o.band_mm;
-  g.print_outside_mm = std::min(o.band_mm, std::max(0.5 * o.band_mm, kPrintOutsideBandVoxels * g.voxel_mm));
   g.spacing_mm = o.sample_spacing_mm > 0 ? o.sample_spacing_mm : g.voxel_mm;
   if (!(o.band_mm >= 2 * g.voxel_mm && o.band_mm <= kMaxBandVoxels * g.voxel_mm))
     add(fmt::format("band_mm must be 2 to {} voxels ({:.6g} to {:.6g} mm), got {}", kMaxBandVoxels,
@@ -173,12 +169,12 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
-  const double band_voxels = 2.0 * area / (g.voxel_mm * g.voxel_mm) * (2.0 * g.band_mm / g.voxel_mm);
+  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * g.band_mm / g.voxel_mm);
   if (band_voxels > kMaxBandVolume)
     throw InputError(
         {}, "cad",
         fmt::format("the CAD's surface ({:.6g} mm²) is too large for {} mm voxels and a {} mm band: "
-                    "its distance grids would hold about {:.3g} voxels (limit {:.3g})",
+                    "its distance grid would hold about {:.3g} voxels (limit {:.3g})",
                     area, g.voxel_mm, g.band_mm, band_voxels, kMaxBandVolume));
 }
 
@@ -226,39 +222,167 @@ openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::
   return grid;
 }
 
-// The print's signed distance: the fill fraction's isosurface at 0.5 — the surface the renderer draws —
-// meshed (VolumeToMesh) and turned into a level set (meshToVolume), as tools::levelSetRebuild does, but with
-// flat stretches of the surface merged into larger polygons (adaptivity 0.01: only where the normals agree
-// within about 1 %): a bead's flank is a row of identical voxel faces along the bead, so this takes about a
-// fifth of the polygons, and meshToVolume's time goes with the polygons. The distances are exact Euclidean
-// distances to that surface; the alternative, fast sweeping from the fill grid (tools::fogToSdf), solves
-// the eikonal equation to first order, with errors around corners that a stock measured a bead width deep
-// would feel. Inside and outside come from the surface (meshToVolume ignores the winding), so the fill
-// grid's convention (inside is above the isovalue, the opposite of a level set's) needs no negation.
-openvdb::FloatGrid::Ptr print_distance_grid(const openvdb::FloatGrid& solid, float outside_voxels,
-                                            float band_voxels) {
-  constexpr double kAdaptivity = 0.01;
-  openvdb::tools::VolumeToMesh mesher(kPrintedFill, kAdaptivity);
-  mesher(solid);
-  const openvdb::math::Transform& transform = solid.transform();
-  std::vector<openvdb::Vec3s> points(mesher.pointListSize());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    points[i] = openvdb::Vec3s(transform.worldToIndex(mesher.pointList()[i]));
-  std::vector<openvdb::Vec4I> polygons;
-  for (std::size_t n = 0; n < mesher.polygonPoolListSize(); ++n) {
-    const openvdb::tools::PolygonPool& pool = mesher.polygonPoolList()[n];
-    for (std::size_t i = 0; i < pool.numQuads(); ++i) polygons.push_back(pool.quad(i));
-    for (std::size_t i = 0; i < pool.numTriangles(); ++i) {
-      const openvdb::Vec3I& t = pool.triangle(i);
-      polygons.emplace_back(t[0], t[1], t[2], openvdb::util::INVALID_IDX);
-    }
-  }
-  const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3s, openvdb::Vec4I> mesh(points, polygons);
-  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, outside_voxels, band_voxels,
-                                                               openvdb::tools::DISABLE_RENORMALIZATION);
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  return grid;
+// The closest point of triangle (a, b, c) to p, and the feature it lies on: the corner (0, 1 or 2), an
+// edge or the face. By the Voronoi region of the triangle's corners, edges and face that p lies in (Ericson,
+// Real-Time Collision Detection, 2005, section 5.1.5).
+struct Closest {
+  Vec3 point;
+  int corner = -1;  // the corner it is, or -1
+};
+Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {a, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {b, 1};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return {a + d1 / (d1 - d3) * ab};
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {c, 2};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return {a + d2 / (d2 - d6) * ac};
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return {b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)};
+  const double scale = 1.0 / (va + vb + vc);
+  return {a + ab * (vb * scale) + ac * (vc * scale)};
 }
+
+// The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
+// surface the renderer draws — meshed (VolumeToMesh, with flat stretches merged into larger polygons where
+// the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of identical voxel faces),
+// every quad cut into two triangles, in an Embree scene. A distance is the exact Euclidean distance to the
+// nearest of those triangles (Embree's point query finds the candidates; closest_on_triangle measures each).
+class PrintSurface {
+ public:
+  explicit PrintSurface(const openvdb::FloatGrid& solid)
+      : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
+    constexpr double kAdaptivity = 0.01;
+    openvdb::tools::VolumeToMesh mesher(kPrintedFill, kAdaptivity);
+    mesher(solid);
+    std::vector<std::array<unsigned, 3>> triangles;
+    const auto keep = [&](unsigned a, unsigned b, unsigned c) {
+      const openvdb::Vec3s* p = mesher.pointList().get();
+      if ((p[b] - p[a]).cross(p[c] - p[a]).lengthSqr() > 0) triangles.push_back({a, b, c});
+    };
+    for (std::size_t n = 0; n < mesher.polygonPoolListSize(); ++n) {
+      const openvdb::tools::PolygonPool& pool = mesher.polygonPoolList()[n];
+      for (std::size_t i = 0; i < pool.numQuads(); ++i) {
+        const openvdb::Vec4I& q = pool.quad(i);
+        keep(q[0], q[1], q[2]);
+        keep(q[0], q[2], q[3]);
+      }
+      for (std::size_t i = 0; i < pool.numTriangles(); ++i) {
+        const openvdb::Vec3I& t = pool.triangle(i);
+        keep(t[0], t[1], t[2]);
+      }
+    }
+    points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         mesher.pointListSize());
+    double reach = 0.0;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const openvdb::Vec3s& p = mesher.pointList()[i];
+      points_[i] = {p.x(), p.y(), p.z()};
+      reach = std::max({reach, std::abs(double{p.x()}), std::abs(double{p.y()}), std::abs(double{p.z()})});
+    }
+    triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                               triangles.size());
+    std::copy(triangles.begin(), triangles.end(), triangles_.begin());
+    geometry_.commit();
+    scene_.attach(geometry_);
+    scene_.commit();
+    // The windings face out when the volume they enclose is positive (the divergence theorem).
+    double volume = 0.0;
+    for (std::size_t i = 0; i < triangles_.size(); ++i) {
+      const std::array<Vec3, 3> t = triangle(i);
+      volume += t[0].dot(t[1].cross(t[2]));
+    }
+    orientation_ = volume >= 0 ? 1.0 : -1.0;
+    // The query's point goes to Embree in single precision: its search sphere is this much wider, so that
+    // no triangle within the radius of the point itself is passed over.
+    slack_mm_ = 4.0 * std::numeric_limits<float>::epsilon() * (1.0 + reach);
+  }
+
+  std::size_t triangles() const { return triangles_.size(); }
+  std::array<Vec3, 3> triangle(std::size_t i) const {
+    const std::array<unsigned, 3>& t = triangles_[i];
+    std::array<Vec3, 3> out;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::array<float, 3>& v = points_[t[k]];
+      out[k] = Vec3(v[0], v[1], v[2]);
+    }
+    return out;
+  }
+
+  // The distance from p to the surface, mm, if it is less than `radius` (else `radius`), and whether p lies
+  // outside the surface (when it is nearer than `radius`): by the side of the nearest point's pseudonormal —
+  // the face's normal, the sum of the two faces' normals on an edge, their normals weighted by their angles
+  // at a corner — which tells inside from outside for a closed surface wherever the nearest point lies
+  // (Bærentzen and Aanæs, Signed distance computation using the angle weighted pseudonormal, IEEE TVCG 11(3),
+  // 2005). The faces that share the nearest point are the ones nearest within a rounding.
+  struct Distance {
+    double mm = 0.0;
+    bool found = false, outside = false;
+  };
+  Distance distance(const Vec3& p, double radius) const {
+    Nearest nearest{this, p, radius * radius};
+    RTCPointQuery query{};
+    query.x = static_cast<float>(p.x());
+    query.y = static_cast<float>(p.y());
+    query.z = static_cast<float>(p.z());
+    query.radius = static_cast<float>(radius + slack_mm_);
+    scene_.point_query(query, &visit, &nearest);
+    Distance out;
+    out.mm = std::sqrt(nearest.best_sq);
+    out.found = nearest.best_sq < radius * radius;
+    out.outside = (p - nearest.point).dot(nearest.normal) * orientation_ > 0;
+    return out;
+  }
+
+ private:
+  struct Nearest {
+    const PrintSurface* surface;
+    Vec3 p;
+    double best_sq;
+    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();  // the nearest point, its pseudonormal so far
+  };
+
+  static bool visit(RTCPointQueryFunctionArguments* args) {
+    auto& n = *static_cast<Nearest*>(args->userPtr);
+    const std::array<Vec3, 3> t = n.surface->triangle(args->primID);
+    const Closest c = closest_on_triangle(n.p, t[0], t[1], t[2]);
+    const double d_sq = (c.point - n.p).squaredNorm();
+    // A face that shares the nearest point measures it to within a rounding of the corners' floats.
+    const double tie = 1e-9 * (n.best_sq + n.surface->slack_mm_ * n.surface->slack_mm_);
+    if (d_sq > n.best_sq + tie) return false;
+    Vec3 normal = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+    if (c.corner >= 0) {
+      const auto k = static_cast<std::size_t>(c.corner);
+      const Vec3 u = t[(k + 1) % 3] - t[k], v = t[(k + 2) % 3] - t[k];
+      normal *= std::atan2(u.cross(v).norm(), u.dot(v));
+    }
+    const bool shrinks = d_sq < n.best_sq - tie;
+    if (shrinks)
+      n.normal = normal;
+    else
+      n.normal += normal;
+    if (d_sq >= n.best_sq) return false;
+    n.best_sq = d_sq;
+    n.point = c.point;
+    if (!shrinks) return false;
+    args->query->radius = static_cast<float>(std::sqrt(d_sq) + n.surface->slack_mm_);
+    return true;
+  }
+
+  embree::Device device_;
+  embree::Geometry geometry_;
+  embree::Scene scene_;
+  std::span<std::array<float, 3>> points_;
+  std::span<std::array<unsigned, 3>> triangles_;
+  double slack_mm_ = 0.0;
+  double orientation_ = 1.0;  // 1 when the triangles' windings face out of the print, -1 when in
+};
 
 // Index of voxel (x, y, z) in a dense box `dim` voxels across.
 std::size_t dense_index(const openvdb::Coord& dim, int x, int y, int z) {
@@ -319,6 +443,42 @@ void fill_closed_voids(openvdb::FloatGrid& solid, const openvdb::CoordBBox& box,
         if (!is_done(dense_index(dim, x, y, z))) acc.setValue(lo.offsetBy(x, y, z), 1.0f);
 }
 
+// Fills the inside of the voids one voxel thin. A slit voxel is less than half full between two voxels at
+// least half full along some axis; it is filled when each of its six neighbours is at least half full or a
+// slit voxel itself: the inside of a slit or a pipe one voxel across, not its mouth, nor the tip of a groove
+// (one voxel deep, so its own mouth). Such a slit (a layer's interface under-filled along a wall, a gap
+// between two passes, a seam's gap running up a wall) is a flaw of the bond, in the porosity the deposit
+// reports; the voxels do not resolve its shape, so it is no surface to machine or to measure from. Its
+// mouth and the voids any thicker that open to the outside stay surface.
+void fill_slits(openvdb::FloatGrid& solid) {
+  const auto acc = solid.getConstAccessor();
+  const auto full = [&](const openvdb::Coord& ijk) { return acc.getValue(ijk) >= kPrintedFill; };
+  openvdb::MaskGrid slits(false);
+  auto slit = slits.getAccessor();
+  for (auto it = solid.cbeginValueOn(); it; ++it) {
+    if (*it < kPrintedFill) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      openvdb::Coord gap = it.getCoord(), beyond = gap;
+      gap[axis] += 1;
+      beyond[axis] += 2;
+      if (!full(gap) && full(beyond)) slit.setValueOn(gap);
+    }
+  }
+  std::vector<openvdb::Coord> inside;
+  for (auto it = slits.cbeginValueOn(); it; ++it) {
+    bool closed = true;
+    for (int axis = 0; axis < 3 && closed; ++axis)
+      for (const int step : {-1, 1}) {
+        openvdb::Coord next = it.getCoord();
+        next[axis] += step;
+        closed = closed && (full(next) || slit.isValueOn(next));
+      }
+    if (closed) inside.push_back(it.getCoord());
+  }
+  auto write = solid.getAccessor();
+  for (const openvdb::Coord& ijk : inside) write.setValue(ijk, 1.0f);
+}
+
 // The print as its surface is measured: its closed voids filled and, with the plate, the table standing in
 // for material — every voxel of its lowest printed row copied `depth` voxels down through the plate. The
 // bottom the plate formed is then no surface, so it cannot limit the stock of the faces that meet it (a side
@@ -326,9 +486,11 @@ void fill_closed_voids(openvdb::FloatGrid& solid, const openvdb::CoordBBox& box,
 // sides carry straight on down, as the first row shaped them.
 openvdb::FloatGrid::Ptr solid_print(const openvdb::FloatGrid& fill, int plate_k, bool on_plate, int depth) {
   auto solid = fill.deepCopy();
+  solid->tree().voxelizeActiveTiles();  // the slits are looked for voxel by voxel
   openvdb::CoordBBox box = fill.evalActiveVoxelBoundingBox();
   box.expand(1);
   if (on_plate) box.min().z() = plate_k;
+  fill_slits(*solid);
   fill_closed_voids(*solid, box, !on_plate);
   if (!on_plate) return solid;
   std::vector<std::pair<openvdb::Coord, float>> row;
@@ -399,14 +561,28 @@ struct Sample {
   bool on_plate = false;
 };
 
-// The samples of one triangle (sample_points), each weighted by the area it stands for.
+// The samples of one triangle (sample_points), each weighted by the area it stands for. A sample's stock is
+// its distance to the print's surface, up to the band, positive inside the print and negative outside
+// (PrintSurface::distance). The nearest triangle is looked for no further than the last sample's distance
+// and the step from it (the distance to a surface changes no faster than the point moves): the searches
+// stay small.
 template <class Accessor>
-void sample_triangle(const CadTriangle& tri, const Accessor& print, const openvdb::math::Transform& transform,
-                     double spacing_mm, double plate_top_mm, std::vector<Sample>& out) {
+void sample_triangle(const CadTriangle& tri, const PrintSurface& print, const Accessor& solid,
+                     const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
+                     std::vector<Sample>& out) {
   std::size_t k = tri.first_sample;
-  sample_points(tri.a, tri.b, tri.c, spacing_mm, [&](const Vec3& p, double area) {
+  Vec3 last(0, 0, 0);
+  double reach = g.band_mm;  // from the last sample's distance; the band for the first
+  sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3& p, double area) {
+    if (k > tri.first_sample) reach = std::min(g.band_mm, (reach + (p - last).norm()) * (1.0 + 1e-9));
+    PrintSurface::Distance d = print.distance(p, reach);
+    if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
+    last = p;
+    reach = d.mm;
+    // Beyond the band, far from any surface, the fill tells inside from outside.
+    const bool inside = d.found ? !d.outside : sample(solid, transform, p) >= kPrintedFill;
     Sample& s = out[k++];
-    s.stock_mm = -sample(print, transform, p);
+    s.stock_mm = inside ? d.mm : -d.mm;
     s.area_mm2 = area;
     s.on_plate = tri.on_plate && p.z() <= plate_top_mm;
   });
@@ -431,17 +607,17 @@ void mark_plate(std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& c
   }
 }
 
-void measure_stock(const std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& print,
-                   const Geometry& g, const CadCompareOptions& o, CadComparison& out) {
+void measure_stock(const std::vector<CadTriangle>& triangles, const PrintSurface& print,
+                   const openvdb::FloatGrid& solid, const Geometry& g, const CadCompareOptions& o,
+                   CadComparison& out) {
   const std::size_t total = triangles.empty() ? 0 : triangles.back().first_sample + triangles.back().samples;
   std::vector<Sample> samples(total);
   const double plate_top = out.plate_z_mm + kPlateVoxels * g.voxel_mm;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto acc = print.getConstUnsafeAccessor();
+                      const auto acc = solid.getConstUnsafeAccessor();
                       for (std::size_t i = range.begin(); i < range.end(); ++i)
-                        sample_triangle(triangles[i], acc, print.transform(), g.spacing_mm, plate_top,
-                                        samples);
+                        sample_triangle(triangles[i], print, acc, solid.transform(), g, plate_top, samples);
                     });
 
   // Reduced in sample order, on one thread: the same sums for any number of threads.
@@ -477,10 +653,9 @@ void measure_stock(const std::vector<CadTriangle>& triangles, const openvdb::Flo
   out.p95_stock_mm = percentile(kept, area, 0.95);
   out.undercut_fraction = under / area;
   out.below_requested_stock_fraction = below / area;
-  // Within a voxel of the band's edge the grid's values mix in the band's width: the truth is further out.
-  const double edge = g.band_mm - g.voxel_mm;
-  out.min_stock_clamped = out.min_stock_mm <= -(g.print_outside_mm - g.voxel_mm);
-  out.max_stock_clamped = out.max_stock_mm >= edge;
+  // No surface within the band: the truth is further out.
+  out.min_stock_clamped = out.min_stock_mm <= -g.band_mm;
+  out.max_stock_clamped = out.max_stock_mm >= g.band_mm;
 }
 
 // --- Deviation of the printed skin ---
@@ -491,61 +666,37 @@ struct SkinSums {
   std::size_t count = 0;
 };
 
-// Points of the print's surface where it crosses the edges between voxel centres: a patch of area A with unit
-// normal n crosses A·|n_a|/s² edges along axis a. Each crossing is kept on the axis its normal leans on most
-// and weighted s²/|n_a|, so the weights add up to the surface's area — and a face that lies exactly halfway
-// between two rows of voxel centres (every flat face of a layer) is counted once, never twice or not at all.
-// Adds the CAD's distance at the crossings from voxel `ijk` (print distance `d0`) to `sums`.
-template <class Accessor>
-void add_crossings(const openvdb::Coord& ijk, double d0, const Accessor& print,
-                   const openvdb::math::Transform& transform, const Accessor& cad,
-                   const openvdb::math::Transform& cad_transform, double voxel_mm, double lowest_z_mm,
-                   SkinSums& sums) {
-  const auto gradient = [&](const openvdb::Coord& at) {
-    const openvdb::Vec3f g = openvdb::math::ISGradient<openvdb::math::CD_2ND>::result(print, at);
-    return Vec3(g.x(), g.y(), g.z());
-  };
-  for (int axis = 0; axis < 3; ++axis) {
-    openvdb::Coord next = ijk;
-    next[axis] += 1;
-    const double d1 = print.getValue(next);
-    if ((d0 < 0) == (d1 < 0)) continue;
-    const Vec3 n = (gradient(ijk) + gradient(next)).normalized();
-    if (!n.allFinite()) continue;
-    int dominant = 0;
-    n.cwiseAbs().maxCoeff(&dominant);
-    if (dominant != axis) continue;
-    openvdb::Vec3d x = transform.indexToWorld(ijk);
-    x[axis] += d0 / (d0 - d1) * voxel_mm;
-    const Vec3 p(x.x(), x.y(), x.z());
-    if (p.z() < lowest_z_mm) continue;  // the table's stand-in below the plate, not print
-    const double w = voxel_mm * voxel_mm / std::abs(n[axis]);
-    const double deviation = sample(cad, cad_transform, p);
-    sums.weight += w;
-    sums.sum += w * deviation;
-    sums.sum_sq += w * deviation * deviation;
-    sums.min = std::min(sums.min, deviation);
-    sums.max = std::max(sums.max, deviation);
-    ++sums.count;
-  }
-}
-
-void measure_skin(const openvdb::FloatGrid& print, const openvdb::FloatGrid& cad_grid, const Geometry& g,
+// The print's surface sampled as the CAD's is (sample_points, at the voxel spacing), each sample weighted by
+// the area it stands for. In fixed blocks of triangles, added up in block order: the same sums for any
+// number of threads.
+void measure_skin(const PrintSurface& print, const openvdb::FloatGrid& cad_grid, const Geometry& g,
                   const CadCompareOptions& o, CadComparison& out) {
-  openvdb::tree::LeafManager<const openvdb::FloatTree> leaves(print.tree());
-  std::vector<SkinSums> per_leaf(leaves.leafCount());
+  constexpr std::size_t kBlock = 4096;
+  std::vector<SkinSums> per_block((print.triangles() + kBlock - 1) / kBlock);
   const double lowest_z = o.exclude_plate ? out.plate_z_mm : -std::numeric_limits<double>::infinity();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, per_block.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto pa = print.getConstUnsafeAccessor();
                       const auto ca = cad_grid.getConstUnsafeAccessor();
-                      for (std::size_t l = range.begin(); l < range.end(); ++l)
-                        for (auto it = leaves.leaf(l).cbeginValueOn(); it; ++it)
-                          add_crossings(it.getCoord(), *it, pa, print.transform(), ca, cad_grid.transform(),
-                                        g.voxel_mm, lowest_z, per_leaf[l]);
+                      for (std::size_t b = range.begin(); b < range.end(); ++b) {
+                        SkinSums& sums = per_block[b];
+                        for (std::size_t i = b * kBlock; i < std::min(print.triangles(), (b + 1) * kBlock);
+                             ++i) {
+                          const std::array<Vec3, 3> t = print.triangle(i);
+                          sample_points(t[0], t[1], t[2], g.voxel_mm, [&](const Vec3& p, double area) {
+                            if (p.z() < lowest_z) return;  // the table's stand-in below the plate, not print
+                            const double deviation = sample(ca, cad_grid.transform(), p);
+                            sums.weight += area;
+                            sums.sum += area * deviation;
+                            sums.sum_sq += area * deviation * deviation;
+                            sums.min = std::min(sums.min, deviation);
+                            sums.max = std::max(sums.max, deviation);
+                            ++sums.count;
+                          });
+                        }
+                      }
                     });
   SkinSums total;
-  for (const SkinSums& s : per_leaf) {  // in leaf order: the same sums for any number of threads
+  for (const SkinSums& s : per_block) {
     total.weight += s.weight;
     total.sum += s.sum;
     total.sum_sq += s.sum_sq;
@@ -625,21 +776,9 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   if (options.exclude_plate) mark_plate(triangles, *cad_grid, g, out.plate_z_mm);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
-  const auto outside_voxels = static_cast<float>(g.print_outside_mm / g.voxel_mm);
-  // The print's band inside it is built kPrintInsideFirstVoxels deep first, and again at the whole band
-  // only when a stock reaches within a voxel of that depth: the grid's values inside the first depth are
-  // the same either way, so the figures are too.
-  const float inside_first = std::min(band_voxels, static_cast<float>(kPrintInsideFirstVoxels));
-  openvdb::FloatGrid::Ptr print = print_distance_grid(*solid, outside_voxels, inside_first);
-  CadComparison first = out;
-  measure_stock(triangles, *print, g, options, first);
-  if (inside_first < band_voxels && first.max_stock_mm >= (inside_first - 1.0) * g.voxel_mm) {
-    print = print_distance_grid(*solid, outside_voxels, band_voxels);
-    measure_stock(triangles, *print, g, options, out);
-  } else {
-    out = first;
-  }
-  measure_skin(*print, *cad_grid, g, options, out);
+  const PrintSurface print(*solid);
+  measure_stock(triangles, print, *solid, g, options, out);
+  measure_skin(print, *cad_grid, g, options, out);
   measure_outside(*deposit.fill, *cad_grid, g, out);
   out.cad_distance = cad_grid;
   return out;

@@ -2,22 +2,25 @@
 // leaves for machining, where it falls short of the CAD (undercut), how far its skin strays from the CAD
 // and how much material machining takes off.
 //
-// Both shapes become narrow-band signed distance grids on the deposit's voxels (OpenVDB; negative inside,
-// mm): the CAD's from its triangles, the print's from the deposit's fill-fraction isosurface at 0.5 (the
-// part as printed, the surface the renderer draws), after filling the voids the print closes in (porosity,
-// which the deposit reports; their walls are no surface to machine or to measure). Voids that open to the
-// outside, such as a channel left between passes that reaches the top, stay surface. Then:
-//  - stock at a point of the CAD surface is the print's signed distance there, negated: the radius of the
-//    ball of material around the point (positive: material to machine off in every direction) or, negative,
-//    how far the point lies outside the print (undercut: the print falls short of the CAD there). It is the
-//    nearest-distance allowance a machinist means: at a convex corner it is the distance to the print's
-//    nearest surface, not along any one normal. The CAD surface is sampled deterministically, each triangle
-//    cut into n² equal triangles (n from its longest edge and the sample spacing) and sampled at their
-//    centroids, each sample weighted by its area; a long thin triangle is first halved across its longest
-//    edge until it is not (so its samples go with its length, not its length squared).
+// The CAD becomes a narrow-band signed distance grid on the deposit's voxels (OpenVDB, negative inside, mm).
+// The print becomes a surface: the deposit's fill-fraction isosurface at 0.5 (the part as printed, the
+// surface the renderer draws) meshed, after filling the voids the print closes in and the inside of the
+// slits one voxel thin (both porosity, which the deposit reports; their walls are no surface to machine or
+// to measure from). Voids that open to the outside, such as a channel left between passes that reaches the
+// top, stay surface, as do the mouths of slits and the tips of grooves. Then:
+//  - stock at a point of the CAD surface is its exact distance to the print's surface (the nearest of its
+//    triangles, found with Embree's point query), positive where the point lies inside the print (its fill
+//    fraction, trilinear between voxel centres, at least 1/2), negative outside: the radius of the ball of
+//    material around the point (positive: material to machine off in every direction) or how far the point
+//    lies outside the print (undercut: the print falls short of the CAD there). It is the nearest-distance
+//    allowance a machinist means: at a convex corner it is the distance to the print's nearest surface, not
+//    along any one normal. The CAD surface is sampled deterministically, each triangle cut into n² equal
+//    triangles (n from its longest edge and the sample spacing) and sampled at their centroids, each sample
+//    weighted by its area; a long thin triangle is first halved across its longest edge until it is not (so
+//    its samples go with its length, not its length squared).
 //  - deviation of the printed skin is the CAD's signed distance at points of the print's surface (positive:
-//    the skin lies outside the CAD, negative: inside it), sampled where the surface crosses the edges between
-//    voxel centres, each point weighted by the surface area it stands for.
+//    the skin lies outside the CAD, negative: inside it), the surface's triangles sampled as the CAD's are
+//    (at the voxel spacing), each point weighted by the area it stands for.
 //  - material outside the CAD is what machining removes: each voxel's material times the share of the voxel
 //    outside the CAD.
 // The build plate: the table, not the print, forms the faces that stand on it (a box's bottom). Such CAD
@@ -26,12 +29,10 @@
 // bottom is no surface to measure from: the table stands in for material below it, so the stock of a side
 // face does not fall to nothing at its foot. Top faces count: stock on top is a real machining allowance.
 //
-// Distances are exact only within the narrow band (CadCompareOptions::band_mm) of each surface; beyond it
-// the grids hold the band's width, so a stock or deviation of the band's size or more is reported as the
-// band ("at least"), with a flag. Outside the print, its band is narrower: half the band, but at least
-// kPrintOutsideBandVoxels (and at most the band). Only an undercut (the CAD surface outside the print) reads
-// it there, and an undercut that deep is a print that misses its part; half the time of the comparison went
-// into that side of the band (the LSAM mould's comparison: 37 s with it, 31 s without, the same figures).
+// Stocks are measured up to the band (CadCompareOptions::band_mm) either way; a point with no print surface
+// within it is reported at the band ("at least"), with a flag. Deviations read the CAD's grid, whose values
+// are exact only within the band and hold the band's width beyond it: a deviation within a voxel of the band
+// is flagged the same way.
 #pragma once
 
 #include <array>
@@ -52,13 +53,9 @@ struct CadSurface {
   std::span<const std::array<int, 3>> triangles;  // indices into vertices
 };
 
-// The least half-width of the print's narrow band outside it, voxels (CadComparison::min_stock_clamped
-// beyond it).
-constexpr double kPrintOutsideBandVoxels = 6.0;
-
 struct CadCompareOptions {
-  // Half-width of the narrow bands, mm (> 0): stocks and deviations are measured up to this far on either
-  // side of a surface. A few bead widths; at most 256 voxels.
+  // Half-width of the CAD's narrow band and the reach of the stock, mm (> 0): stocks and deviations are
+  // measured up to this far on either side of a surface. A few bead widths; at most 256 voxels.
   double band_mm = 0.0;
   // The stock the process asks for, mm (the sections' outer stock): the colour map's white point and the
   // reference for below_requested_stock_fraction.
@@ -74,8 +71,7 @@ struct CadComparison {
   // Stock over the CAD surface (excluding the plate), area-weighted, mm.
   double min_stock_mm = 0.0, max_stock_mm = 0.0, mean_stock_mm = 0.0;
   double p05_stock_mm = 0.0, median_stock_mm = 0.0, p95_stock_mm = 0.0;  // area percentiles
-  // The extreme is at the edge of the band: the true value is at least that far out (min: that short; the
-  // band outside the print is the narrower one, see above).
+  // The extreme is at the edge of the band: the true value is at least that far out (min: that short).
   bool min_stock_clamped = false, max_stock_clamped = false;
   double undercut_fraction = 0.0;  // share of the CAD surface area with stock < 0 (print short of the CAD)
   // Share of the CAD surface area with less stock than requested_stock_mm (what the process asked for).

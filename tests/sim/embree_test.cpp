@@ -1,15 +1,17 @@
-#include "render/embree.hpp"
+#include "sim/embree.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
 
-namespace beadtwin::render::embree {
+namespace beadtwin::embree {
 namespace {
 
 // One triangle in the plane z = 5 covering (0,0)-(10,0)-(0,10).
@@ -53,6 +55,52 @@ TEST(Embree, IntersectsAndOccludes) {
   RTCRayHit blocked = down_from(2, 2), open = down_from(8, 8);
   EXPECT_TRUE(scene.occluded(blocked.ray));
   EXPECT_FALSE(scene.occluded(open.ray));
+}
+
+// The primitives a point query visits.
+bool record_visit(RTCPointQueryFunctionArguments* args) {
+  static_cast<std::vector<unsigned>*>(args->userPtr)->push_back(args->primID);
+  return false;
+}
+
+TEST(Embree, PointQueriesVisitWhatTheSphereReaches) {
+  // 400 small triangles (1 mm) in the plane z = 0, 10 mm apart.
+  const Device device;
+  Geometry geometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  constexpr unsigned kSide = 20;
+  auto v = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                     3 * kSide * kSide);
+  auto t =
+      geometry.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, kSide * kSide);
+  for (unsigned i = 0; i < kSide * kSide; ++i) {
+    const auto x = static_cast<float>(10 * (i % kSide)), y = static_cast<float>(10 * (i / kSide));
+    v[3 * i] = {x, y, 0};
+    v[3 * i + 1] = {x + 1, y, 0};
+    v[3 * i + 2] = {x, y + 1, 0};
+    t[i] = {3 * i, 3 * i + 1, 3 * i + 2};
+  }
+  geometry.commit();
+  Scene scene(device);
+  scene.attach(geometry);
+  scene.commit();
+  const auto visits = [&](float z, float radius) {
+    RTCPointQuery q{};
+    q.x = 50.2f;  // over triangle 5 + 20 · 7
+    q.y = 70.2f;
+    q.z = z;
+    q.radius = radius;
+    std::vector<unsigned> primitives;
+    scene.point_query(q, &record_visit, &primitives);
+    std::sort(primitives.begin(), primitives.end());
+    return primitives;
+  };
+  // 3 above its triangle: reached by a sphere of radius 4, with at most a few neighbours whose boxes share
+  // a node with it (Embree prunes by bounding boxes); 25 above, or reached by no sphere, none.
+  const std::vector<unsigned> near = visits(3, 4);
+  EXPECT_TRUE(std::binary_search(near.begin(), near.end(), 5 + kSide * 7));
+  EXPECT_LE(near.size(), 8u);
+  EXPECT_TRUE(visits(25, 4).empty());
+  EXPECT_EQ(visits(3, 1000).size(), kSide * kSide);
 }
 
 TEST(Embree, PacketsAgreeWithSingleRays) {
@@ -121,4 +169,4 @@ TEST(Embree, HandlesMoveAndOutliveEachOther) {
 }
 
 }  // namespace
-}  // namespace beadtwin::render::embree
+}  // namespace beadtwin::embree

@@ -1,4 +1,4 @@
-#include "render/embree.hpp"
+#include "sim/embree.hpp"
 
 #include <mutex>
 #include <string>
@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 
-namespace beadtwin::render::embree {
+namespace beadtwin::embree {
 
 struct ErrorSlot {
   std::mutex mutex;
@@ -171,4 +171,4 @@ void Scene::commit() {
   throw_if_error(*errors_, "rtcCommitScene");
 }
 
-}  // namespace beadtwin::render::embree
+}  // namespace beadtwin::embree

@@ -1,4 +1,5 @@
-// Embree 3, wrapped once (STYLE.md rule 9): RAII handles for a device, a scene and a geometry.
+// Embree 3, wrapped once (STYLE.md rule 9): RAII handles for a device, a scene and a geometry. The renderer
+// traces rays with it; the comparison with the CAD asks it for nearest points (sim/cad_compare.hpp).
 //
 // The Device installs an error callback when it is created. Embree calls it on the thread whose call
 // failed; the callback records the error and the wrapper function that made the call throws it, as an
@@ -6,8 +7,8 @@
 // memory, never the user's input). Throwing from inside the callback itself would unwind through Embree's
 // frames, which its C API does not promise to survive, hence record-then-throw.
 //
-// Ray queries (intersect, occluded) are not checked: Embree validates their arguments only in its debug
-// builds, so they stay inline and cheap. They are thread-safe once the scene is committed.
+// Ray and point queries (intersect, occluded, point_query) are not checked: Embree validates their arguments
+// only in its debug builds, so they stay inline and cheap. They are thread-safe once the scene is committed.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +18,7 @@
 
 #include <embree3/rtcore.h>
 
-namespace beadtwin::render::embree {
+namespace beadtwin::embree {
 
 // Errors reported by the callback, shared by the device and everything made from it, so the callback's
 // target lives as long as any handle that can trigger it.
@@ -117,10 +118,18 @@ class Scene {
     if (coherent) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded16(valid, scene_, &context, &rays);
   }
+  // Calls `visit` for every primitive within query.radius of the query's point, and maybe a few more (Embree
+  // prunes by bounding boxes: `visit` measures). `visit` returns true when it has shrunk the radius
+  // (args->query->radius), so that the traversal prunes with it; the caller's `query` is left as it was.
+  void point_query(RTCPointQuery& query, RTCPointQueryFunction visit, void* user) const {
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(scene_, &query, &context, visit, user);
+  }
 
  private:
   RTCScene scene_ = nullptr;
   std::shared_ptr<ErrorSlot> errors_;
 };
 
-}  // namespace beadtwin::render::embree
+}  // namespace beadtwin::embree

@@ -10,7 +10,6 @@
 #include <fmt/format.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
-#include <openvdb/tools/VolumeToMesh.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,6 +18,7 @@
 
 #include "core/error.hpp"
 #include "sim/embree.hpp"
+#include "sim/skin.hpp"
 
 namespace beadtwin::sim {
 namespace {
@@ -250,41 +250,33 @@ Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 }
 
 // The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
-// surface the renderer draws — meshed (VolumeToMesh, with flat stretches merged into larger polygons where
-// the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of identical voxel faces),
-// every quad cut into two triangles, in an Embree scene. A distance is the exact Euclidean distance to the
-// nearest of those triangles (Embree's point query finds the candidates; closest_on_triangle measures each).
+// surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
+// into larger polygons where the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of
+// identical voxel faces), its triangles facing out, in an Embree scene. A distance is the exact Euclidean
+// distance to the nearest of those triangles (Embree's point query finds the candidates;
+// closest_on_triangle measures each).
 class PrintSurface {
  public:
-  explicit PrintSurface(const openvdb::FloatGrid& solid)
+  explicit PrintSurface(const openvdb::FloatGrid::Ptr& solid)
       : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
     constexpr double kAdaptivity = 0.01;
-    openvdb::tools::VolumeToMesh mesher(kPrintedFill, kAdaptivity);
-    mesher(solid);
+    Deposit as_printed;
+    as_printed.fill = solid;
+    const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
+    // Triangles without area have no side to tell inside from outside by.
+    const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
     std::vector<std::array<unsigned, 3>> triangles;
-    const auto keep = [&](unsigned a, unsigned b, unsigned c) {
-      const openvdb::Vec3s* p = mesher.pointList().get();
-      if ((p[b] - p[a]).cross(p[c] - p[a]).lengthSqr() > 0) triangles.push_back({a, b, c});
-    };
-    for (std::size_t n = 0; n < mesher.polygonPoolListSize(); ++n) {
-      const openvdb::tools::PolygonPool& pool = mesher.polygonPoolList()[n];
-      for (std::size_t i = 0; i < pool.numQuads(); ++i) {
-        const openvdb::Vec4I& q = pool.quad(i);
-        keep(q[0], q[1], q[2]);
-        keep(q[0], q[2], q[3]);
-      }
-      for (std::size_t i = 0; i < pool.numTriangles(); ++i) {
-        const openvdb::Vec3I& t = pool.triangle(i);
-        keep(t[0], t[1], t[2]);
-      }
-    }
-    points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         mesher.pointListSize());
+    triangles.reserve(mesh.triangles.size());
+    for (const openvdb::Vec3I& t : mesh.triangles)
+      if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0)
+        triangles.push_back({t[0], t[1], t[2]});
+    points_ =
+        geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.size());
     double reach = 0.0;
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      const openvdb::Vec3s& p = mesher.pointList()[i];
-      points_[i] = {p.x(), p.y(), p.z()};
-      reach = std::max({reach, std::abs(double{p.x()}), std::abs(double{p.y()}), std::abs(double{p.z()})});
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      points_[i] = {p[i].x(), p[i].y(), p[i].z()};
+      reach = std::max(
+          {reach, std::abs(double{p[i].x()}), std::abs(double{p[i].y()}), std::abs(double{p[i].z()})});
     }
     triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                triangles.size());
@@ -292,13 +284,6 @@ class PrintSurface {
     geometry_.commit();
     scene_.attach(geometry_);
     scene_.commit();
-    // The windings face out when the volume they enclose is positive (the divergence theorem).
-    double volume = 0.0;
-    for (std::size_t i = 0; i < triangles_.size(); ++i) {
-      const std::array<Vec3, 3> t = triangle(i);
-      volume += t[0].dot(t[1].cross(t[2]));
-    }
-    orientation_ = volume >= 0 ? 1.0 : -1.0;
     // The query's point goes to Embree in single precision: its search sphere is this much wider, so that
     // no triangle within the radius of the point itself is passed over.
     slack_mm_ = 4.0 * std::numeric_limits<float>::epsilon() * (1.0 + reach);
@@ -336,7 +321,7 @@ class PrintSurface {
     Distance out;
     out.mm = std::sqrt(nearest.best_sq);
     out.found = nearest.best_sq < radius * radius;
-    out.outside = (p - nearest.point).dot(nearest.normal) * orientation_ > 0;
+    out.outside = (p - nearest.point).dot(nearest.normal) > 0;  // the triangles face out
     return out;
   }
 
@@ -381,7 +366,6 @@ class PrintSurface {
   std::span<std::array<float, 3>> points_;
   std::span<std::array<unsigned, 3>> triangles_;
   double slack_mm_ = 0.0;
-  double orientation_ = 1.0;  // 1 when the triangles' windings face out of the print, -1 when in
 };
 
 // Index of voxel (x, y, z) in a dense box `dim` voxels across.
@@ -776,7 +760,7 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   if (options.exclude_plate) mark_plate(triangles, *cad_grid, g, out.plate_z_mm);
   const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
-  const PrintSurface print(*solid);
+  const PrintSurface print(solid);
   measure_stock(triangles, print, *solid, g, options, out);
   measure_skin(print, *cad_grid, g, options, out);
   measure_outside(*deposit.fill, *cad_grid, g, out);

@@ -234,8 +234,8 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       BT_CHECK(in.cad != nullptr);
       f.heading = "Stock over the CAD";
       f.title = "stock over the CAD (mm)";
-      const openvdb::FloatGrid::ConstPtr distance = in.cad->comparison.cad_distance;
-      f.at_point = [distance](const Eigen::Vector3d& p) { return sim::cad_distance_at(*distance, p); };
+      const std::shared_ptr<const sim::CadField> distance = in.cad->comparison.cad_distance;
+      f.at_point = [distance](const Eigen::Vector3d& p) { return distance->at(p); };
       scale(frame.stock_centre_mm - frame.stock_half_range_mm,
             frame.stock_centre_mm + frame.stock_half_range_mm, render::ColourMap::diverging());
       f.note =

@@ -111,6 +111,11 @@ std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double sp
   return first + count_samples(m, t.q, t.r, spacing, limit - first);
 }
 
+// Half-width of the CAD's distance grid, voxels: CadField::kNarrowVoxels, within the band.
+double narrow_voxels(const Geometry& g) {
+  return std::min(CadField::kNarrowVoxels, g.band_mm / g.voxel_mm);
+}
+
 // The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
 void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
   std::string problems;
@@ -169,13 +174,13 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
-  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * g.band_mm / g.voxel_mm);
+  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * narrow_voxels(g));
   if (band_voxels > kMaxBandVolume)
     throw InputError(
         {}, "cad",
-        fmt::format("the CAD's surface ({:.6g} mm²) is too large for {} mm voxels and a {} mm band: "
-                    "its distance grid would hold about {:.3g} voxels (limit {:.3g})",
-                    area, g.voxel_mm, g.band_mm, band_voxels, kMaxBandVolume));
+        fmt::format("the CAD's surface ({:.6g} mm²) is too large for {} mm voxels: its distance grid "
+                    "would hold about {:.3g} voxels (limit {:.3g})",
+                    area, g.voxel_mm, band_voxels, kMaxBandVolume));
 }
 
 void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
@@ -204,8 +209,12 @@ int plate_row(const openvdb::FloatGrid& fill) {
 
 // --- Distance grids ---
 
-// The CAD's signed distance on the deposit's voxels. Points go to index space in double precision (the
-// meshing's own world-space entry takes floats).
+// The CAD's signed distance on the deposit's voxels, `band_voxels` either side. Points go to index space in
+// double precision (the meshing's own world-space entry takes floats). Without OpenVDB's renormalization:
+// it smooths the values near the surface for meshes that overlap themselves, and moves them off the true
+// distance where a closed CAD turns a sharp corner (by 1.2 mm on 2 mm voxels at the LSAM mould's inside
+// corner between floor and wall); without it, each value is the exact distance from the voxel's centre to
+// the nearest triangle.
 openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::math::Transform& transform,
                                           float band_voxels) {
   std::vector<openvdb::Vec3d> points;
@@ -217,7 +226,8 @@ openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::
     triangles.emplace_back(static_cast<openvdb::Index32>(t[0]), static_cast<openvdb::Index32>(t[1]),
                            static_cast<openvdb::Index32>(t[2]));
   const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3d, openvdb::Vec3I> mesh(points, triangles);
-  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, band_voxels, band_voxels);
+  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, band_voxels, band_voxels,
+                                                               openvdb::tools::DISABLE_RENORMALIZATION);
   grid->setGridClass(openvdb::GRID_LEVEL_SET);
   return grid;
 }
@@ -249,34 +259,19 @@ Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
   return {a + ab * (vb * scale) + ac * (vc * scale)};
 }
 
-// The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
-// surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
-// into larger polygons where the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of
-// identical voxel faces), its triangles facing out, in an Embree scene. A distance is the exact Euclidean
-// distance to the nearest of those triangles (Embree's point query finds the candidates;
-// closest_on_triangle measures each).
-class PrintSurface {
+// Triangles in an Embree scene, for the exact distance from a point to the nearest of them: Embree's point
+// query finds the candidates, closest_on_triangle measures each.
+class NearestTriangles {
  public:
-  explicit PrintSurface(const openvdb::FloatGrid::Ptr& solid)
+  NearestTriangles(std::span<const std::array<float, 3>> points,
+                   std::span<const std::array<unsigned, 3>> triangles)
       : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
-    constexpr double kAdaptivity = 0.01;
-    Deposit as_printed;
-    as_printed.fill = solid;
-    const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
-    // Triangles without area have no side to tell inside from outside by.
-    const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
-    std::vector<std::array<unsigned, 3>> triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const openvdb::Vec3I& t : mesh.triangles)
-      if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0)
-        triangles.push_back({t[0], t[1], t[2]});
-    points_ =
-        geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, p.size());
+    points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                         points.size());
     double reach = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      points_[i] = {p[i].x(), p[i].y(), p[i].z()};
-      reach = std::max(
-          {reach, std::abs(double{p[i].x()}), std::abs(double{p[i].y()}), std::abs(double{p[i].z()})});
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      points_[i] = points[i];
+      for (const float c : points[i]) reach = std::max(reach, std::abs(double{c}));
     }
     triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                triangles.size());
@@ -300,12 +295,13 @@ class PrintSurface {
     return out;
   }
 
-  // The distance from p to the surface, mm, if it is less than `radius` (else `radius`), and whether p lies
-  // outside the surface (when it is nearer than `radius`): by the side of the nearest point's pseudonormal —
-  // the face's normal, the sum of the two faces' normals on an edge, their normals weighted by their angles
-  // at a corner — which tells inside from outside for a closed surface wherever the nearest point lies
-  // (Bærentzen and Aanæs, Signed distance computation using the angle weighted pseudonormal, IEEE TVCG 11(3),
-  // 2005). The faces that share the nearest point are the ones nearest within a rounding.
+  // The distance from p to the triangles, mm, if it is less than `radius` (else `radius`), and, for
+  // triangles that face out from a closed surface, whether p lies outside it (when it is nearer than
+  // `radius`): by the side of the nearest point's pseudonormal — the face's normal, the sum of the two
+  // faces' normals on an edge, their normals weighted by their angles at a corner — which tells inside from
+  // outside for a closed surface wherever the nearest point lies (Bærentzen and Aanæs, Signed distance
+  // computation using the angle weighted pseudonormal, IEEE TVCG 11(3), 2005). The faces that share the
+  // nearest point are the ones nearest within a rounding.
   struct Distance {
     double mm = 0.0;
     bool found = false, outside = false;
@@ -321,13 +317,13 @@ class PrintSurface {
     Distance out;
     out.mm = std::sqrt(nearest.best_sq);
     out.found = nearest.best_sq < radius * radius;
-    out.outside = (p - nearest.point).dot(nearest.normal) > 0;  // the triangles face out
+    out.outside = (p - nearest.point).dot(nearest.normal) > 0;
     return out;
   }
 
  private:
   struct Nearest {
-    const PrintSurface* surface;
+    const NearestTriangles* surface;
     Vec3 p;
     double best_sq;
     Vec3 point = Vec3::Zero(), normal = Vec3::Zero();  // the nearest point, its pseudonormal so far
@@ -368,6 +364,26 @@ class PrintSurface {
   double slack_mm_ = 0.0;
 };
 
+// The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
+// surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
+// into larger polygons where the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of
+// identical voxel faces), its triangles facing out (so NearestTriangles::Distance::outside holds).
+// Triangles without area are left out: they have no side to tell inside from outside by.
+NearestTriangles print_surface(const openvdb::FloatGrid::Ptr& solid) {
+  constexpr double kAdaptivity = 0.01;
+  Deposit as_printed;
+  as_printed.fill = solid;
+  const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
+  const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
+  std::vector<std::array<float, 3>> points;
+  points.reserve(p.size());
+  for (const openvdb::Vec3s& v : p) points.push_back({v.x(), v.y(), v.z()});
+  std::vector<std::array<unsigned, 3>> triangles;
+  triangles.reserve(mesh.triangles.size());
+  for (const openvdb::Vec3I& t : mesh.triangles)
+    if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0) triangles.push_back({t[0], t[1], t[2]});
+  return NearestTriangles(points, triangles);
+}
 // Index of voxel (x, y, z) in a dense box `dim` voxels across.
 std::size_t dense_index(const openvdb::Coord& dim, int x, int y, int z) {
   return (static_cast<std::size_t>(z) * static_cast<std::size_t>(dim.y()) + static_cast<std::size_t>(y)) *
@@ -547,11 +563,11 @@ struct Sample {
 
 // The samples of one triangle (sample_points), each weighted by the area it stands for. A sample's stock is
 // its distance to the print's surface, up to the band, positive inside the print and negative outside
-// (PrintSurface::distance). The nearest triangle is looked for no further than the last sample's distance
+// (NearestTriangles::distance). The nearest triangle is looked for no further than the last sample's distance
 // and the step from it (the distance to a surface changes no faster than the point moves): the searches
 // stay small.
 template <class Accessor>
-void sample_triangle(const CadTriangle& tri, const PrintSurface& print, const Accessor& solid,
+void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, const Accessor& solid,
                      const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
                      std::vector<Sample>& out) {
   std::size_t k = tri.first_sample;
@@ -559,7 +575,7 @@ void sample_triangle(const CadTriangle& tri, const PrintSurface& print, const Ac
   double reach = g.band_mm;  // from the last sample's distance; the band for the first
   sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3& p, double area) {
     if (k > tri.first_sample) reach = std::min(g.band_mm, (reach + (p - last).norm()) * (1.0 + 1e-9));
-    PrintSurface::Distance d = print.distance(p, reach);
+    NearestTriangles::Distance d = print.distance(p, reach);
     if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
     last = p;
     reach = d.mm;
@@ -591,7 +607,7 @@ void mark_plate(std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& c
   }
 }
 
-void measure_stock(const std::vector<CadTriangle>& triangles, const PrintSurface& print,
+void measure_stock(const std::vector<CadTriangle>& triangles, const NearestTriangles& print,
                    const openvdb::FloatGrid& solid, const Geometry& g, const CadCompareOptions& o,
                    CadComparison& out) {
   const std::size_t total = triangles.empty() ? 0 : triangles.back().first_sample + triangles.back().samples;
@@ -653,14 +669,14 @@ struct SkinSums {
 // The print's surface sampled as the CAD's is (sample_points, at the voxel spacing), each sample weighted by
 // the area it stands for. In fixed blocks of triangles, added up in block order: the same sums for any
 // number of threads.
-void measure_skin(const PrintSurface& print, const openvdb::FloatGrid& cad_grid, const Geometry& g,
+void measure_skin(const NearestTriangles& print, const CadField& cad, const Geometry& g,
                   const CadCompareOptions& o, CadComparison& out) {
   constexpr std::size_t kBlock = 4096;
   std::vector<SkinSums> per_block((print.triangles() + kBlock - 1) / kBlock);
   const double lowest_z = o.exclude_plate ? out.plate_z_mm : -std::numeric_limits<double>::infinity();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, per_block.size()),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto ca = cad_grid.getConstUnsafeAccessor();
+                      const auto ca = cad.grid().getConstUnsafeAccessor();
                       for (std::size_t b = range.begin(); b < range.end(); ++b) {
                         SkinSums& sums = per_block[b];
                         for (std::size_t i = b * kBlock; i < std::min(print.triangles(), (b + 1) * kBlock);
@@ -668,7 +684,7 @@ void measure_skin(const PrintSurface& print, const openvdb::FloatGrid& cad_grid,
                           const std::array<Vec3, 3> t = print.triangle(i);
                           sample_points(t[0], t[1], t[2], g.voxel_mm, [&](const Vec3& p, double area) {
                             if (p.z() < lowest_z) return;  // the table's stand-in below the plate, not print
-                            const double deviation = sample(ca, cad_grid.transform(), p);
+                            const double deviation = cad.at(ca, p);
                             sums.weight += area;
                             sums.sum += area * deviation;
                             sums.sum_sq += area * deviation * deviation;
@@ -695,9 +711,8 @@ void measure_skin(const PrintSurface& print, const openvdb::FloatGrid& cad_grid,
   out.deviation_rms_mm = std::sqrt(total.sum_sq / total.weight);
   out.deviation_min_mm = total.min;
   out.deviation_max_mm = total.max;
-  const double edge = g.band_mm - g.voxel_mm;
-  out.deviation_min_clamped = out.deviation_min_mm <= -edge;
-  out.deviation_max_clamped = out.deviation_max_mm >= edge;
+  out.deviation_min_clamped = out.deviation_min_mm <= -g.band_mm;
+  out.deviation_max_clamped = out.deviation_max_mm >= g.band_mm;
 }
 
 // --- Material outside the CAD ---
@@ -728,6 +743,42 @@ void measure_outside(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& c
 
 }  // namespace
 
+struct CadField::Triangles {
+  NearestTriangles nearest;
+};
+
+CadField::CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm)
+    : band_mm_(band_mm), voxel_mm_(transform.voxelSize()[0]) {
+  const auto narrow = static_cast<float>(std::min(kNarrowVoxels, band_mm / voxel_mm_));
+  grid_ = cad_distance_grid(cad, transform, narrow);
+  std::vector<std::array<float, 3>> points;
+  points.reserve(cad.vertices.size());
+  for (const Vec3& v : cad.vertices)
+    points.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
+  std::vector<std::array<unsigned, 3>> triangles;
+  triangles.reserve(cad.triangles.size());
+  for (const auto& t : cad.triangles)
+    triangles.push_back(
+        {static_cast<unsigned>(t[0]), static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2])});
+  triangles_ = std::make_unique<const Triangles>(Triangles{NearestTriangles(points, triangles)});
+}
+
+CadField::~CadField() = default;
+
+double CadField::at(const Eigen::Vector3d& point_mm) const {
+  return at(grid_->getConstUnsafeAccessor(), point_mm);
+}
+
+double CadField::at(const openvdb::FloatGrid::ConstUnsafeAccessor& grid_accessor,
+                    const Eigen::Vector3d& point_mm) const {
+  // Within a voxel of the surface, every corner of the trilinear sample lies within the grid's band
+  // (kNarrowVoxels = 2: a corner is at most √3/2 voxel further than the point).
+  const double near = sample(grid_accessor, grid_->transform(), point_mm);
+  if (std::abs(near) < voxel_mm_) return near;
+  const NearestTriangles::Distance d = triangles_->nearest.distance(point_mm, band_mm_);
+  return std::copysign(d.found ? d.mm : band_mm_, near);
+}
+
 CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadCompareOptions& options) {
   openvdb::initialize();
   Geometry g;
@@ -735,8 +786,7 @@ CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadC
   CadDistance out;
   out.voxel_mm = g.voxel_mm;
   out.band_mm = g.band_mm;
-  out.grid =
-      cad_distance_grid(cad, *deposit_transform(g.voxel_mm), static_cast<float>(g.band_mm / g.voxel_mm));
+  out.field = std::make_shared<const CadField>(cad, *deposit_transform(g.voxel_mm), g.band_mm);
   return out;
 }
 
@@ -751,27 +801,21 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
   const int plate_k = plate_row(*deposit.fill);
   out.plate_z_mm = plate_k * g.voxel_mm;
 
-  const auto band_voxels = static_cast<float>(g.band_mm / g.voxel_mm);
-  const bool ahead = made_ahead != nullptr && made_ahead->grid && made_ahead->voxel_mm == g.voxel_mm &&
+  const bool ahead = made_ahead != nullptr && made_ahead->field && made_ahead->voxel_mm == g.voxel_mm &&
                      made_ahead->band_mm == g.band_mm &&
-                     made_ahead->grid->transform() == deposit.fill->transform();
-  const openvdb::FloatGrid::Ptr cad_grid =
-      ahead ? made_ahead->grid : cad_distance_grid(cad, deposit.fill->transform(), band_voxels);
-  if (options.exclude_plate) mark_plate(triangles, *cad_grid, g, out.plate_z_mm);
-  const int depth = static_cast<int>(std::ceil(band_voxels)) + 2;  // the extension's bottom is out of reach
+                     made_ahead->field->grid().transform() == deposit.fill->transform();
+  const std::shared_ptr<const CadField> field =
+      ahead ? made_ahead->field : std::make_shared<const CadField>(cad, deposit.fill->transform(), g.band_mm);
+  if (options.exclude_plate) mark_plate(triangles, field->grid(), g, out.plate_z_mm);
+  // The extension's bottom is out of reach.
+  const int depth = static_cast<int>(std::ceil(g.band_mm / g.voxel_mm)) + 2;
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
-  const PrintSurface print(solid);
+  const NearestTriangles print = print_surface(solid);
   measure_stock(triangles, print, *solid, g, options, out);
-  measure_skin(print, *cad_grid, g, options, out);
-  measure_outside(*deposit.fill, *cad_grid, g, out);
-  out.cad_distance = cad_grid;
+  measure_skin(print, *field, g, options, out);
+  measure_outside(*deposit.fill, field->grid(), g, out);
+  out.cad_distance = field;
   return out;
-}
-
-double cad_distance_at(const openvdb::FloatGrid& cad_distance, const Eigen::Vector3d& point_mm) {
-  // An accessor of its own per call (unregistered: cheap to make): safe from any thread, and its cache
-  // still serves the eight lookups of the trilinear sample.
-  return sample(cad_distance.getConstUnsafeAccessor(), cad_distance.transform(), point_mm);
 }
 
 }  // namespace beadtwin::sim

@@ -13,10 +13,10 @@
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
+#include "core/percentile.hpp"
 #include "sim/embree.hpp"
 #include "sim/skin.hpp"
 
@@ -588,16 +588,6 @@ void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, cons
   });
 }
 
-// The area-weighted value below which `fraction` of the area lies, from samples sorted by value.
-double percentile(const std::vector<const Sample*>& sorted, double total_area, double fraction) {
-  double seen = 0.0;
-  for (const Sample* s : sorted) {
-    seen += s->area_mm2;
-    if (seen >= fraction * total_area) return s->stock_mm;
-  }
-  return sorted.back()->stock_mm;
-}
-
 // Marks the triangles that may stand on the plate (faces down, within kPlateVoxels of it).
 void mark_plate(std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& cad_grid, const Geometry& g,
                 double plate_z_mm) {
@@ -621,36 +611,37 @@ void measure_stock(const std::vector<CadTriangle>& triangles, const NearestTrian
                     });
 
   // Reduced in sample order, on one thread: the same sums for any number of threads.
-  std::vector<const Sample*> kept;
+  // The percentiles by selection (weighted_percentile): sorting the LSAM mould's 7.2 million samples took
+  // 1.6 s of a core.
+  std::vector<Weighted> kept;
   kept.reserve(samples.size());
   double area = 0.0, sum = 0.0, under = 0.0, below = 0.0;
+  double least = std::numeric_limits<double>::infinity(), most = -least;
   for (const Sample& s : samples) {
     if (s.on_plate) {
       out.plate_area_mm2 += s.area_mm2;
       continue;
     }
-    kept.push_back(&s);
+    kept.push_back({s.stock_mm, s.area_mm2});
     area += s.area_mm2;
     sum += s.area_mm2 * s.stock_mm;
+    least = std::min(least, s.stock_mm);
+    most = std::max(most, s.stock_mm);
     if (s.stock_mm < 0) under += s.area_mm2;
     if (s.stock_mm < o.requested_stock_mm) below += s.area_mm2;
   }
   if (kept.empty())
     throw InputError({}, "cad",
                      "every face of the CAD lies on the build plate: there is no surface to measure");
-  // By stock, ties in sample order: the order a stable sort gives, on TBB's threads (7.8 million samples on
-  // the LSAM mould took 1.3 s on one).
-  tbb::parallel_sort(kept.begin(), kept.end(), [](const Sample* a, const Sample* b) {
-    return a->stock_mm < b->stock_mm || (a->stock_mm == b->stock_mm && a < b);
-  });
+  samples = {};
   out.cad_samples = kept.size();
   out.cad_area_mm2 = area;
-  out.min_stock_mm = kept.front()->stock_mm;
-  out.max_stock_mm = kept.back()->stock_mm;
+  out.min_stock_mm = least;
+  out.max_stock_mm = most;
   out.mean_stock_mm = sum / area;
-  out.p05_stock_mm = percentile(kept, area, 0.05);
-  out.median_stock_mm = percentile(kept, area, 0.50);
-  out.p95_stock_mm = percentile(kept, area, 0.95);
+  out.p05_stock_mm = weighted_percentile(kept, area, 0.05);
+  out.median_stock_mm = weighted_percentile(kept, area, 0.50);
+  out.p95_stock_mm = weighted_percentile(kept, area, 0.95);
   out.undercut_fraction = under / area;
   out.below_requested_stock_fraction = below / area;
   // No surface within the band: the truth is further out.

@@ -112,8 +112,8 @@ std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double sp
 }
 
 // Half-width of the CAD's distance grid, voxels: CadField::kNarrowVoxels, within the band.
-double narrow_voxels(const Geometry& g) {
-  return std::min(CadField::kNarrowVoxels, g.band_mm / g.voxel_mm);
+double narrow_voxels(double band_mm, double voxel_mm) {
+  return std::min(CadField::kNarrowVoxels, band_mm / voxel_mm);
 }
 
 // The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
@@ -174,7 +174,7 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
-  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * narrow_voxels(g));
+  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * narrow_voxels(g.band_mm, g.voxel_mm));
   if (band_voxels > kMaxBandVolume)
     throw InputError(
         {}, "cad",
@@ -263,15 +263,15 @@ Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 // query finds the candidates, closest_on_triangle measures each.
 class NearestTriangles {
  public:
-  NearestTriangles(std::span<const std::array<float, 3>> points,
-                   std::span<const std::array<unsigned, 3>> triangles)
+  NearestTriangles(std::span<const openvdb::Vec3s> points, std::span<const std::array<unsigned, 3>> triangles)
       : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
     points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                          points.size());
     double reach = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      points_[i] = points[i];
-      for (const float c : points[i]) reach = std::max(reach, std::abs(double{c}));
+      const openvdb::Vec3s& p = points[i];
+      points_[i] = {p.x(), p.y(), p.z()};
+      reach = std::max({reach, std::abs(double{p.x()}), std::abs(double{p.y()}), std::abs(double{p.z()})});
     }
     triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                                triangles.size());
@@ -375,14 +375,11 @@ NearestTriangles print_surface(const openvdb::FloatGrid::Ptr& solid) {
   as_printed.fill = solid;
   const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
   const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
-  std::vector<std::array<float, 3>> points;
-  points.reserve(p.size());
-  for (const openvdb::Vec3s& v : p) points.push_back({v.x(), v.y(), v.z()});
   std::vector<std::array<unsigned, 3>> triangles;
   triangles.reserve(mesh.triangles.size());
   for (const openvdb::Vec3I& t : mesh.triangles)
     if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0) triangles.push_back({t[0], t[1], t[2]});
-  return NearestTriangles(points, triangles);
+  return NearestTriangles(p, triangles);
 }
 // Index of voxel (x, y, z) in a dense box `dim` voxels across.
 std::size_t dense_index(const openvdb::Coord& dim, int x, int y, int z) {
@@ -740,12 +737,10 @@ struct CadField::Triangles {
 
 CadField::CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm)
     : band_mm_(band_mm), voxel_mm_(transform.voxelSize()[0]) {
-  const auto narrow = static_cast<float>(std::min(kNarrowVoxels, band_mm / voxel_mm_));
-  grid_ = cad_distance_grid(cad, transform, narrow);
-  std::vector<std::array<float, 3>> points;
+  grid_ = cad_distance_grid(cad, transform, static_cast<float>(narrow_voxels(band_mm, voxel_mm_)));
+  std::vector<openvdb::Vec3s> points;
   points.reserve(cad.vertices.size());
-  for (const Vec3& v : cad.vertices)
-    points.push_back({static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())});
+  for (const Vec3& v : cad.vertices) points.emplace_back(openvdb::Vec3d(v.x(), v.y(), v.z()));
   std::vector<std::array<unsigned, 3>> triangles;
   triangles.reserve(cad.triangles.size());
   for (const auto& t : cad.triangles)

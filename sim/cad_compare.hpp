@@ -92,8 +92,6 @@ class CadField {
             const Eigen::Vector3d& point_mm) const;
   // The narrow band: exact within kNarrowVoxels of the CAD, ±kNarrowVoxels voxels beyond, signed everywhere.
   const openvdb::FloatGrid& grid() const { return *grid_; }
-  double band_mm() const { return band_mm_; }
-  double voxel_mm() const { return voxel_mm_; }
 
  private:
   struct Triangles;  // in Embree

@@ -1101,6 +1101,8 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
                       MeshCache& meshes) {
   Variant v;
   v.name = name;
+  for (const auto* src : {tree.machine_src.get(), tree.material_src.get()})
+    if (src != tree.scenario_src.get()) v.input_files.push_back(src->file);  // not an inline map
   BlockReader machine_r(tree.machine, "machine", tree.machine_src, &tree.overridden);
   v.machine = read_machine(machine_r);
   BlockReader material_r(tree.material, "material", tree.material_src, &tree.overridden);
@@ -1115,6 +1117,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     v.part = read_part(part_r, dir, meshes, v.output.memory_budget_gb * 1e9);
   else
     v.part.kind = PartSpec::Kind::kNone;
+  if (v.part.kind == PartSpec::Kind::kMesh) v.input_files.push_back(v.part.mesh.string());
 
   v.output.voxel_size_mm = out_r.quantity(spec(output_params(), "voxel_size"));
   v.output.voxel_size_at = out_r.where(out_r.take("voxel_size"), "voxel_size");
@@ -1171,6 +1174,7 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
     if (tree.root["sections"] || tree.root["part"])
       pr.fail(prog, "program", "a scenario simulates either a program or a part's sections, not both");
     v.program_file = dir / prog.Scalar();
+    v.input_files.push_back(v.program_file.string());
     if (is_special_file(v.program_file))
       pr.fail(prog, "program", fmt::format("'{}' is not a regular file", v.program_file.string()));
     std::ifstream in(v.program_file, std::ios::binary);
@@ -1291,6 +1295,36 @@ Tree parse_tree(const std::string& text, const std::string& file, const std::fil
 }
 
 }  // namespace
+
+std::vector<std::string> input_files(const Scenario& sc) {
+  std::vector<std::string> files;
+  for (const Variant& v : sc.variants) files.insert(files.end(), v.input_files.begin(), v.input_files.end());
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
+std::string contents_digest(const std::vector<std::string>& files) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto add = [&h](std::string_view bytes) {
+    for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  };
+  const auto& shipped = shipped_files();
+  for (const std::string& file : files) {
+    add(file);
+    add(std::string_view("\0", 1));
+    if (file.starts_with(kBuiltIn)) {
+      const auto it = shipped.find(file.substr(kBuiltIn.size() + 1));
+      if (it != shipped.end()) add(it->second);
+    } else if (std::ifstream in(file, std::ios::binary); in) {
+      std::string chunk(1 << 20, '\0');
+      while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
+        add(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
+    }
+    add(std::string_view("\0", 1));
+  }
+  return fmt::format("{:016x}", h);
+}
 
 Setting parse_setting(const std::string& text) {
   const std::size_t eq = text.find('=');

@@ -152,6 +152,9 @@ struct Variant {
   std::shared_ptr<const Toolpath> program;
   std::filesystem::path program_file;
   std::string program_summary;  // what the reader saw (layers, lines, warnings), for the report
+  // The files the variant was built from besides the scenario's own text: its machine and material files
+  // (a shipped one as <built-in>/machines/NAME.yaml), its part's mesh and its program.
+  std::vector<std::string> input_files;
 };
 
 enum class GateOp { kLess, kLessEqual, kGreater, kGreaterEqual, kEqual, kNotEqual };
@@ -179,6 +182,14 @@ struct Scenario {
   std::vector<std::string>
       warnings;  // things repaired or doubtful in the inputs (mesh repairs), for the user
 };
+
+// The files every variant of `sc` was built from besides the scenario's text (Variant::input_files), each
+// once, sorted.
+std::vector<std::string> input_files(const Scenario& sc);
+// A stable 64-bit digest (FNV-1a, 16 hex digits) of the names and contents of `files` as input_files names
+// them: a shipped file's text, any other file's bytes (a file that cannot be read counts by its name alone).
+// Equal digests mean the same inputs; a sweep resumes only with them (docs/scaling.md).
+std::string contents_digest(const std::vector<std::string>& files);
 
 // A parameter set on the command line (`--set KEY=VALUE`): for every variant, after the variant's own
 // settings. KEY is a path as a variant's `set:` takes it; VALUE is YAML (`1.2 in/s`, `[0, 5]`, `none`).

@@ -15,7 +15,9 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
+#include <string>
 #include <thread>
 
 #include <fmt/format.h>
@@ -156,10 +158,12 @@ SweepRecord run_point(const RunSpec& spec, const SweepPoint& point, int threads,
 }
 
 // A stable 64-bit hash (FNV-1a) of what decides the variants' results beyond their settings: the scenario's
-// text, the base variant and the program's version. A sweep resumes only the records of the same plan.
-std::string plan_key(const std::string& scenario_text, const std::string& base) {
+// text, the base variant, the program's version and the digest of the files the variants are built from
+// (machines, materials, meshes, programs: scenarios::contents_digest). A sweep resumes only the records of
+// the same plan.
+std::string plan_key(const std::string& scenario_text, const std::string& base, const std::string& inputs) {
   std::uint64_t h = 1469598103934665603ull;
-  for (const char c : scenario_text + '\0' + base + '\0' + BEADTWIN_VERSION)
+  for (const char c : scenario_text + '\0' + base + '\0' + BEADTWIN_VERSION + '\0' + inputs)
     h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
   return fmt::format("{:016x}", h);
 }
@@ -208,9 +212,15 @@ Plan make_plan(const SweepCommand& c) {
   // Every value is checked before anything runs: each axis's values one at a time, and each combination,
   // so a typo stops the sweep at once with the scenario's own message. (Settings that are good alone but
   // not together show as that variant's failure.)
+  // The files they are built from (a value may name another machine or material) go into the plan's key.
+  std::set<std::string> inputs;
+  const auto add_inputs = [&inputs](const scenarios::Scenario& s) {
+    for (std::string& f : scenarios::input_files(s)) inputs.insert(std::move(f));
+  };
+  add_inputs(sc);
   for (const scenarios::SweepAxis& a : axes)
-    for (const std::string& v : a.values) (void)load({{a.key, v}});
-  for (const auto& row : rows) (void)load(row);
+    for (const std::string& v : a.values) add_inputs(load({{a.key, v}}));
+  for (const auto& row : rows) add_inputs(load(row));
 
   auto& r = p.result;
   r.scenario_name = sc.name;
@@ -247,7 +257,8 @@ Plan make_plan(const SweepCommand& c) {
   for (const std::string& e : c.gate_exprs) p.spec.command.insert(p.spec.command.end(), {"--gate", e});
   p.spec.out_dir = fs::absolute(c.out_dir);
   p.spec.share_memory = !(variant->output.memory_budget_gb > 0);
-  p.key = plan_key(c.scenario.empty() ? std::string("<built-in default>") : read_whole(c.scenario), base);
+  p.key = plan_key(c.scenario.empty() ? std::string("<built-in default>") : read_whole(c.scenario), base,
+                   scenarios::contents_digest({inputs.begin(), inputs.end()}));
   return p;
 }
 

@@ -146,6 +146,38 @@ TEST(Sweep, StartedAgainWithEveryVariantDoneItSaysNothingIsLeftToRun) {
   EXPECT_EQ(sweep_json(out)["resumed"], 2);
 }
 
+TEST(Sweep, AnEditedMaterialFileBesideTheScenarioStartsItAfresh) {
+  // The scenario takes its material from a file beside it; the sweep's resume must see that file change, as
+  // it sees the scenario's text change: the variants' results depend on it.
+  const fs::path dir = fs::temp_directory_path() / "bt_sweep_inputs";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "materials");
+  const std::string shipped = read_file(fs::path(BEADTWIN_SOURCE_DIR) / "scenarios/materials/cf-abs-20.yaml");
+  std::ofstream(dir / "materials/mine.yaml") << shipped;
+  std::string text = read_file(tiny_scenario());
+  text.replace(text.find("material: cf-abs-20"), 19, "material: mine");
+  std::ofstream(dir / "box.yaml") << text;
+  const fs::path out = dir / "out";
+  const std::string cmd =
+      "sweep " + (dir / "box.yaml").string() + " --set sections.a.speed=1in/s,2in/s -o " + out.string();
+  const auto first = beadtwin_cmd(cmd);
+  ASSERT_EQ(first.code, 0) << first.output;
+  const auto same = beadtwin_cmd(cmd);
+  ASSERT_EQ(same.code, 0) << same.output;
+  EXPECT_EQ(sweep_json(out)["resumed"], 2);
+  const double mass = sweep_json(out)["variants"][0]["values"]["mass_kg"].get<double>();
+
+  // A denser material: both variants run again and weigh more.
+  std::string denser = shipped;
+  denser.replace(denser.find("density: 1140 kg/m3"), 19, "density: 1300 kg/m3");
+  std::ofstream(dir / "materials/mine.yaml") << denser;
+  const auto edited = beadtwin_cmd(cmd);
+  ASSERT_EQ(edited.code, 0) << edited.output;
+  EXPECT_EQ(sweep_json(out)["resumed"], 0) << edited.output;
+  EXPECT_NEAR(sweep_json(out)["variants"][0]["values"]["mass_kg"].get<double>(), mass * 1300 / 1140,
+              mass * 1e-9);
+}
+
 TEST(Sweep, BadInputStopsItBeforeAnythingRuns) {
   const fs::path out = fs::temp_directory_path() / "bt_sweep_bad";
   const std::string scenario = tiny_scenario().string();

@@ -367,6 +367,10 @@ constexpr ParamSpec kMachine[] = {
     {"gcode.macro_loops", T::kBool, D::kDimensionless, "false", 0, 0, false,
      "Fanuc macro program: layers that repeat one path are written once in a WHILE loop stepping Z",
      "seed 002 section 2.7"},
+    {"gcode.rapid_g0", T::kBool, D::kDimensionless, "false", 0, 0, false,
+     "G0 runs at the machine's max travel speed whatever its F, as CNC controllers run it (false: at the "
+     "programmed feed, as Marlin and RepRap firmware do); travel slower than that is written as G1",
+     "ISO 6983-1 G00 positioning at rapid traverse"},
     {"gcode.absolute_e", T::kBool, D::kDimensionless, "false", 0, 0, false,
      "filament machines: E as a running total (M82) instead of per move (M83)", "Marlin/RepRap dialect"},
     {"gcode.heat_on", T::kString, D::kDimensionless, "none", 0, 0, false,

@@ -257,6 +257,7 @@ Machine read_machine(BlockReader& r) {
   m.dialect.macro_loops = r.boolean(spec(t, "gcode.macro_loops"));
   m.macro_step_limit = r.integer(spec(t, "gcode.macro_step_limit"));
   m.dialect.absolute_e = r.boolean(spec(t, "gcode.absolute_e"));
+  if (r.boolean(spec(t, "gcode.rapid_g0"))) m.dialect.rapid_feed_mm_s = m.motion.max_travel_mm_s;
   if (m.extruder.has_constant_feed() && (m.dialect.melt_on.empty() || m.dialect.melt_off.empty()))
     r.fail(
         r.take("extruder.constant_feed"), "extruder.constant_feed",

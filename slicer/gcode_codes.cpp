@@ -135,6 +135,7 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   o.reverse_on = codes(d.reverse_on);
   o.reverse_off = codes(d.reverse_off);
   o.inches = d.inches;
+  o.rapid_feed_mm_s = d.rapid_feed_mm_s;
   o.dwell_p_seconds = false;  // write_gcode writes G4 P<milliseconds>
   if (extruder) {
     o.extruder = *extruder;

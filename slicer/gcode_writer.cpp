@@ -383,6 +383,13 @@ void write_run(Writer& w, std::span<const Move> run, double tolerance_mm, Extrud
   }
 }
 
+// The motion code of a move: G0 for travel, unless the controller's G0 runs at its rapid traverse and the
+// move asks for less (then G1, which keeps the feed).
+const char* motion_code(const GcodeDialect& d, const Move& m) {
+  if (m.kind != MoveKind::kTravel) return "G1";
+  return d.rapid_feed_mm_s > 0.0 && m.feed_mm_s < d.rapid_feed_mm_s * (1.0 - 1e-9) ? "G1" : "G0";
+}
+
 double arc_tolerance_mm(const GcodeDialect& d, const GcodeOptions& o, const Move& m) {
   if (!d.arcs || m.section < 0 || static_cast<std::size_t>(m.section) >= o.arc_tolerance_mm.size())
     return 0.0;
@@ -469,10 +476,10 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
       i = end;
     } else if (x) {
       const ExtruderWords::Words words = x->words(m, m.volume_mm3);
-      x->commit(words, w.move(m.kind == MoveKind::kTravel ? "G0" : "G1", m.end, m.feed_mm_s, words.text));
+      x->commit(words, w.move(motion_code(d, m), m.end, m.feed_mm_s, words.text));
       ++i;
     } else {
-      w.move(m.kind == MoveKind::kTravel ? "G0" : "G1", m.end, m.feed_mm_s);
+      w.move(motion_code(d, m), m.end, m.feed_mm_s);
       ++i;
     }
   }

@@ -34,6 +34,10 @@ struct GcodeDialect {
   std::string prime_code = "";   // starts a prime (patent (51)); empty: a comment
   std::string reverse_on = "";   // pump or screw turns backwards (patent (52)); empty: a comment
   std::string reverse_off = "";  // it stops turning backwards; empty: a comment
+  // A controller that runs G0 at its rapid traverse whatever the F word (CNC controllers: Fanuc, Siemens;
+  // ISO 6983-1's positioning at rapid traverse) moves at this speed, mm/s; 0: G0 moves at the programmed
+  // feed, as Marlin and RepRap firmware run it. Travel slower than the rapid traverse is written as G1.
+  double rapid_feed_mm_s = 0.0;
 };
 
 struct GcodeHeader {

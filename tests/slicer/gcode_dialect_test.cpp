@@ -1,5 +1,6 @@
 // Print-program dialects (issue 5 item 6): Marlin/RepRap E words, relative (M83) and absolute (M82), and
 // machines without melt codes.
+#include <algorithm>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -92,6 +93,49 @@ TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
   const std::string again = write_gcode(read, d, {});
   EXPECT_EQ(again.find("M27"), again.rfind("M27"));
   EXPECT_NE(again.find("M27"), std::string::npos);
+}
+
+// A CNC controller (Fanuc, Siemens; ISO 6983-1) runs G0 at its rapid traverse whatever F says; Marlin runs it
+// at F. A program's travel is read accordingly, and a writer for such a controller writes travel slower than
+// the rapid traverse as G1, so that the machine keeps its feed.
+TEST(GcodeDialect, AControllersRapidTraverseTimesItsG0AndSlowerTravelIsWrittenAsG1) {
+  const std::string program =
+      "G21 G90\nM24\nG1 X0 Y0 Z1 F60\n"  // 1 mm/s: the modal feed
+      "G0 X300\n";                       // rapid: 300 mm
+  GcodeDialect cnc;
+  cnc.rapid_feed_mm_s = 500;
+  const auto travel_feed = [&](const GcodeDialect& d) {
+    std::istringstream in(program);
+    const Toolpath tp = read_gcode(in, "rapid.nc", reader_options_for(d, nullptr));
+    return tp.moves.back().feed_mm_s;
+  };
+  EXPECT_DOUBLE_EQ(travel_feed(cnc), 500.0);
+  EXPECT_DOUBLE_EQ(travel_feed(GcodeDialect{}), 1.0);  // at F, as Marlin runs it
+
+  // Travel at the rapid traverse is G0; slower travel is G1 at its feed, and reads back at that feed.
+  Toolpath tp = small_part();  // travel at 150 mm/s
+  const std::size_t travels = static_cast<std::size_t>(std::count_if(
+      tp.moves.begin(), tp.moves.end(), [](const Move& m) { return m.kind == MoveKind::kTravel; }));
+  ASSERT_GT(travels, 2u);
+  const auto count = [](const std::string& text, const std::string& code) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find("\n" + code + " "); at != std::string::npos;
+         at = text.find("\n" + code + " ", at + 1))
+      ++n;
+    return n;
+  };
+  cnc.rapid_feed_mm_s = 150;
+  EXPECT_EQ(count(write_gcode(tp, cnc, {}), "G0"), travels);
+  cnc.rapid_feed_mm_s = 500;
+  const std::string slower = write_gcode(tp, cnc, {});
+  EXPECT_EQ(count(slower, "G0"), 0u);
+  std::istringstream in(slower);
+  const Toolpath read = read_gcode(in, "slower.nc", reader_options_for(cnc, nullptr));
+  for (const Move& m : read.moves) {
+    if (m.kind == MoveKind::kTravel && m.length_mm() > 0) {
+      EXPECT_NEAR(m.feed_mm_s, 150.0, 1e-6);
+    }
+  }
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/bead.hpp"
+#include "core/hash.hpp"
 #include "scenarios/embedded.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/yaml_reader.hpp"
@@ -1306,25 +1307,22 @@ std::vector<std::string> input_files(const Scenario& sc) {
 }
 
 std::string contents_digest(const std::vector<std::string>& files) {
-  std::uint64_t h = 1469598103934665603ull;
-  const auto add = [&h](std::string_view bytes) {
-    for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-  };
+  Fnv1a h;
+  const std::string_view end("\0", 1);
   const auto& shipped = shipped_files();
   for (const std::string& file : files) {
-    add(file);
-    add(std::string_view("\0", 1));
+    h.add(file).add(end);
     if (file.starts_with(kBuiltIn)) {
       const auto it = shipped.find(file.substr(kBuiltIn.size() + 1));
-      if (it != shipped.end()) add(it->second);
+      if (it != shipped.end()) h.add(it->second);
     } else if (std::ifstream in(file, std::ios::binary); in) {
       std::string chunk(1 << 20, '\0');
       while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0)
-        add(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
+        h.add(std::string_view(chunk.data(), static_cast<std::size_t>(in.gcount())));
     }
-    add(std::string_view("\0", 1));
+    h.add(end);
   }
-  return fmt::format("{:016x}", h);
+  return h.hex();
 }
 
 Setting parse_setting(const std::string& text) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <span>
@@ -13,6 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
+#include "core/hash.hpp"
 #include "core/units.hpp"
 #include "thermal/cvode.hpp"
 
@@ -497,18 +497,14 @@ double median_over_cells(std::size_t n, const F& value) {
 // compares a fingerprint of what it was given (FNV-1a over the cells' births, volumes and the links, and the
 // options the integration depends on) with rank 0's.
 void check_same_on_every_rank(const ThermalMesh& mesh, const HeatOptions& o, Communicator& ranks) {
-  std::uint64_t h = 14695981039346656037ull;
-  const auto mix = [&h](const auto& value) {
-    unsigned char bytes[sizeof value];
-    std::memcpy(bytes, &value, sizeof value);
-    for (const unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
-  };
+  Fnv1a h;
+  const auto mix = [&h](const auto& value) { h.add_value(value); };
   mix(mesh.cells.size());
   mix(mesh.links.size());
   for (const ThermalCell& c : mesh.cells) mix(c.birth_s), mix(c.volume_mm3), mix(c.open_area_mm2);
   for (const ThermalLink& l : mesh.links) mix(l.a), mix(l.b), mix(l.interface);
   mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.lump);
-  const double mine = static_cast<double>(h >> 12);  // 52 bits: exact in a double
+  const double mine = static_cast<double>(h.value() >> 12);  // 52 bits: exact in a double
   if (ranks.gather_each(mine)[0] != mine)
     throw InternalError(
         fmt::format("thermal solve across ranks: rank {} was given another part than rank 0", ranks.rank()));

@@ -27,6 +27,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/hash.hpp"
 #include "core/memory.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/sweep.hpp"
@@ -162,10 +163,7 @@ SweepRecord run_point(const RunSpec& spec, const SweepPoint& point, int threads,
 // (machines, materials, meshes, programs: scenarios::contents_digest). A sweep resumes only the records of
 // the same plan.
 std::string plan_key(const std::string& scenario_text, const std::string& base, const std::string& inputs) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const char c : scenario_text + '\0' + base + '\0' + BEADTWIN_VERSION + '\0' + inputs)
-    h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
-  return fmt::format("{:016x}", h);
+  return Fnv1a().add(scenario_text + '\0' + base + '\0' + BEADTWIN_VERSION + '\0' + inputs).hex();
 }
 
 // Everything decided before the first variant runs.

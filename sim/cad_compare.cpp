@@ -568,6 +568,15 @@ void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, cons
                      const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
                      std::vector<Sample>& out) {
   std::size_t k = tri.first_sample;
+  if (tri.on_plate && std::max({tri.a.z(), tri.b.z(), tri.c.z()}) <= plate_top_mm) {
+    // Wholly on the plate: its samples count towards the plate's area only, and have no stock to measure.
+    sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3&, double area) {
+      Sample& s = out[k++];
+      s.area_mm2 = area;
+      s.on_plate = true;
+    });
+    return;
+  }
   Vec3 last(0, 0, 0);
   double reach = g.band_mm;  // from the last sample's distance; the band for the first
   sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3& p, double area) {

@@ -23,10 +23,18 @@ g++ -O2 -std=c++20 -I"$root" -I/usr/include/eigen3 "$root/bench/toolpath_floor.c
 floor=$(for _ in $(seq "$runs"); do "$work/toolpath_floor" "$lines"; done | median)
 start=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" --version; done | median)
 bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done | median)
+# The same reads' CPU time, user and system apart: the user time is the reader's own work; the system time is
+# mostly fresh pages for the moves, which on a virtual machine costs from a tenth of the user time (pages
+# the kernel has at hand) to twice it (pages the host must supply), whatever the reader does.
+cpu() { /usr/bin/time -f "%U %S" -o "$work/cpu.txt" "$@" > /dev/null 2>&1; cat "$work/cpu.txt"; }
+for _ in $(seq "$runs"); do cpu "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done > "$work/read_cpu.txt"
+bt_user=$(awk '{print $1}' "$work/read_cpu.txt" | median)
+bt_sys=$(awk '{print $2}' "$work/read_cpu.txt" | median)
 "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff 2>/dev/null | head -4
 echo "program: $((size / 1000000)) MB, $lines lines"
 printf 'wc -l          (median of %s): %.3f s\n' "$runs" "$wc_t"
 printf 'beadtwin read  (median of %s): %.3f s\n' "$runs" "$bt"
+printf 'its CPU time   (median of %s): user %.2f s, system %.2f s\n' "$runs" "$bt_user" "$bt_sys"
 printf 'starting the binary (beadtwin --version): %.3f s\n' "$start"
 printf 'writing %s moves, nothing parsed: %.3f s, ratio %.1f to wc -l (the floor for any reader of this Toolpath)\n' \
   "$lines" "$floor" "$(echo "$floor / $wc_t" | bc -l)"

@@ -460,6 +460,15 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   stages.record("slice", sliced.seconds);
   const Toolpath& tp = sliced.toolpath;
   const slicer::PlanStats& plan_stats = sliced.stats;
+  for (std::size_t i = 0; i < v.sections.size() && i < plan_stats.most_passes_laid.size(); ++i) {
+    const int asked = v.sections[i].boundary.passes, laid = plan_stats.most_passes_laid[i];
+    if (laid > 0 && laid < asked)
+      res.notes.push_back(fmt::format(
+          "section {}: boundary.passes is {}, but no layer had room for more than {} (each pass lays a bead "
+          "along every contour of the layer, the outer and the inner side of a wall alike): more passes "
+          "change nothing",
+          v.sections[i].name, asked, laid));
+  }
   stages.run("program", [&] {
     slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
     write_file_atomic(dir / "program.nc",

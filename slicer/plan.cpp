@@ -157,6 +157,14 @@ void lay_layer(Toolpath& tp, const SectionParams& s, const LayerJob& job, Eigen:
   const std::size_t first = tp.moves.size();
   LayerBuilder b(tp, s, job.section, layer, z_top, head, job.role);
   const BoundaryPlan plan = plan_boundary(s, region, job.shared_wall, job.fill);
+  if (job.role == Feature::kUnknown) {
+    int laid = 0;
+    for (std::size_t k = 0; k < plan.loops.size(); ++k)
+      if (!plan.loops[k].empty() || (k < plan.pieces.size() && !plan.pieces[k].empty()))
+        laid = static_cast<int>(k) + 1;
+    int& most = stats.most_passes_laid[static_cast<std::size_t>(job.section)];
+    most = std::max(most, laid);
+  }
   if (s.fill_first) lay_fill(b, s, plan.fill, job.angle_index, job.solid);
   lay_boundary(b, s, plan, job.angle_index);
   if (s.boundary.thin_walls) lay_thin_walls(b, s, region, plan);
@@ -504,6 +512,7 @@ Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams
   Toolpath tp;
   for (const auto& s : sections) tp.sections.push_back(s.name);
   PlanStats local;
+  local.most_passes_laid.assign(sections.size(), 0);
   Eigen::Vector2d head = mesh.vertices.empty()
                              ? Eigen::Vector2d::Zero()
                              : Eigen::Vector2d(mesh.min_corner().x(), mesh.min_corner().y());

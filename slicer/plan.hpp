@@ -194,6 +194,10 @@ struct PlanStats {
   int voids_found = 0;
   double void_area_mm2 = 0.0;
   int void_beads = 0;  // beads laid in them (void fill)
+  // Per section (as plan_toolpath's `sections`): the most boundary passes any of its part's layers (not
+  // rafts, not stock on top) had room for. Fewer than asked: the region holds no more (each pass lays a bead
+  // along every contour, so a wall between an outer and an inner contour takes two beads a pass).
+  std::vector<int> most_passes_laid;
 };
 
 // What is wrong with section `s` sharing the wall of the section it names (patent (17)), or empty when

@@ -73,7 +73,7 @@ TEST(Scenario, DefaultScenarioIsEmbeddedAndValid) {
   const Variant& v = sc.variants[0];
   ASSERT_EQ(v.sections.size(), 2u);
   EXPECT_EQ(v.sections[0].boundary.passes, 2);
-  EXPECT_EQ(v.sections[1].boundary.passes, 6);
+  EXPECT_EQ(v.sections[1].boundary.passes, 3);
   EXPECT_NEAR(v.sections[0].bead_width_mm, 0.83 * 25.4, 1e-9);
   EXPECT_NEAR(v.sections[0].layer_height_mm, 0.2 * 25.4, 1e-9);
   EXPECT_TRUE(v.sections[0].fill.enabled);

@@ -85,6 +85,17 @@ TEST(Plan, TwoSectionsWithTheirOwnParameters) {
   EXPECT_GT(fill_moves, 10);
 }
 
+TEST(Plan, SaysHowManyBoundaryPassesHadRoom) {
+  // The 100 mm wall holds three 20 mm passes along each of its contours; asking for five lays the same three.
+  const TriangleMesh m = make_open_box({400, 300, 60}, 100, 10);
+  std::vector<SectionParams> secs = {section(0, 10, 5, 20, 2, true), section(10, 60, 5, 20, 5, false)};
+  secs[0].name = "floor";
+  secs[1].name = "walls";
+  PlanStats stats;
+  (void)plan_toolpath(m, secs, {}, &stats);
+  EXPECT_EQ(stats.most_passes_laid, (std::vector<int>{2, 3}));
+}
+
 TEST(Plan, BoundaryPassesSitAtTheirOffsets) {
   // Pass k of a square runs at w/2 + k * pitch inside the outline.
   const double w = 20, overlap = 0.1, pitch = w * (1 - overlap);

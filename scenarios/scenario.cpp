@@ -1298,15 +1298,13 @@ Tree parse_tree(const std::string& text, const std::string& file, const std::fil
 
 }  // namespace
 
-std::vector<std::string> input_files(const Scenario& sc) {
-  std::vector<std::string> files;
-  for (const Variant& v : sc.variants) files.insert(files.end(), v.input_files.begin(), v.input_files.end());
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
+std::set<std::string> input_files(const Scenario& sc) {
+  std::set<std::string> files;
+  for (const Variant& v : sc.variants) files.insert(v.input_files.begin(), v.input_files.end());
   return files;
 }
 
-std::string contents_digest(const std::vector<std::string>& files) {
+std::string contents_digest(const std::set<std::string>& files) {
   Fnv1a h;
   const std::string_view end("\0", 1);
   const auto& shipped = shipped_files();

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -183,13 +184,12 @@ struct Scenario {
       warnings;  // things repaired or doubtful in the inputs (mesh repairs), for the user
 };
 
-// The files every variant of `sc` was built from besides the scenario's text (Variant::input_files), each
-// once, sorted.
-std::vector<std::string> input_files(const Scenario& sc);
+// The files every variant of `sc` was built from besides the scenario's text (Variant::input_files).
+std::set<std::string> input_files(const Scenario& sc);
 // A stable 64-bit digest (FNV-1a, 16 hex digits) of the names and contents of `files` as input_files names
 // them: a shipped file's text, any other file's bytes (a file that cannot be read counts by its name alone).
 // Equal digests mean the same inputs; a sweep resumes only with them (docs/scaling.md).
-std::string contents_digest(const std::vector<std::string>& files);
+std::string contents_digest(const std::set<std::string>& files);
 
 // A parameter set on the command line (`--set KEY=VALUE`): for every variant, after the variant's own
 // settings. KEY is a path as a variant's `set:` takes it; VALUE is YAML (`1.2 in/s`, `[0, 5]`, `none`).

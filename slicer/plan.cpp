@@ -157,13 +157,9 @@ void lay_layer(Toolpath& tp, const SectionParams& s, const LayerJob& job, Eigen:
   const std::size_t first = tp.moves.size();
   LayerBuilder b(tp, s, job.section, layer, z_top, head, job.role);
   const BoundaryPlan plan = plan_boundary(s, region, job.shared_wall, job.fill);
-  if (job.role == Feature::kUnknown) {
-    int laid = 0;
-    for (std::size_t k = 0; k < plan.loops.size(); ++k)
-      if (!plan.loops[k].empty() || (k < plan.pieces.size() && !plan.pieces[k].empty()))
-        laid = static_cast<int>(k) + 1;
+  if (job.role == Feature::kUnknown) {  // the plan holds one entry for each pass with room
     int& most = stats.most_passes_laid[static_cast<std::size_t>(job.section)];
-    most = std::max(most, laid);
+    most = std::max(most, static_cast<int>(plan.loops.size()));
   }
   if (s.fill_first) lay_fill(b, s, plan.fill, job.angle_index, job.solid);
   lay_boundary(b, s, plan, job.angle_index);

@@ -213,7 +213,7 @@ Plan make_plan(const SweepCommand& c) {
   // The files they are built from (a value may name another machine or material) go into the plan's key.
   std::set<std::string> inputs;
   const auto add_inputs = [&inputs](const scenarios::Scenario& s) {
-    for (std::string& f : scenarios::input_files(s)) inputs.insert(std::move(f));
+    inputs.merge(scenarios::input_files(s));
   };
   add_inputs(sc);
   for (const scenarios::SweepAxis& a : axes)
@@ -256,7 +256,7 @@ Plan make_plan(const SweepCommand& c) {
   p.spec.out_dir = fs::absolute(c.out_dir);
   p.spec.share_memory = !(variant->output.memory_budget_gb > 0);
   p.key = plan_key(c.scenario.empty() ? std::string("<built-in default>") : read_whole(c.scenario), base,
-                   scenarios::contents_digest({inputs.begin(), inputs.end()}));
+                   scenarios::contents_digest(inputs));
   return p;
 }
 

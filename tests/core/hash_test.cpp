@@ -2,6 +2,10 @@
 // of the FNV hash, test vectors for "", "a" and "foobar").
 #include "core/hash.hpp"
 
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+
 #include <gtest/gtest.h>
 
 namespace beadtwin {

@@ -59,11 +59,18 @@ TEST(Plan, CubeIsSlicedIntoTheExpectedLayers) {
     EXPECT_NEAR(tp.layers[i].z_mm, 5.0 * static_cast<double>(i + 1), 1e-9);
 }
 
-TEST(Plan, TwoSectionsWithTheirOwnParameters) {
-  const TriangleMesh m = make_open_box({400, 300, 60}, 100, 10);
-  std::vector<SectionParams> secs = {section(0, 10, 5, 20, 2, true), section(10, 60, 5, 20, 3, false)};
+// An open box's floor (two passes and fill) and its 100 mm walls (`wall_passes` passes of 20 mm beads).
+std::vector<SectionParams> floor_and_walls(int wall_passes) {
+  std::vector<SectionParams> secs = {section(0, 10, 5, 20, 2, true),
+                                     section(10, 60, 5, 20, wall_passes, false)};
   secs[0].name = "floor";
   secs[1].name = "walls";
+  return secs;
+}
+
+TEST(Plan, TwoSectionsWithTheirOwnParameters) {
+  const TriangleMesh m = make_open_box({400, 300, 60}, 100, 10);
+  const std::vector<SectionParams> secs = floor_and_walls(3);
   PlanStats stats;
   const Toolpath tp = plan_toolpath(m, secs, {}, &stats);
   ASSERT_EQ(tp.layers.size(), 12u);
@@ -87,12 +94,8 @@ TEST(Plan, TwoSectionsWithTheirOwnParameters) {
 
 TEST(Plan, SaysHowManyBoundaryPassesHadRoom) {
   // The 100 mm wall holds three 20 mm passes along each of its contours; asking for five lays the same three.
-  const TriangleMesh m = make_open_box({400, 300, 60}, 100, 10);
-  std::vector<SectionParams> secs = {section(0, 10, 5, 20, 2, true), section(10, 60, 5, 20, 5, false)};
-  secs[0].name = "floor";
-  secs[1].name = "walls";
   PlanStats stats;
-  (void)plan_toolpath(m, secs, {}, &stats);
+  (void)plan_toolpath(make_open_box({400, 300, 60}, 100, 10), floor_and_walls(5), {}, &stats);
   EXPECT_EQ(stats.most_passes_laid, (std::vector<int>{2, 3}));
 }
 

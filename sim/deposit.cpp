@@ -371,6 +371,7 @@ void check_travels(std::size_t from, std::size_t to, LayContext& c) {
 void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t end, std::size_t& next_move,
                LayContext& c) {
   const double vs = c.voxel_size_mm;
+  const int highest_k = c.writer.highest_k();
   std::vector<Shaped> shaped(end - begin);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end),
                     [&](const tbb::blocked_range<std::size_t>& r) {
@@ -382,7 +383,7 @@ void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t
                           sub = measure_substrate(
                               p.sweep, p.nominal_top_mm, p.nominal_height_mm,
                               keeps_round(move, c.options) ? p.nominal_height_mm : roller_reach(c.options),
-                              c.fill, vs, c.table_z_mm);
+                              c.fill, vs, c.table_z_mm, highest_k);
                         shaped[i - begin] = shape_piece(p, move, sub, c.options, vs);
                       }
                     });

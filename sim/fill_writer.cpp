@@ -1,6 +1,7 @@
 #include "sim/fill_writer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdlib>
 
@@ -66,6 +67,41 @@ FillWriter::LevelWindow::Rings FillWriter::LevelWindow::rings(const openvdb::Coo
   return rings;
 }
 
+std::uint32_t FillWriter::LevelWindow::near_gaps(const openvdb::Coord& centre, int rings) {
+  BT_CHECK(rings >= 0 && rings <= kNearRings);
+  // The voxels of a block at L1 distance r from the centre, by r, the centre's place in its own block and the
+  // block's offset from that block (one either way at most, since the rings reach less than a block).
+  static const auto masks = [] {
+    std::array<std::uint64_t, (kNearRings + 1) * 64 * 9> m{};
+    for (int cx = 0; cx < 8; ++cx)
+      for (int cy = 0; cy < 8; ++cy)
+        for (int dbx = -1; dbx <= 1; ++dbx)
+          for (int dby = -1; dby <= 1; ++dby)
+            for (int x = 0; x < 8; ++x)
+              for (int y = 0; y < 8; ++y) {
+                const int r = std::abs(dbx * 8 + x - cx) + std::abs(dby * 8 + y - cy);
+                if (r > kNearRings) continue;
+                const auto at =
+                    static_cast<std::size_t>(((r * 64 + cx * 8 + cy) * 3 + dbx + 1) * 3 + dby + 1);
+                m[at] |= std::uint64_t{1} << ((x << 3) | y);
+              }
+    return m;
+  }();
+  std::uint32_t out = 0;
+  const int cx = centre.x() & 7, cy = centre.y() & 7, cbx = centre.x() >> 3, cby = centre.y() >> 3;
+  for (int bx = (centre.x() - rings) >> 3; bx <= (centre.x() + rings) >> 3; ++bx)
+    for (int by = (centre.y() - rings) >> 3; by <= (centre.y() + rings) >> 3; ++by) {
+      const std::uint64_t gaps = block(bx * 8, by * 8).gaps;
+      if (gaps == 0) continue;
+      for (int r = 1; r <= rings; ++r) {
+        const auto at =
+            static_cast<std::size_t>(((r * 64 + cx * 8 + cy) * 3 + bx - cbx + 1) * 3 + by - cby + 1);
+        if ((gaps & masks[at]) != 0) out |= 1u << r;
+      }
+    }
+  return out;
+}
+
 const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y) {
   const int bx = (x >> 3) - bx0_, by = (y >> 3) - by0_;
   BT_CHECK(bx >= 0 && by >= 0 && bx < across_ && by < across_);
@@ -89,6 +125,7 @@ const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y
 
 void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) {
   auto* leaf = fill_.touchLeaf(ijk);  // as fill_.setValue does, keeping the leaf for the masks
+  highest_k_ = std::max(highest_k_, ijk.z());
   leaf->setValueOn(ijk, value);
   // Material is only ever added: a voxel goes from empty to a gap to full, or skips a step.
   const bool was_gap = before > 0.0f && before < 1.0f;
@@ -186,15 +223,16 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty
   // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
   // running ahead into space later beads will need, only to be pushed on again.
-  // The first rings are read as they are (most spreads end there, and reading a few rings costs less than
-  // asking the window's leaves); the rest only where the leaves say there is a gap, or room: a ring that
-  // holds no gap offers nothing to the first phase, the rings inside the first that reaches a slice not full
-  // nothing to the second. (The first phase only fills gaps: it makes none, so what the leaves said holds.)
-  constexpr int kReadRings = 4;
-  for (int ring = 1; ring <= std::min(kReadRings, spread_radius); ++ring)
-    if (offer_ring(ring, k0, true)) return;
+  // Rings are read only where the leaves say there is a gap, or room: a ring that holds no gap offers nothing
+  // to the first phase, the rings inside the first that reaches a slice not full nothing to the second. (The
+  // first phase only fills gaps: it makes none, so what the leaves said holds.) The first few rings, where
+  // most spreads end, are asked of their blocks' gap masks ring by ring (near_gaps); the rest by rings().
+  constexpr int kNear = LevelWindow::kNearRings;
+  const std::uint32_t near = window_.near_gaps(overflow.ijk, std::min(kNear, spread_radius));
+  for (int ring = 1; ring <= std::min(kNear, spread_radius); ++ring)
+    if ((near >> ring & 1u) != 0 && offer_ring(ring, k0, true)) return;
   const LevelWindow::Rings rings = window_.rings(overflow.ijk, radius);
-  for (int ring = kReadRings + 1; ring <= spread_radius; ++ring)
+  for (int ring = kNear + 1; ring <= spread_radius; ++ring)
     if (rings.holds_gap(ring) && offer_ring(ring, k0, true)) return;
   for (int ring = std::max(1, rings.first_room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;

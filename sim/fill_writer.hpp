@@ -49,6 +49,10 @@ class FillWriter {
   // Material moved out of overfull voxels so far, in voxel volumes.
   double redistributed_voxels() const { return redistributed_; }
 
+  // The highest voxel index k at which this writer has put material (no voxel above it holds any of its
+  // material); the lowest int when it has put none.
+  int highest_k() const { return highest_k_; }
+
  private:
   struct Overflow {
     openvdb::Coord ijk;
@@ -86,6 +90,11 @@ class FillWriter {
       bool holds_gap(int ring) const { return ring > 63 || ((with_gaps >> ring) & 1u) != 0; }
     };
     Rings rings(const openvdb::Coord& centre, int radius);
+    // Bit r (1 <= r <= `rings`, at most kNearRings) set: ring r around `centre` holds a gap, as the leaves
+    // say now. From the gap masks of the (at most four) blocks the rings reach, each against a mask of the
+    // ring's voxels in that block, so rings without a gap are passed over without reading their voxels.
+    static constexpr int kNearRings = 4;
+    std::uint32_t near_gaps(const openvdb::Coord& centre, int rings);
     float value(int x, int y) {
       const Block& b = block(x, y);
       return b.data ? b.data[((x & 7) << 6) | ((y & 7) << 3) | (k_ & 7)] : b.uniform;
@@ -136,6 +145,7 @@ class FillWriter {
   double redistributed_ = 0.0;
   double ploughed_ = 0.0;
   int roller_k_ = std::numeric_limits<int>::max();
+  int highest_k_ = std::numeric_limits<int>::min();
 };
 
 }  // namespace beadtwin::sim

@@ -18,7 +18,8 @@ constexpr double kSealed = 0.95;
 }  // namespace
 
 Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm, double reach_mm,
-                            const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm) {
+                            const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm,
+                            int highest_k) {
   BT_CHECK_OP(voxel_size_mm, >, 0.0);
   BT_CHECK_OP(height_mm, >, 0.0);
   const double s = voxel_size_mm;
@@ -30,7 +31,11 @@ Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height
   const int j0 = static_cast<int>(std::floor(lo.y() / s)), j1 = static_cast<int>(std::floor(hi.y() / s));
   // Voxels whose centres lie in [bottom - h, top + h).
   const int k0 = static_cast<int>(std::ceil((bottom - height_mm) / s - 0.5));
-  const int k1 = static_cast<int>(std::ceil((top_mm + std::max(height_mm, reach_mm)) / s - 0.5));
+  // Above the deposit's highest material and the table every voxel is empty and adds nothing: the roller's
+  // reach (half its diameter, 19 voxels on the LSAM at 2 mm) is mostly air not yet printed.
+  const int k_table = static_cast<int>(std::ceil(table_z_mm / s - 0.5));  // the first voxel centred above it
+  const int k1 = std::min(static_cast<int>(std::ceil((top_mm + std::max(height_mm, reach_mm)) / s - 0.5)),
+                          std::max(highest_k + 1, k_table));
   const int k_bottom = static_cast<int>(std::ceil(bottom / s - 0.5));  // the first voxel centred above it
   auto acc = fill.getConstAccessor();
   Substrate out;

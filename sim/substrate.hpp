@@ -20,6 +20,7 @@
 // nominal half-width of the bead's centre line (at least the column under the centre line's middle).
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <openvdb/openvdb.h>
@@ -40,8 +41,10 @@ struct Substrate {
 
 // `sweep`: the piece with its nominal (flattened to the layer height) profile; `top_mm`, `height_mm`: its
 // nominal top and layer height at the middle. Reads `fill` only (thread-safe while nobody writes it).
-// Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along each axis.
+// Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along each axis. `highest_k`: no voxel above this index holds
+// material (FillWriter::highest_k), so the columns are not read above it; the default reads them all.
 Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm, double reach_mm,
-                            const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm);
+                            const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm,
+                            int highest_k = std::numeric_limits<int>::max() - 1);
 
 }  // namespace beadtwin::sim

@@ -11,7 +11,9 @@
 #include "core/error.hpp"
 #include "core/toolpath.hpp"
 #include "core/units.hpp"
+#include "sim/bead_section.hpp"
 #include "sim/deposit.hpp"
+#include "sim/substrate.hpp"
 #include "tests/sim/lsam_beads.hpp"
 
 namespace beadtwin {
@@ -55,6 +57,57 @@ Toolpath block(int count, int layers, int scaled = -1, double flow_scale = 1.0) 
 std::size_t count(const sim::Deposit& d, sim::DefectKind kind) {
   return static_cast<std::size_t>(std::count_if(d.defects.begin(), d.defects.end(),
                                                 [&](const sim::Defect& x) { return x.kind == kind; }));
+}
+
+// Columns read only up to the deposit's highest material (the writer's highest_k) measure what columns read
+// up to the roller's reach measure, bit for bit: above that top there is only air. Beads across, along and
+// askew over two under-filled layers (gaps to find), at the next layer and one layer higher up, the roller's
+// reach (38 mm, half a 3 in roller) far above both; and at the second layer itself, whose material reaches
+// the deposit's top.
+TEST(Substrate, ColumnsReadUpToTheDepositsTopMeasureAsWhole) {
+  const sim::Deposit d = sim::deposit(block(4, 2, 1, 0.8));
+  const double s = d.voxel_size_mm;
+  const int top = d.fill->evalActiveVoxelBoundingBox().max().z();
+  ASSERT_GT(top, 0);
+  const double reach = 0.5 * 3.0 * 25.4;  // mm
+  int pieces = 0;
+  for (const double above : {0.0, 0.5, 1.0, 2.0})
+    for (const auto& [a, b] : {std::pair{Eigen::Vector2d(10, 20), Eigen::Vector2d(190, 20)},
+                               std::pair{Eigen::Vector2d(100, -30), Eigen::Vector2d(100, 90)},
+                               std::pair{Eigen::Vector2d(20, -10), Eigen::Vector2d(150, 80)}}) {
+      sim::BeadSweep sweep;
+      sweep.start_xy = a;
+      sweep.end_xy = b;
+      const double top_mm = (2.0 + above) * kH;
+      sweep.start_top_mm = sweep.end_top_mm = top_mm;
+      sweep.profile = sim::moving_bead_profile(bead_area_mm2(kW, kH), kH);
+      const sim::Substrate whole = sim::measure_substrate(sweep, top_mm, kH, reach, *d.fill, s, 0.0);
+      for (const int highest : {top, top + 3}) {
+        const sim::Substrate cut = sim::measure_substrate(sweep, top_mm, kH, reach, *d.fill, s, 0.0, highest);
+        EXPECT_EQ(cut.gap_mm, whole.gap_mm);
+        EXPECT_EQ(cut.above_mm, whole.above_mm);
+        EXPECT_EQ(cut.over_top_mm, whole.over_top_mm);
+        EXPECT_EQ(cut.supported, whole.supported);
+        EXPECT_EQ(cut.columns, whole.columns);
+        ASSERT_EQ(cut.gap_cells.size(), whole.gap_cells.size());
+        for (std::size_t i = 0; i < cut.gap_cells.size(); ++i) {
+          EXPECT_EQ(cut.gap_cells[i].ijk, whole.gap_cells[i].ijk);
+          EXPECT_EQ(cut.gap_cells[i].fraction, whole.gap_cells[i].fraction);
+        }
+      }
+      pieces += whole.gap_cells.empty() ? 0 : 1;
+      EXPECT_GT(whole.columns, 0);
+    }
+  EXPECT_GT(pieces, 0);  // some pieces found gaps to fill
+  // Cut below the deposit's top a column misses the second layer's material: the rule is only for the true
+  // top.
+  sim::BeadSweep sweep;
+  sweep.start_xy = {10, 20};
+  sweep.end_xy = {190, 20};
+  sweep.start_top_mm = sweep.end_top_mm = 2.0 * kH;
+  sweep.profile = sim::moving_bead_profile(bead_area_mm2(kW, kH), kH);
+  EXPECT_LT(sim::measure_substrate(sweep, 2.0 * kH, kH, reach, *d.fill, s, 0.0, 0).above_mm,
+            sim::measure_substrate(sweep, 2.0 * kH, kH, reach, *d.fill, s, 0.0).above_mm);
 }
 
 // Layers at the ideal pitch leave only the cusps between rounded flanks for the next layer to fill: every

@@ -108,8 +108,16 @@ const FillWriter::LevelWindow::Block& FillWriter::LevelWindow::look(int x, int y
   Block& b = blocks_[index(x, y)];
   b.looked = generation_;
   const openvdb::Coord ijk(x, y, k_);
-  if (const auto* leaf = fill_.probeConstLeaf(ijk)) {
-    b.data = leaf->buffer().data();
+  const openvdb::Coord block(x >> 3, y >> 3, k_ >> 3);
+  constexpr int kMask = (1 << kKnownBits) - 1;
+  Known& known = known_[static_cast<std::size_t>(((block.x() & kMask) << kKnownBits) | (block.y() & kMask))];
+  if (known.block != block) {
+    const auto* found = fill_.probeConstLeaf(ijk);
+    if (found) known = {block, found, found->buffer().data()};
+  }
+  if (known.block == block) {
+    const auto* leaf = known.leaf;
+    b.data = known.data;
     const openvdb::Index32 tag = leaf->transientData();
     const auto z = static_cast<std::size_t>(k_ & 7);
     b.full = tag > 0 && masks_[tag - 1].full[z] == ~std::uint64_t{0};

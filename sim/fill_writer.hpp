@@ -121,12 +121,23 @@ class FillWriter {
       return b.looked == generation_ ? b : look(x, y);
     }
     const Block& look(int x, int y);
+    // The leaves found by earlier looks, kept across resets (a spread's window overlaps the last one's), by
+    // their origin / 8 in a small table indexed by its low bits: a leaf, once made, stays where it is and
+    // keeps its buffer while the writer lives (its masks are read afresh each look). Leaves not found are
+    // not kept: a write may make them.
+    struct Known {
+      openvdb::Coord block{std::numeric_limits<int>::min()};  // the leaf's origin / 8
+      const openvdb::FloatTree::LeafNodeType* leaf = nullptr;
+      const float* data = nullptr;
+    };
+    static constexpr int kKnownBits = 4;  // 16 x 16 blocks in plan, a slab of them deep
     const openvdb::FloatGrid::Accessor& fill_;
     const std::vector<SliceMasks>& masks_;
     int bx0_ = 0, by0_ = 0, k_ = 0;  // the first block's index (voxel index / 8) in x and y; the level
     int across_ = 0;                 // blocks across, each way
     std::uint32_t generation_ = 0;   // of the reset; blocks looked up in an earlier one are forgotten
     std::vector<Block> blocks_;
+    std::vector<Known> known_ = std::vector<Known>(std::size_t{1} << (2 * kKnownBits));
   };
 
   // Writes `value` into the fill at `ijk`, which held `before`, counting the voxel full if it now is.

@@ -169,6 +169,8 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   const openvdb::FloatTree& fill = deposit.fill->tree();
   const openvdb::Int32Tree& moves = deposit.move->tree();
   const openvdb::FloatTree& times = deposit.time->tree();
+  // The steps below go over the fill leaf by leaf: a deposit's grids hold voxels, never active tiles.
+  BT_CHECK(!fill.hasActiveTiles());
   const double voxel_volume = vs * vs * vs;
   const double face_area = vs * vs;
 
@@ -185,32 +187,39 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     openvdb::tree::ValueAccessor<const openvdb::FloatTree> time_at(times);
     CellKey last_key = 0;
     std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
-    for (auto it = fill.cbeginValueOn(); it; ++it) {
-      const openvdb::Coord ijk = it.getCoord();
-      const int move = move_at.getValue(ijk);
-      BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
-      const Eigen::Vector3d centre = sim::voxel_center_mm(ijk, vs);
-      const Placement pl = place(toolpath, chains, options, static_cast<std::size_t>(move), centre);
-      if (last == std::numeric_limits<std::uint32_t>::max() ||
-          pl.key != last_key) {  // neighbours mostly share
-        const auto [entry, added] = met.try_emplace(pl.key, static_cast<std::uint32_t>(sums.size()));
-        if (added) {
-          sums.emplace_back();
-          sum_keys.push_back(pl.key);
+    // Leaf by leaf; the move and time of a voxel from its leaves' buffers where the grids have the leaf (they
+    // share the fill's topology), else through the accessors.
+    for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
+      const auto* move_leaf = moves.probeConstLeaf(leaf->origin());
+      const auto* time_leaf = times.probeConstLeaf(leaf->origin());
+      for (auto it = leaf->cbeginValueOn(); it; ++it) {
+        const openvdb::Coord ijk = it.getCoord();
+        const openvdb::Index n = it.pos();
+        const int move = move_leaf ? move_leaf->getValue(n) : move_at.getValue(ijk);
+        BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
+        const Eigen::Vector3d centre = sim::voxel_center_mm(ijk, vs);
+        const Placement pl = place(toolpath, chains, options, static_cast<std::size_t>(move), centre);
+        if (last == std::numeric_limits<std::uint32_t>::max() ||
+            pl.key != last_key) {  // neighbours mostly share
+          const auto [entry, added] = met.try_emplace(pl.key, static_cast<std::uint32_t>(sums.size()));
+          if (added) {
+            sums.emplace_back();
+            sum_keys.push_back(pl.key);
+          }
+          last = entry->second;
+          last_key = pl.key;
         }
-        last = entry->second;
-        last_key = pl.key;
+        voxel_cell.push_back(last);
+        CellSums& c = sums[last];
+        const double f = *it;
+        c.fill += f;
+        c.moment += f * centre;
+        c.time += f * (time_leaf ? time_leaf->getValue(n) : time_at.getValue(ijk));
+        c.cos2 += f * pl.cos2;
+        c.sin2 += f * pl.sin2;
+        if (!c.any || static_cast<std::size_t>(move) < c.move) c.move = static_cast<std::size_t>(move);
+        c.any = true;
       }
-      voxel_cell.push_back(last);
-      CellSums& c = sums[last];
-      const double f = *it;
-      c.fill += f;
-      c.moment += f * centre;
-      c.time += f * time_at.getValue(ijk);
-      c.cos2 += f * pl.cos2;
-      c.sin2 += f * pl.sin2;
-      if (!c.any || static_cast<std::size_t>(move) < c.move) c.move = static_cast<std::size_t>(move);
-      c.any = true;
     }
   }
   met.clear();
@@ -279,40 +288,64 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     openvdb::tree::ValueAccessor<const openvdb::Int32Tree> cell_at(mesh.cell_grid->tree());
     std::optional<openvdb::tree::ValueAccessor<const openvdb::MaskTree>> gap_at;
     if (deposit.gaps) gap_at.emplace(deposit.gaps->tree());
-    for (auto it = fill.cbeginValueOn(); it; ++it) {
-      const openvdb::Coord ijk = it.getCoord();
-      const double f = *it;
-      const std::int32_t cell = cell_at.getValue(ijk);
-      Eigen::Vector3d open = Eigen::Vector3d::Zero();
-      for (std::size_t d = 0; d < kFaces.size(); ++d) {
-        const openvdb::Coord q = ijk + kFaces[d];
-        const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
-        const double fq = fill_at.isValueOn(q) ? static_cast<double>(fill_at.getValue(q)) : 0.0;
-        if (fq > 0.0) {
-          const std::int32_t other = cell_at.getValue(q);
-          if (other == cell) {
-            if (f > fq) open += normal * (face_area * (f - fq));
-          } else if (d % 2 == 0) {  // each shared face once, from its lower side
-            const auto a = static_cast<std::uint32_t>(std::min(cell, other));
-            const auto b = static_cast<std::uint32_t>(std::max(cell, other));
-            const double sign = cell < other ? 1.0 : -1.0;
-            auto& list = contacts[a];
-            auto entry = std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
-            if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
-            Contact& c = entry->second;
-            c.vector += sign * normal * (face_area * std::min(f, fq));
-            c.faces += face_area * std::min(f, fq);
+    // Leaf by leaf, in the order of the fill's voxels (as step 1): a neighbour in the same leaf is read from
+    // the leaves' buffers, one across its border through the accessors. Most of this step's time went into
+    // the accessors' lookups, three for each of a voxel's six neighbours.
+    using FillLeaf = openvdb::FloatTree::LeafNodeType;
+    static_assert(FillLeaf::LOG2DIM == 3 && openvdb::Int32Tree::LeafNodeType::LOG2DIM == 3);
+    // The step of a voxel's offset in its leaf towards each face, and the bit of its local coordinate that
+    // must be clear (+) or set (−) for that neighbour to lie in the same leaf.
+    constexpr std::array<int, 6> kStep = {64, -64, 8, -8, 1, -1};
+    for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
+      const auto* cell_leaf = mesh.cell_grid->tree().probeConstLeaf(leaf->origin());
+      BT_CHECK(cell_leaf != nullptr);  // the cell grid has the fill's topology
+      const float* leaf_fill = leaf->buffer().data();
+      const std::int32_t* leaf_cell = cell_leaf->buffer().data();
+      const auto& on = leaf->getValueMask();
+      for (auto it = leaf->cbeginValueOn(); it; ++it) {
+        const auto n = static_cast<int>(it.pos());
+        const openvdb::Coord ijk = it.getCoord();
+        const double f = *it;
+        const std::int32_t cell = leaf_cell[n];
+        const std::array<int, 3> local = {n >> 6, (n >> 3) & 7, n & 7};
+        Eigen::Vector3d open = Eigen::Vector3d::Zero();
+        for (std::size_t d = 0; d < kFaces.size(); ++d) {
+          const openvdb::Coord q = ijk + kFaces[d];
+          const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
+          const int along = local[d / 2];
+          const bool inside = d % 2 == 0 ? along < 7 : along > 0;
+          const int m = n + kStep[d];
+          const double fq =
+              inside ? (on.isOn(static_cast<openvdb::Index>(m)) ? static_cast<double>(leaf_fill[m]) : 0.0)
+              : fill_at.isValueOn(q) ? static_cast<double>(fill_at.getValue(q))
+                                     : 0.0;
+          if (fq > 0.0) {
+            const std::int32_t other = inside ? leaf_cell[m] : cell_at.getValue(q);
+            if (other == cell) {
+              if (f > fq) open += normal * (face_area * (f - fq));
+            } else if (d % 2 == 0) {  // each shared face once, from its lower side
+              const auto a = static_cast<std::uint32_t>(std::min(cell, other));
+              const auto b = static_cast<std::uint32_t>(std::max(cell, other));
+              const double sign = cell < other ? 1.0 : -1.0;
+              auto& list = contacts[a];
+              auto entry =
+                  std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
+              if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
+              Contact& c = entry->second;
+              c.vector += sign * normal * (face_area * std::min(f, fq));
+              c.faces += face_area * std::min(f, fq);
+            }
+            continue;
           }
-          continue;
+          if (gap_at && gap_at->isValueOn(q)) continue;  // an enclosed gap: no air
+          if (d == 5 && ijk.z() == table_k) {
+            mesh.cells[static_cast<std::size_t>(cell)].table_area_mm2 += face_area * f;
+            continue;
+          }
+          open += normal * (face_area * f);
         }
-        if (gap_at && gap_at->isValueOn(q)) continue;  // an enclosed gap: no air
-        if (d == 5 && ijk.z() == table_k) {
-          mesh.cells[static_cast<std::size_t>(cell)].table_area_mm2 += face_area * f;
-          continue;
-        }
-        open += normal * (face_area * f);
+        mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
       }
-      mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
     }
   }
   // The links in the order of their pairs: by the lower cell, then the higher.

@@ -241,6 +241,41 @@ TEST(CadCompare, ASlitOneVoxelThinIsPorosityNotSurface) {
   EXPECT_EQ(two.undercut_fraction, 0.0);
 }
 
+// A slab 100 x 40 x 20 mm of 1 mm voxels with a pocket 12 x 4 x 3 voxels inside it (x 58 to 70: across
+// the 64-voxel words the flood of fill_closed_voids works in), 3 mm above the top of the CAD's box; open to
+// the slab's top through a chimney 2 voxels across, or closed.
+CadComparison slab_with_pocket(bool pocket, bool open) {
+  Deposit d;
+  d.voxel_size_mm = 1.0;
+  d.fill = openvdb::FloatGrid::create(0.0f);
+  d.fill->setTransform(deposit_transform(1.0));
+  auto acc = d.fill->getAccessor();
+  const auto in = [](int v, int from, int to) { return v >= from && v < to; };
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 100; ++i) {
+        const bool hollow = pocket && ((in(i, 58, 70) && in(j, 18, 22) && in(k, 11, 14)) ||
+                                       (open && in(i, 62, 64) && in(j, 19, 21) && in(k, 14, 20)));
+        acc.setValue({i, j, k}, hollow ? 0.0f : 1.0f);
+      }
+  const slicer::TriangleMesh box = slicer::make_box({84, 24, 8}, {8, 8, 0});
+  CadCompareOptions o;
+  o.band_mm = 16.0;
+  return compare_with_cad(d, {box.vertices, box.triangles}, o);
+}
+
+TEST(CadCompare, AClosedPocketIsPorosityAnOpenOneIsSurface) {
+  // Closed: filled, so the print is measured as the whole slab, to the last bit.
+  const CadComparison whole = slab_with_pocket(false, false), closed = slab_with_pocket(true, false);
+  EXPECT_EQ(closed.min_stock_mm, whole.min_stock_mm);
+  EXPECT_EQ(closed.mean_stock_mm, whole.mean_stock_mm);
+  EXPECT_EQ(closed.median_stock_mm, whole.median_stock_mm);
+  EXPECT_GT(whole.min_stock_mm, 7.9);  // the slab's sides, 8 mm out from the box's
+  // Open: the pocket's floor (z = 11 mm) is surface, 3 mm above the box's top (z = 8 mm).
+  const CadComparison open = slab_with_pocket(true, true);
+  EXPECT_NEAR(open.min_stock_mm, 3.0, 0.05);
+}
+
 TEST(CadCompare, SameNumbersForAnyNumberOfThreads) {
   const Printed& p = stocked();
   CadComparison one, two;

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Reading benchmark (issue 5): a G-code program of at least 100 MB read by `beadtwin read` (lexer, reader
 # and motion timing, one thread) and counted by `wc -l`, on the same file in the same run. Prints the
-# median wall time of each over RUNS runs and their ratio, and two costs outside parsing, measured in
-# the same run: the binary starting (`beadtwin --version`) and writing one Move per line into the Toolpath
-# with nothing parsed (bench/toolpath_floor.cpp, compiled here).
+# median wall time of each over RUNS runs and their ratio, and three floors, measured in the same run: the
+# binary starting (`beadtwin --version`), writing one Move per line into the Toolpath with nothing parsed
+# (bench/toolpath_floor.cpp), and every number of the program lexed on two threads with nothing kept
+# (bench/lex_floor.cpp); both compiled here.
 # Usage: bench/read_vs_wc.sh [BUILD_DIR] [RUNS] [MEGABYTES]
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -21,6 +22,8 @@ lines=$(wc -l < "$work/big.gcode")
 g++ -O2 -std=c++20 -I"$root" -I/usr/include/eigen3 "$root/bench/toolpath_floor.cpp" \
   "$root/core/memory.cpp" -o "$work/toolpath_floor"
 floor=$(for _ in $(seq "$runs"); do "$work/toolpath_floor" "$lines"; done | median)
+g++ -O2 -std=c++20 -pthread "$root/bench/lex_floor.cpp" -o "$work/lex_floor"
+lex=$(for _ in $(seq "$runs"); do wall "$work/lex_floor" "$work/big.gcode" 2; done | median)
 start=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" --version; done | median)
 bt=$(for _ in $(seq "$runs"); do wall "$build/tools/beadtwin" read "$work/big.gcode" --machine desktop-fff; done | median)
 # The same reads' CPU time, user and system apart: the user time is the reader's own work; the system time is
@@ -35,7 +38,9 @@ echo "program: $((size / 1000000)) MB, $lines lines"
 printf 'wc -l          (median of %s): %.3f s\n' "$runs" "$wc_t"
 printf 'beadtwin read  (median of %s): %.3f s\n' "$runs" "$bt"
 printf 'its CPU time   (median of %s): user %.2f s, system %.2f s\n' "$runs" "$bt_user" "$bt_sys"
-printf 'starting the binary (beadtwin --version): %.3f s\n' "$start"
+printf 'starting the binary (beadtwin --version): %.3f s, ratio %.1f to wc -l\n' "$start" "$(echo "$start / $wc_t" | bc -l)"
+printf 'lexing every number on 2 threads, nothing kept (bench/lex_floor.cpp): %.3f s, ratio %.1f to wc -l\n' \
+  "$lex" "$(echo "$lex / $wc_t" | bc -l)"
 printf 'writing %s moves, nothing parsed: %.3f s, ratio %.1f to wc -l (the floor for any reader of this Toolpath)\n' \
   "$lines" "$floor" "$(echo "$floor / $wc_t" | bc -l)"
 printf 'ratio beadtwin / wc -l: %.1f\n' "$(echo "$bt / $wc_t" | bc -l)"

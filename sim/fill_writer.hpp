@@ -137,7 +137,7 @@ class FillWriter {
     int across_ = 0;                 // blocks across, each way
     std::uint32_t generation_ = 0;   // of the reset; blocks looked up in an earlier one are forgotten
     std::vector<Block> blocks_;
-    std::vector<Known> known_ = std::vector<Known>(std::size_t{1} << (2 * kKnownBits));
+    std::array<Known, std::size_t{1} << (2 * kKnownBits)> known_{};
   };
 
   // Writes `value` into the fill at `ijk`, which held `before`, counting the voxel full if it now is.

@@ -291,10 +291,9 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
     // Leaf by leaf, in the order of the fill's voxels (as step 1): a neighbour in the same leaf is read from
     // the leaves' buffers, one across its border through the accessors. Most of this step's time went into
     // the accessors' lookups, three for each of a voxel's six neighbours.
-    using FillLeaf = openvdb::FloatTree::LeafNodeType;
-    static_assert(FillLeaf::LOG2DIM == 3 && openvdb::Int32Tree::LeafNodeType::LOG2DIM == 3);
-    // The step of a voxel's offset in its leaf towards each face, and the bit of its local coordinate that
-    // must be clear (+) or set (−) for that neighbour to lie in the same leaf.
+    static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3 &&
+                  openvdb::Int32Tree::LeafNodeType::LOG2DIM == 3);
+    // The step of a voxel's offset in its leaf towards each face (kFaces' order: offset = 64 x + 8 y + z).
     constexpr std::array<int, 6> kStep = {64, -64, 8, -8, 1, -1};
     for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
       const auto* cell_leaf = mesh.cell_grid->tree().probeConstLeaf(leaf->origin());
@@ -313,7 +312,7 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
           const openvdb::Coord q = ijk + kFaces[d];
           const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
           const int along = local[d / 2];
-          const bool inside = d % 2 == 0 ? along < 7 : along > 0;
+          const bool inside = d % 2 == 0 ? along < 7 : along > 0;  // the neighbour is in this leaf
           const int m = n + kStep[d];
           const double fq =
               inside ? (on.isOn(static_cast<openvdb::Index>(m)) ? static_cast<double>(leaf_fill[m]) : 0.0)

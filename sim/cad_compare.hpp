@@ -15,10 +15,9 @@
 //    material around the point (positive: material to machine off in every direction) or how far the point
 //    lies outside the print (undercut: the print falls short of the CAD there). It is the nearest-distance
 //    allowance a machinist means: at a convex corner it is the distance to the print's nearest surface, not
-//    along any one normal. The CAD surface is sampled deterministically, each triangle cut into n² equal
-//    triangles (n from its longest edge and the sample spacing) and sampled at their centroids, each sample
-//    weighted by its area; a long thin triangle is first halved across its longest edge until it is not (so
-//    its samples go with its length, not its length squared).
+//    along any one normal. The CAD surface is sampled deterministically, each triangle on a grid in its
+//    own plane (rows along its longest edge and columns, both no wider than the sample spacing), a sample
+//    at the centroid of each cell's part of the triangle, weighted by that part's area.
 //  - deviation of the printed skin is the CAD's signed distance at points of the print's surface (positive:
 //    the skin lies outside the CAD, negative: inside it), the surface's triangles sampled as the CAD's are
 //    (at the voxel spacing), each point weighted by the area it stands for.

@@ -276,6 +276,75 @@ TEST(CadCompare, AClosedPocketIsPorosityAnOpenOneIsSurface) {
   EXPECT_NEAR(open.min_stock_mm, 3.0, 0.05);
 }
 
+// A slab 40 x 40 x 20 mm of 1 mm voxels on the plate, whole.
+Deposit whole_slab() {
+  Deposit d;
+  d.voxel_size_mm = 1.0;
+  d.fill = openvdb::FloatGrid::create(0.0f);
+  d.fill->setTransform(deposit_transform(1.0));
+  auto acc = d.fill->getAccessor();
+  for (int k = 0; k < 20; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, 1.0f);
+  return d;
+}
+
+// The box `size` at `origin` with every face cut into strips `strip_mm` wide along its longer side, each
+// strip two right triangles: slivers, as a CAD exports a long flat face. (The faces' edges are cut where
+// their strips end, so a face's corners lie on its neighbours' edges: closed, though not edge to edge.)
+slicer::TriangleMesh striped_box(const Eigen::Vector3d& size, const Eigen::Vector3d& origin,
+                                 double strip_mm) {
+  slicer::TriangleMesh m;
+  const auto face = [&](const Eigen::Vector3d& corner, const Eigen::Vector3d& along,
+                        const Eigen::Vector3d& across) {
+    const int strips = static_cast<int>(std::lround(across.norm() / strip_mm));
+    for (int i = 0; i < strips; ++i) {
+      const Eigen::Vector3d a = corner + across * (double(i) / strips),
+                            b = corner + across * (double(i + 1) / strips);
+      const int first = static_cast<int>(m.vertices.size());
+      m.vertices.insert(m.vertices.end(), {a, a + along, b + along, b});
+      m.triangles.push_back({first, first + 1, first + 2});
+      m.triangles.push_back({first, first + 2, first + 3});
+    }
+  };
+  const Eigen::Vector3d x(size.x(), 0, 0), y(0, size.y(), 0), z(0, 0, size.z()), o = origin;
+  face(o, x, y);      // bottom
+  face(o + z, x, y);  // top
+  face(o, x, z);      // the four sides, each along its horizontal edge
+  face(o + y, x, z);
+  face(o, y, z);
+  face(o + x, y, z);
+  return m;
+}
+
+TEST(CadCompare, SliversAreSampledByTheirAreaNotTheirLength) {
+  // The whole slab against a box 24 x 24 x 8 mm 8 mm in from its sides: stock 8 mm on the box's sides, and
+  // min(8 + u, 8 + v, 12) on its top (u, v from its nearest edges, 12 the slab's top above it), whose
+  // integral over a quarter of the top is 8 · 144 + ∫₀⁴ (12 − t)² dt = 1557.33 mm³. So the mean stock over
+  // the 1344 mm² that count (the bottom is on the plate) is (4 · 192 · 8 + 4 · 1557.33) / 1344 = 9.2063 mm.
+  const Deposit slab = whole_slab();
+  CadCompareOptions o;
+  o.band_mm = 16.0;
+  const slicer::TriangleMesh fat_box = slicer::make_box({24, 24, 8}, {8, 8, 0});
+  const slicer::TriangleMesh thin_box = striped_box({24, 24, 8}, {8, 8, 0}, 0.5);
+  const CadComparison fat = compare_with_cad(slab, {fat_box.vertices, fat_box.triangles}, o);
+  const CadComparison thin = compare_with_cad(slab, {thin_box.vertices, thin_box.triangles}, o);
+  constexpr double kArea = 24 * 24 + 4 * 24 * 8,
+                   kMean = (4 * 192 * 8 + 4 * (8 * 144 + (1728 - 512) / 3.0)) / kArea;
+  for (const CadComparison* c : {&fat, &thin}) {
+    EXPECT_NEAR(c->cad_area_mm2, kArea, 1e-9 * kArea);
+    EXPECT_NEAR(c->mean_stock_mm, kMean, 0.01);
+    EXPECT_NEAR(c->min_stock_mm, 8.0, 0.02);  // the print's surface meshed adaptively, true to 0.013 mm
+    EXPECT_NEAR(c->max_stock_mm, 12.0, 0.05);
+    EXPECT_EQ(c->undercut_fraction, 0.0);
+  }
+  // A sample stands for up to a voxel's face of surface (1 mm²; more samples where cells are cut by a
+  // triangle's sides), and a sliver narrower than a voxel takes one a voxel of its length, not the square
+  // of it: the box's 416 slivers 24 mm long (256 of them on the sides and top) take 25 each.
+  EXPECT_LE(fat.cad_samples, static_cast<std::size_t>(1.5 * kArea));
+  EXPECT_LE(thin.cad_samples, 256u * 25u);
+}
+
 TEST(CadCompare, SameNumbersForAnyNumberOfThreads) {
   const Printed& p = stocked();
   CadComparison one, two;

@@ -103,6 +103,10 @@ Flat flatten(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
 template <class Sample>
 void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
   const Flat f = flatten(a, b, c, spacing);
+  if (f.rows == 1 && f.columns(0) == 1) {  // one cell holds it whole (most of the print's own triangles)
+    sample((a + b + c) / 3.0, 0.5 * f.length * f.height);
+    return;
+  }
   for (double j = 0; j < f.rows; ++j) {
     const double y0 = f.row_bottom(j), y1 = f.row_top(j);
     // The row's part of the triangle, a trapezoid (a triangle in the top row), relative to (lo, y0).

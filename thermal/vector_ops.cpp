@@ -17,7 +17,7 @@ using Map = Eigen::Map<Eigen::ArrayXd>;
 
 // Vectors of fewer blocks than this run on the calling thread: below it, handing blocks to other threads
 // costs more than it saves.
-constexpr std::size_t kParallelBlocks = 4;
+constexpr std::size_t kParallelBlocks = 64;
 
 // This rank's part of the vector (all of a serial one; the serial vector has no local-length operation).
 std::size_t length(N_Vector v) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <queue>
 #include <string>
 #include <vector>
 
@@ -99,30 +100,56 @@ Flat flatten(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
   return f;
 }
 
-// Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
-template <class Sample>
-void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
-  const Flat f = flatten(a, b, c, spacing);
-  if (f.rows == 1 && f.columns(0) == 1) {  // one cell holds it whole (most of the print's own triangles)
-    sample((a + b + c) / 3.0, 0.5 * f.length * f.height);
+// One cell of a triangle's sampling grid: the part of the triangle in it, a convex polygon.
+struct Cell {
+  Vec3 point = Vec3::Zero();  // its centroid: the sample
+  double area = 0.0;
+  double radius = 0.0;  // the distance from the sample to its farthest corner
+  std::array<Vec3, 8> corner;
+  std::size_t corners = 0;
+
+  Cell() { corner.fill(Vec3::Zero()); }
+};
+
+// Calls `f(cell)` for every cell of (a, b, c) (the samples), in a fixed order.
+template <class F>
+void for_each_cell(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, F&& f) {
+  const Flat flat = flatten(a, b, c, spacing);
+  Cell cell;
+  const auto finish = [&] {
+    cell.radius = 0.0;
+    for (std::size_t k = 0; k < cell.corners; ++k)
+      cell.radius = std::max(cell.radius, (cell.corner[k] - cell.point).norm());
+    f(static_cast<const Cell&>(cell));
+  };
+  if (flat.rows == 1 &&
+      flat.columns(0) == 1) {  // one cell holds it whole (most of the print's own triangles)
+    cell.point = (a + b + c) / 3.0;
+    cell.area = 0.5 * flat.length * flat.height;
+    cell.corner[0] = a, cell.corner[1] = b, cell.corner[2] = c;
+    cell.corners = 3;
+    finish();
     return;
   }
-  for (double j = 0; j < f.rows; ++j) {
-    const double y0 = f.row_bottom(j), y1 = f.row_top(j);
+  for (double j = 0; j < flat.rows; ++j) {
+    const double y0 = flat.row_bottom(j), y1 = flat.row_top(j);
     // The row's part of the triangle, a trapezoid (a triangle in the top row), relative to (lo, y0).
-    const auto [lo, hi] = f.row_extent(j);
-    const std::array<std::array<double, 2>, 4> row{{{f.left(y0) - lo, 0.0},
-                                                    {f.right(y0) - lo, 0.0},
-                                                    {f.right(y1) - lo, y1 - y0},
-                                                    {f.left(y1) - lo, y1 - y0}}};
-    const double n = f.columns(j), width = hi - lo;
+    const auto [lo, hi] = flat.row_extent(j);
+    const std::array<std::array<double, 2>, 4> row{{{flat.left(y0) - lo, 0.0},
+                                                    {flat.right(y0) - lo, 0.0},
+                                                    {flat.right(y1) - lo, y1 - y0},
+                                                    {flat.left(y1) - lo, y1 - y0}}};
+    const double n = flat.columns(j), width = hi - lo;
     const bool backwards = static_cast<long long>(j) % 2 == 1;
+    const auto to_3d = [&](double x, double y) {
+      return Vec3(flat.origin + (lo + x) * flat.x_axis + (y0 + y) * flat.y_axis);
+    };
     for (double i = 0; i < n; ++i) {
       const double column = backwards ? n - 1 - i : i;
       const double x0 = column == 0 ? 0.0 : width * (column / n);
       const double x1 = column + 1 == n ? width : width * ((column + 1) / n);
       // The trapezoid clipped to x0 <= x <= x1 (Sutherland and Hodgman), then its area and centroid.
-      std::array<std::array<double, 2>, 8> cut{}, cell{};
+      std::array<std::array<double, 2>, 8> cut{}, part{};
       std::size_t cuts = 0, corners = 0;
       for (std::size_t k = 0; k < row.size(); ++k) {
         const auto& u = row[k];
@@ -135,13 +162,13 @@ void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, 
         const auto& u = cut[k];
         const auto& v = cut[(k + 1) % cuts];
         const bool u_in = u[0] <= x1, v_in = v[0] <= x1;
-        if (u_in) cell[corners++] = u;
-        if (u_in != v_in) cell[corners++] = {x1, u[1] + (v[1] - u[1]) * ((x1 - u[0]) / (v[0] - u[0]))};
+        if (u_in) part[corners++] = u;
+        if (u_in != v_in) part[corners++] = {x1, u[1] + (v[1] - u[1]) * ((x1 - u[0]) / (v[0] - u[0]))};
       }
       double twice_area = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
       for (std::size_t k = 0; k < corners; ++k) {
-        const auto& u = cell[k];
-        const auto& v = cell[(k + 1) % corners];
+        const auto& u = part[k];
+        const auto& v = part[(k + 1) % corners];
         const double w = u[0] * v[1] - v[0] * u[1];
         twice_area += w;
         cx += (u[0] + v[0]) * w;
@@ -157,9 +184,19 @@ void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, 
         x = mx / static_cast<double>(corners);
         y = my / static_cast<double>(corners);
       }
-      sample(f.origin + (lo + x) * f.x_axis + (y0 + y) * f.y_axis, std::max(0.0, 0.5 * twice_area));
+      cell.point = to_3d(x, y);
+      cell.area = std::max(0.0, 0.5 * twice_area);
+      cell.corners = corners;
+      for (std::size_t k = 0; k < corners; ++k) cell.corner[k] = to_3d(part[k][0], part[k][1]);
+      finish();
     }
   }
+}
+
+// Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
+template <class Sample>
+void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
+  for_each_cell(a, b, c, spacing, [&](const Cell& cell) { sample(cell.point, cell.area); });
 }
 
 // How many samples sample_points takes of (a, b, c), counting no further than `limit` (then more).
@@ -670,14 +707,25 @@ bool faces_down(const CadTriangle& tri, const openvdb::FloatGrid& cad_distance, 
 struct Sample {
   double stock_mm = 0.0;
   double area_mm2 = 0.0;
+  double radius_mm = 0.0;  // of its cell (Cell::radius): how far from it the stock may differ by as much
   bool on_plate = false;
 };
 
-// The samples of one triangle (sample_points), each weighted by the area it stands for. A sample's stock is
-// its distance to the print's surface, up to the band, positive inside the print and negative outside
-// (NearestTriangles::distance). The nearest triangle is looked for no further than the last sample's distance
-// and the step from it (the distance to a surface changes no faster than the point moves): the searches
-// stay small.
+// The stock at p: its distance to the print's surface, up to the band, positive inside the print and
+// negative outside (NearestTriangles::distance), looked for no further than `reach` (then the band).
+template <class Accessor>
+double stock_at(const Vec3& p, double reach, const NearestTriangles& print, const Accessor& solid,
+                const openvdb::math::Transform& transform, const Geometry& g) {
+  NearestTriangles::Distance d = print.distance(p, reach);
+  if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
+  // Beyond the band, far from any surface, the fill tells inside from outside.
+  const bool inside = d.found ? !d.outside : sample(solid, transform, p) >= kPrintedFill;
+  return inside ? d.mm : -d.mm;
+}
+
+// The samples of one triangle (for_each_cell), each weighted by the area it stands for, with its stock
+// (stock_at). The nearest triangle is looked for no further than the last sample's distance and the step
+// from it (the distance to a surface changes no faster than the point moves): the searches stay small.
 template <class Accessor>
 void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, const Accessor& solid,
                      const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
@@ -694,19 +742,93 @@ void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, cons
   }
   Vec3 last(0, 0, 0);
   double reach = g.band_mm;  // from the last sample's distance; the band for the first
-  sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3& p, double area) {
+  for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
+    const Vec3& p = cell.point;
     if (k > tri.first_sample) reach = std::min(g.band_mm, (reach + (p - last).norm()) * (1.0 + 1e-9));
-    NearestTriangles::Distance d = print.distance(p, reach);
-    if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
-    last = p;
-    reach = d.mm;
-    // Beyond the band, far from any surface, the fill tells inside from outside.
-    const bool inside = d.found ? !d.outside : sample(solid, transform, p) >= kPrintedFill;
     Sample& s = out[k++];
-    s.stock_mm = inside ? d.mm : -d.mm;
-    s.area_mm2 = area;
+    s.stock_mm = stock_at(p, reach, print, solid, transform, g);
+    last = p;
+    reach = std::abs(s.stock_mm);
+    s.area_mm2 = cell.area;
+    s.radius_mm = cell.radius;
     s.on_plate = tri.on_plate && p.z() <= plate_top_mm;
   });
+}
+
+// The least and the most stock over the CAD's surface (off the plate), to within kExtremeVoxels of a voxel:
+// the samples' extremes sharpened by branch and bound. The stock changes no faster than the point moves
+// (a distance), so no point of a cell has less stock than its sample's less the cell's radius: a cell whose
+// bound is below the least found so far (or, for the most, above it) is cut into cells a quarter of its
+// radius across and measured again, the least sample first, until no bound is beyond the extreme found by
+// more than the tolerance. On the LSAM mould 804 and 335 of its 1.3 million cells are opened, 10,700 and
+// 34,800 points measured (on one thread, 0.05 s): its least stock is −7.49 mm, where its samples' least
+// was −7.07 mm (and that of the 7.2 million samples taken before the cells, −7.22 mm); its most 5.19 mm
+// against 5.11 mm. The default scenario's least −5.35 mm against −4.64 mm, at a corner of the CAD.
+constexpr double kExtremeVoxels = 0.01;
+// Measurements the refinement of one extreme may take: beyond them (a flat extreme over a large area, the
+// bound closing slowly) the deepest value found is kept, which the samples' is never beyond.
+constexpr std::size_t kMaxRefinements = 50'000;
+
+template <class Accessor>
+void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vector<Sample>& samples,
+                      const NearestTriangles& print, const Accessor& solid,
+                      const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
+                      double& least, double& most) {
+  const double tolerance = kExtremeVoxels * g.voxel_mm;
+  for (const int sign : {1, -1}) {  // the least stock (of stock), then the most (the least of −stock)
+    double best = sign > 0 ? least : -most;
+    struct Open {
+      double bound;  // no point of the cell has less (sign · stock)
+      double value;  // sign · stock at its sample
+      Cell cell;
+      bool plate;  // of a triangle that may stand on the plate
+    };
+    // The cell with the most extreme sample first (its bound breaks ties): the extreme is found early,
+    // and with it every cell whose bound does not pass it is dropped unopened. (The lowest bound first
+    // opened the widest cells first, however ordinary their samples.)
+    const auto later = [](const Open& x, const Open& y) {
+      return x.value != y.value ? x.value > y.value : x.bound > y.bound;
+    };
+    std::priority_queue<Open, std::vector<Open>, decltype(later)> open(later);
+    // No point of a cell is beyond its sample by more than its radius, nor beyond the band.
+    const auto bound = [&](double value, double radius) { return std::max(value - radius, -g.band_mm); };
+    // The samples whose cells may hide a more extreme stock, regenerated triangle by triangle.
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      const CadTriangle& tri = triangles[t];
+      bool any = false;
+      for (std::size_t k = tri.first_sample; k < tri.first_sample + tri.samples && !any; ++k)
+        any = !samples[k].on_plate &&
+              bound(sign * samples[k].stock_mm, samples[k].radius_mm) < best - tolerance;
+      if (!any) continue;
+      std::size_t k = tri.first_sample;
+      for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
+        const Sample& s = samples[k++];
+        const double b = bound(sign * s.stock_mm, s.radius_mm);
+        if (!s.on_plate && b < best - tolerance) open.push({b, sign * s.stock_mm, cell, tri.on_plate});
+      });
+    }
+    std::size_t measured = 0;
+    while (!open.empty() && measured < kMaxRefinements) {
+      const Open o = open.top();
+      open.pop();
+      if (o.bound >= best - tolerance) continue;  // nothing beyond the extreme found so far
+      const double spacing = 0.25 * o.cell.radius;
+      // The cell's polygon as a fan of triangles from its first corner, each sampled at the finer spacing.
+      for (std::size_t c = 1; c + 1 < o.cell.corners; ++c)
+        for_each_cell(
+            o.cell.corner[0], o.cell.corner[c], o.cell.corner[c + 1], spacing, [&](const Cell& part) {
+              if (part.area <= 0 || (o.plate && part.point.z() <= plate_top_mm)) return;
+              const double reach = std::min(
+                  g.band_mm, (std::abs(o.value) + (part.point - o.cell.point).norm()) * (1.0 + 1e-9));
+              const double value = sign * stock_at(part.point, reach, print, solid, transform, g);
+              ++measured;
+              best = std::min(best, value);
+              const double b = bound(value, part.radius);
+              if (b < best - tolerance) open.push({b, value, part, o.plate});
+            });
+    }
+    (sign > 0 ? least : most) = sign * best;
+  }
 }
 
 // Marks the triangles that may stand on the plate (faces down, within kPlateVoxels of it).
@@ -754,6 +876,10 @@ void measure_stock(const std::vector<CadTriangle>& triangles, const NearestTrian
   if (kept.empty())
     throw InputError({}, "cad",
                      "every face of the CAD lies on the build plate: there is no surface to measure");
+  {
+    const auto acc = solid.getConstUnsafeAccessor();
+    sharpen_extremes(triangles, samples, print, acc, solid.transform(), g, plate_top, least, most);
+  }
   samples = {};
   out.cad_samples = kept.size();
   out.cad_area_mm2 = area;

@@ -100,7 +100,8 @@ class CadField {
 };
 
 struct CadComparison {
-  // Stock over the CAD surface (excluding the plate), area-weighted, mm.
+  // Stock over the CAD surface (excluding the plate), mm: the least and the most anywhere on it (to within
+  // a hundredth of a voxel; docs/physics.md) and the area-weighted mean.
   double min_stock_mm = 0.0, max_stock_mm = 0.0, mean_stock_mm = 0.0;
   double p05_stock_mm = 0.0, median_stock_mm = 0.0, p95_stock_mm = 0.0;  // area percentiles
   // The extreme is at the edge of the band: the true value is at least that far out (min: that short).

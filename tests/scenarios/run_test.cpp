@@ -246,9 +246,13 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   const double w = 0.83 * 25.4, lh = 0.2 * 25.4;
   const double widest = (std::sqrt(2.0) - 1) * w / 2;
   const double groove = std::hypot(std::sqrt(2.0) * w / 2 - (w - lh) / 2, lh / 2) - lh / 2;
-  // A little more where the corner beads, following the substrate, run into the gaps the passes leave on
-  // the corner diagonals below them and come out narrower.
-  EXPECT_GE(m["min_stock_mm"].get<double>(), -groove - 0.3);
+  // The least of all is at the box's top corners (the least stock is sought to within a hundredth of a voxel,
+  // and found at a CAD corner, where no sample's cell centre falls): the geometry gives the same 4.81 mm
+  // there, the top of the last layer level with the CAD's top, but the voxels' iso-surface rounds the
+  // print's top edge into its rounded corner (at a corner of three voxel faces it lies s/√3 inside; here,
+  // a corner already rounded, less): allow a quarter of a voxel more.
+  const double s = 0.1 * 25.4;
+  EXPECT_GE(m["min_stock_mm"].get<double>(), -groove - 0.25 * s);
   EXPECT_LE(m["min_stock_mm"].get<double>(), -widest + 0.1);
   // The open box: 24 x 18 x 10 in outside, walls 4.7725 in, floor 2 in.
   constexpr double kIn = 25.4;

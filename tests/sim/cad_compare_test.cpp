@@ -345,6 +345,27 @@ TEST(CadCompare, SliversAreSampledByTheirAreaNotTheirLength) {
   EXPECT_LE(thin.cad_samples, 256u * 25u);
 }
 
+TEST(CadCompare, TheLeastStockIsFoundBetweenTheSamples) {
+  // The whole slab with a groove two voxels wide and one deep up its side at y = 16 to 18 mm (one voxel
+  // wide it would be a slit, filled but for its mouth), against the box 8 mm in. The print's surface there
+  // comes to a ridge at x = 1 mm, y = 17 mm (OpenVDB's meshing puts a point in each cell between voxel
+  // centres; off the even voxels, its adaptive meshing moves that ridge to 0.875 mm): the least stock is
+  // 7 mm, on the box's side straight across from the ridge, growing as √(49 + d²) a distance d along the
+  // side away from it. Sampled every 10 mm, the box's side has no sample near that line: the samples' least
+  // stock is 7.244 mm; refining the samples' cells finds the 7.
+  Deposit slab = whole_slab();
+  auto acc = slab.fill->getAccessor();
+  for (int k = 0; k < 20; ++k)
+    for (int j = 16; j < 18; ++j) acc.setValueOff({0, j, k}, 0.0f);
+  CadCompareOptions o;
+  o.band_mm = 16.0;
+  o.sample_spacing_mm = 10.0;
+  const slicer::TriangleMesh box = slicer::make_box({24, 24, 8}, {8, 8, 0});
+  const CadComparison c = compare_with_cad(slab, {box.vertices, box.triangles}, o);
+  EXPECT_NEAR(c.min_stock_mm, 7.0, 0.011);  // to within a hundredth of a voxel
+  EXPECT_NEAR(c.max_stock_mm, 12.0, 0.05);
+}
+
 TEST(CadCompare, SameNumbersForAnyNumberOfThreads) {
   const Printed& p = stocked();
   CadComparison one, two;

@@ -208,10 +208,8 @@ TEST(CadCompare, BottomOnThePlateDoesNotCount) {
               1e-6 * counted.cad_area_mm2);
 }
 
-// A slab of material 40 × 40 × 20 mm on the plate (1 mm voxels, fill 1), cut through at 10 mm by a slit
-// `slit_voxels` thin (fill 0.2, across the whole slab and so open on every side), against a box 8 mm in from
-// its sides and 8 mm tall: the slit passes 2 mm above the box's top.
-CadComparison slab_with_slit(int slit_voxels) {
+// A slab 40 x 40 x 20 mm of 1 mm voxels on the plate, whole.
+Deposit whole_slab() {
   Deposit d;
   d.voxel_size_mm = 1.0;
   d.fill = openvdb::FloatGrid::create(0.0f);
@@ -219,7 +217,19 @@ CadComparison slab_with_slit(int slit_voxels) {
   auto acc = d.fill->getAccessor();
   for (int k = 0; k < 20; ++k)
     for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, k >= 10 && k < 10 + slit_voxels ? 0.2f : 1.0f);
+      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, 1.0f);
+  return d;
+}
+
+// A slab of material 40 × 40 × 20 mm on the plate (1 mm voxels, fill 1), cut through at 10 mm by a slit
+// `slit_voxels` thin (fill 0.2, across the whole slab and so open on every side), against a box 8 mm in from
+// its sides and 8 mm tall: the slit passes 2 mm above the box's top.
+CadComparison slab_with_slit(int slit_voxels) {
+  Deposit d = whole_slab();
+  auto acc = d.fill->getAccessor();
+  for (int k = 10; k < 10 + slit_voxels; ++k)
+    for (int j = 0; j < 40; ++j)
+      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, 0.2f);
   const slicer::TriangleMesh box = slicer::make_box({24, 24, 8}, {8, 8, 0});
   CadCompareOptions o;
   o.band_mm = 16.0;
@@ -274,19 +284,6 @@ TEST(CadCompare, AClosedPocketIsPorosityAnOpenOneIsSurface) {
   // Open: the pocket's floor (z = 11 mm) is surface, 3 mm above the box's top (z = 8 mm).
   const CadComparison open = slab_with_pocket(true, true);
   EXPECT_NEAR(open.min_stock_mm, 3.0, 0.05);
-}
-
-// A slab 40 x 40 x 20 mm of 1 mm voxels on the plate, whole.
-Deposit whole_slab() {
-  Deposit d;
-  d.voxel_size_mm = 1.0;
-  d.fill = openvdb::FloatGrid::create(0.0f);
-  d.fill->setTransform(deposit_transform(1.0));
-  auto acc = d.fill->getAccessor();
-  for (int k = 0; k < 20; ++k)
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, 1.0f);
-  return d;
 }
 
 // The box `size` at `origin` with every face cut into strips `strip_mm` wide along its longer side, each

@@ -707,7 +707,6 @@ bool faces_down(const CadTriangle& tri, const openvdb::FloatGrid& cad_distance, 
 struct Sample {
   double stock_mm = 0.0;
   double area_mm2 = 0.0;
-  double radius_mm = 0.0;  // of its cell (Cell::radius): how far from it the stock may differ by as much
   bool on_plate = false;
 };
 
@@ -750,7 +749,6 @@ void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, cons
     last = p;
     reach = std::abs(s.stock_mm);
     s.area_mm2 = cell.area;
-    s.radius_mm = cell.radius;
     s.on_plate = tri.on_plate && p.z() <= plate_top_mm;
   });
 }
@@ -792,18 +790,20 @@ void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vect
     std::priority_queue<Open, std::vector<Open>, decltype(later)> open(later);
     // No point of a cell is beyond its sample by more than its radius, nor beyond the band.
     const auto bound = [&](double value, double radius) { return std::max(value - radius, -g.band_mm); };
-    // The samples whose cells may hide a more extreme stock, regenerated triangle by triangle.
+    // The samples whose cells may hide a more extreme stock, their cells regenerated triangle by triangle:
+    // only the triangles with a sample that could, were its cell as wide as any (its sides are no longer
+    // than the spacing, so no corner is further than √2 spacings from its sample).
+    const double widest = std::sqrt(2.0) * g.spacing_mm * (1.0 + 1e-9);
     for (std::size_t t = 0; t < triangles.size(); ++t) {
       const CadTriangle& tri = triangles[t];
       bool any = false;
       for (std::size_t k = tri.first_sample; k < tri.first_sample + tri.samples && !any; ++k)
-        any = !samples[k].on_plate &&
-              bound(sign * samples[k].stock_mm, samples[k].radius_mm) < best - tolerance;
+        any = !samples[k].on_plate && bound(sign * samples[k].stock_mm, widest) < best - tolerance;
       if (!any) continue;
       std::size_t k = tri.first_sample;
       for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
         const Sample& s = samples[k++];
-        const double b = bound(sign * s.stock_mm, s.radius_mm);
+        const double b = bound(sign * s.stock_mm, cell.radius);
         if (!s.on_plate && b < best - tolerance) open.push({b, sign * s.stock_mm, cell, tri.on_plate});
       });
     }

@@ -251,7 +251,8 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   // there, the top of the last layer level with the CAD's top, but the voxels' iso-surface rounds the
   // print's top edge into its rounded corner (at a corner of three voxel faces it lies s/√3 inside; here,
   // a corner already rounded, less): allow a quarter of a voxel more.
-  const double s = 0.1 * 25.4;
+  const double s = sc.variants[0].output.voxel_size_mm;  // 0.1 in
+  ASSERT_GT(s, 0.0);
   EXPECT_GE(m["min_stock_mm"].get<double>(), -groove - 0.25 * s);
   EXPECT_LE(m["min_stock_mm"].get<double>(), -widest + 0.1);
   // The open box: 24 x 18 x 10 in outside, walls 4.7725 in, floor 2 in.

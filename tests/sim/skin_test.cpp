@@ -27,33 +27,37 @@ using testing::fresh_dir;
 using testing::get;
 using testing::ring;
 
-// Every directed edge of a closed, consistently oriented mesh appears once, and so does its reverse.
-// Returns the number of edges that break this.
-std::size_t open_or_misoriented_edges(const SkinMesh& mesh) {
+// The edges of `mesh`'s triangles, each direction apart, with the triangles that run along each.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed_edges(const SkinMesh& mesh) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   for (const auto& t : mesh.triangles)
     for (int c = 0; c < 3; ++c) ++directed[{t[c], t[(c + 1) % 3]}];
+  return directed;
+}
+
+// The edges whose count `fits` does not accept along with the count of their reverse (0 if none).
+template <class Fits>
+std::size_t edges_not_fitting(const SkinMesh& mesh, const Fits& fits) {
+  const auto directed = directed_edges(mesh);
   std::size_t bad = 0;
   for (const auto& [edge, count] : directed) {
     const auto back = directed.find({edge.second, edge.first});
-    if (count != 1 || back == directed.end() || back->second != 1) ++bad;
+    bad += !fits(count, back == directed.end() ? 0 : back->second);
   }
   return bad;
+}
+
+// Every directed edge of a closed, consistently oriented manifold mesh appears once, and so does its reverse.
+// Returns the number of edges that break this.
+std::size_t open_or_misoriented_edges(const SkinMesh& mesh) {
+  return edges_not_fitting(mesh, [](int count, int back) { return count == 1 && back == 1; });
 }
 
 // A closed, consistently oriented surface that may touch itself: every directed edge appears as often as
 // its reverse (an edge may be shared by four triangles, where two sheets of the surface meet along it).
 // Returns the number of edges that break this.
 std::size_t unmatched_edges(const SkinMesh& mesh) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-  for (const auto& t : mesh.triangles)
-    for (int c = 0; c < 3; ++c) ++directed[{t[c], t[(c + 1) % 3]}];
-  std::size_t bad = 0;
-  for (const auto& [edge, count] : directed) {
-    const auto back = directed.find({edge.second, edge.first});
-    bad += back == directed.end() || back->second != count;
-  }
-  return bad;
+  return edges_not_fitting(mesh, [](int count, int back) { return count == back; });
 }
 
 // Triangles on the same three corners as another one.

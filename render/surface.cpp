@@ -49,12 +49,17 @@ void compute_normals(SurfaceMesh& mesh) {
 SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue) {
   const openvdb::Index64 active = fill.activeVoxelCount();
   if (active == 0) throw InputError("nothing was deposited: the fill grid has no active voxels");
-
   std::vector<openvdb::Vec3s> points;
   std::vector<openvdb::Vec3I> triangles;
   std::vector<openvdb::Vec4I> quads;
   openvdb::tools::volumeToMesh(fill, points, triangles, quads, isovalue, /*adaptivity=*/0.0);
+  return surface_mesh(points, triangles, quads, active, isovalue);
+}
 
+SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
+                         const std::vector<openvdb::Vec3I>& triangles,
+                         const std::vector<openvdb::Vec4I>& quads, openvdb::Index64 active_voxels,
+                         double isovalue) {
   SurfaceMesh mesh;
   mesh.points.reserve(points.size());
   for (const auto& p : points) mesh.points.push_back(to_eigen(p));
@@ -64,7 +69,7 @@ SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue) {
   for (const auto& p : mesh.points) mesh.bounds.extend(p);
 
   if (mesh.triangles.empty() || mesh.bounds.isEmpty() || (mesh.bounds.sizes().array() <= 0.0f).any())
-    throw InputError("nothing was deposited: the fill grid's " + std::to_string(active) +
+    throw InputError("nothing was deposited: the fill grid's " + std::to_string(active_voxels) +
                      " active voxels have no surface at fill fraction " + std::to_string(isovalue) +
                      " (is every voxel less than " + std::to_string(isovalue) + " full?)");
   compute_normals(mesh);

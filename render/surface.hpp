@@ -25,6 +25,12 @@ struct SurfaceMesh {
 // transform; quads are split along their shorter diagonal. Throws InputError("nothing was deposited: ...")
 // when the grid has no active voxels or no surface at `isovalue`.
 SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue = 0.5);
+// The same from the mesher's polygons (of a grid with `active_voxels` active voxels, meshed at `isovalue`
+// with adaptivity 0), as sim::mesh_fill gives them: a surface meshed once for the skin and the pictures.
+SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
+                         const std::vector<openvdb::Vec3I>& triangles,
+                         const std::vector<openvdb::Vec4I>& quads, openvdb::Index64 active_voxels,
+                         double isovalue = 0.5);
 
 // Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes), and
 // only while the grid does not change: its accessor is not registered with the tree (a registration per

@@ -440,9 +440,11 @@ constexpr ParamSpec kOutput[] = {
      "the as-printed outer skin as a triangle mesh in mm (the deposit's surface fill = 0.5): ply, stl "
      "or none",
      "sim/skin.hpp"},
-    {"skin_adaptivity", T::kQuantity, D::kDimensionless, "0.2", 0, 1, false,
-     "how much the skin mesh merges triangles where the surface is flat: 0 about two per voxel face crossed; "
-     "0.2 keeps the ridges between beads within about a voxel; near 1 it may cut through thin walls",
+    {"skin_adaptivity", T::kQuantity, D::kDimensionless, "0", 0, 1, false,
+     "how much the skin mesh merges triangles where the surface is flat before it is simplified: 0 about two "
+     "per voxel face crossed, the surface the pictures draw, meshed once for both; 0.2 keeps the ridges "
+     "between beads within about a voxel and simplifies further at a loose skin_tolerance, for a second "
+     "meshing; near 1 it may cut through thin walls",
      "OpenVDB tools::volumeToMesh"},
     {"skin_tolerance", T::kQuantity, D::kLength, "0.3 mm", 0, 100, false,
      "the skin mesh is then simplified (edge collapse) as long as its surface moves less than this; 0 keeps "

@@ -475,6 +475,10 @@ struct PictureWriter::State {
     else if (std::isfinite(until_s))
       shown.fill = sim::fill_up_to_time(d, until_s);
     openvdb::FloatGrid::Ptr fill = shown.fill;
+    if (last_layer < 0 && !std::isfinite(until_s) && in.whole_surface)
+      if (std::optional<render::SurfaceMesh> surface = in.whole_surface())
+        return shapes.emplace(key, Shown{fill, render::PreparedDeposit(shown, std::move(*surface))})
+            .first->second;
     return shapes.emplace(key, Shown{fill, render::PreparedDeposit(shown)}).first->second;
   }
 

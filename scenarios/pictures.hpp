@@ -7,7 +7,9 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 
 #include "core/toolpath.hpp"
 #include "render/annotate.hpp"
+#include "render/surface.hpp"
 #include "scenarios/result.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/variant_run.hpp"
@@ -50,6 +53,10 @@ struct PictureInputs {
   const sim::Deposit* deposit = nullptr;
   const CadCheck* cad = nullptr;  // null without a CAD to compare with
   const PictureFrame* frame = nullptr;
+  // The whole deposit's surface as the pictures draw it, when it was meshed already (for the skin: one
+  // meshing for both); none, or nullopt from it, and the pictures mesh the fill grid themselves. Called at
+  // most once, when the pictures of the whole part are prepared.
+  std::function<std::optional<render::SurfaceMesh>()> whole_surface;
 };
 
 // What PictureWriter wrote, relative to the run's output directory.

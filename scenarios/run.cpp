@@ -7,6 +7,7 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <mutex>
 #include <optional>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory.hpp"
+#include "render/surface.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"
@@ -392,15 +394,18 @@ bool compare(double value, GateOp op, double threshold) {
 }
 
 // The as-printed skin as a mesh file, with what the report says of it.
+// From `surface` when given (the fill grid meshed at the skin's adaptivity), else meshed here.
 void write_skin(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
-                const std::filesystem::path& dir, ExportedFiles& files, std::vector<std::string>& notes) {
+                const sim::FillSurface* surface, const std::filesystem::path& dir, ExportedFiles& files,
+                std::vector<std::string>& notes) {
   const auto* format =
       std::find_if(std::begin(sim::kMeshFormats), std::end(sim::kMeshFormats),
                    [&](sim::MeshFormat f) { return sim::to_string(f) == v.output.skin_format; });
   BT_CHECK(format != std::end(sim::kMeshFormats));  // the loader accepts only these
   const std::string name = "skin." + v.output.skin_format;
   const sim::SkinMesh skin =
-      sim::extract_skin(deposit, v.output.skin_adaptivity, true, v.output.skin_tolerance_mm);
+      surface ? sim::extract_skin(*surface, true, v.output.skin_tolerance_mm)
+              : sim::extract_skin(deposit, v.output.skin_adaptivity, true, v.output.skin_tolerance_mm);
   if (skin.triangles.empty()) {
     // Simplified away: beads no thicker than the tolerance (a desktop bead against the 0.3 mm default).
     notes.push_back(
@@ -499,6 +504,33 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   pictures_in.toolpath = &tp;
   pictures_in.deposit = &deposit;
   pictures_in.frame = &frame;
+  // The fill grid's surface at adaptivity 0, meshed once for the skin and the pictures of the whole part
+  // when the skin is meshed at that adaptivity (the default) and both are made beside the thermal stage
+  // (below): by whichever comes to it first, dropped once both are done with it. Without room beside the
+  // thermal stage each meshes its own, as the pictures' surfaces are then held through it.
+  struct SharedSurface {
+    std::mutex mutex;
+    bool made = false;
+    std::optional<sim::FillSurface> mesh;
+    int users = 2;  // the skin and the pictures
+    // The surface, or null once both are done with it.
+    const sim::FillSurface* get(const sim::Deposit& d) {
+      const std::lock_guard lock(mutex);
+      if (!made) mesh = sim::mesh_fill(d, 0.0), made = true;
+      return mesh ? &*mesh : nullptr;
+    }
+    void done() {
+      const std::lock_guard lock(mutex);
+      if (--users == 0) mesh.reset();
+    }
+  } shared_surface;
+  bool share_surface = false;  // set below, before either uses it
+  pictures_in.whole_surface = [&]() -> std::optional<render::SurfaceMesh> {
+    if (!share_surface || deposit.fill->activeVoxelCount() == 0) return std::nullopt;
+    const sim::FillSurface* s = shared_surface.get(deposit);
+    if (s == nullptr) return std::nullopt;
+    return render::surface_mesh(s->points_mm, s->triangles, s->quads, deposit.fill->activeVoxelCount());
+  };
   struct Beside {
     std::optional<CadCheck> cad;
     std::optional<PictureWriter> pictures;
@@ -528,7 +560,12 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     res.exported.deposit_bytes = std::filesystem::file_size(dir / "deposit.vdb");
   };
   if (!v.output.skin_format.empty())
-    skin_job.work = [&] { write_skin(v, tp, deposit, dir, res.exported, beside.notes); };
+    skin_job.work = [&] {
+      if (!share_surface) return write_skin(v, tp, deposit, nullptr, dir, res.exported, beside.notes);
+      const sim::FillSurface* surface = shared_surface.get(deposit);
+      write_skin(v, tp, deposit, surface, dir, res.exported, beside.notes);
+      shared_surface.done();
+    };
   if (v.output.write_fields) fields_job.work = [&] { write_fields(v, deposit, dir, res.exported); };
   const auto write_files = [&] {
     for (FileJob& job : file_jobs)
@@ -540,6 +577,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
       beside.pictures.emplace(pictures_in, dir);
       beside.pictures->without_thermal();
     });
+    if (share_surface) shared_surface.done();
   };
   // The pictures' surfaces and scenes and the skin, held or built while the thermal stage holds its own,
   // add to the run's peak: beside it only while the run's estimate (the deposit's, which counts the later
@@ -550,6 +588,7 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   constexpr double kOverlapPeakPerEstimate = 7.0;
   const bool room_beside = kOverlapPeakPerEstimate * deposit.memory_estimate_bytes <=
                            memory_budget_bytes(v.output.memory_budget_gb * 1e9);
+  share_surface = room_beside && !v.output.skin_format.empty() && v.output.skin_adaptivity == 0.0;
   std::future<void> beside_thermal = std::async(std::launch::async, [&] {
     timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
     if (!room_beside) return;

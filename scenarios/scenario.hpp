@@ -114,7 +114,7 @@ struct OutputSpec {
   SourceLocation voxel_size_at;     // where it was set, for messages found when depositing
   double memory_budget_gb = 0.0;    // 0: automatic
   std::string skin_format = "ply";  // file type of the as-printed skin, ply or stl; empty: not written
-  double skin_adaptivity = 0.2;     // 0..1 (sim::extract_skin)
+  double skin_adaptivity = 0.0;     // 0..1 (sim::extract_skin)
   double skin_tolerance_mm = 0.3;   // simplification tolerance (sim::extract_skin)
   bool write_fields = false;        // fields.vtu for ParaView (output.fields: vtu; off by default: large)
   // Toolpath layers (from 0) whose mean temperature against time the report keeps; those the print does not

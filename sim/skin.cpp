@@ -254,10 +254,11 @@ void write_stl(const SkinMesh& mesh, std::ostream& out, const std::filesystem::p
 
 }  // namespace
 
-SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only, double tolerance_mm) {
+FillSurface mesh_fill(const Deposit& deposit, double adaptivity) {
   if (!(adaptivity >= 0.0 && adaptivity <= 1.0))
     throw std::invalid_argument(fmt::format("skin adaptivity must be between 0 and 1, got {}", adaptivity));
-  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return {};
+  FillSurface out;
+  if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return out;
   // The mesher treats grids that are not level sets as fog volumes (inside above the iso value); say so
   // whatever the caller's grid claims.
   openvdb::FloatGrid::ConstPtr fill = deposit.fill;
@@ -266,14 +267,19 @@ SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only
     fog->setGridClass(openvdb::GRID_FOG_VOLUME);
     fill = fog;
   }
-  std::vector<openvdb::Vec3s> points;
-  std::vector<openvdb::Vec3I> triangles;
-  std::vector<openvdb::Vec4I> quads;
-  openvdb::tools::volumeToMesh(*fill, points, triangles, quads, kIsoFill, adaptivity);
-  SkinMesh mesh = outward_triangles(points, triangles, quads);
+  openvdb::tools::volumeToMesh(*fill, out.points_mm, out.triangles, out.quads, kIsoFill, adaptivity);
+  return out;
+}
+
+SkinMesh extract_skin(const FillSurface& surface, bool outer_only, double tolerance_mm) {
+  SkinMesh mesh = outward_triangles(surface.points_mm, surface.triangles, surface.quads);
   if (outer_only) drop_void_shells(mesh);
   if (tolerance_mm > 0.0) simplify(mesh, tolerance_mm);
   return mesh;
+}
+
+SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only, double tolerance_mm) {
+  return extract_skin(mesh_fill(deposit, adaptivity), outer_only, tolerance_mm);
 }
 
 double enclosed_volume_mm3(const SkinMesh& mesh) {

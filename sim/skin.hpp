@@ -9,9 +9,9 @@
 //
 // The skin grows with the part's surface, a bead-by-bead model of the same print (every move a swept tube)
 // with the number of moves: bead_by_bead_stl() gives that model's size for the report to compare with.
-// Measured in triangles at the default 0.3 mm tolerance: the bead model holds 9.5 times the skin's on the
-// default box (flat faces), 3.5 times on the LSAM hull-mould shell, whose flared wall shows a ledge at every
-// layer (docs/PERFORMANCE.md).
+// Measured in triangles at the default 0.3 mm tolerance and adaptivity 0: the bead model holds 8.8 times the
+// skin's on the default box (flat faces), 3.4 times on the LSAM hull-mould shell, whose flared wall shows a
+// ledge at every layer (docs/PERFORMANCE.md).
 #pragma once
 
 #include <cstddef>
@@ -32,17 +32,31 @@ struct SkinMesh {
   std::vector<openvdb::Vec3I> triangles;  // indices into points_mm, counter-clockwise seen from outside
 };
 
+// The deposit's iso-surface fill = 0.5 as OpenVDB's mesher (tools::volumeToMesh) gives it: polygons wound
+// clockwise seen from outside, quads where it can. The skin and the pictures are both made from it.
+struct FillSurface {
+  std::vector<openvdb::Vec3s> points_mm;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+};
+
+// Meshes `deposit`'s fill grid at `adaptivity` (as extract_skin below). Empty for a deposit without
+// material. Throws std::invalid_argument for an adaptivity outside [0, 1].
+FillSurface mesh_fill(const Deposit& deposit, double adaptivity);
+
 // Meshes the skin of `deposit`. `adaptivity` in [0, 1]: 0 keeps about one quad (two triangles) per voxel face
 // crossed by the surface; larger values merge faces where the surface is flat. A deposit without material
 // has no skin: the mesh is empty. With `outer_only`, the closed shells around voids inside the part (pieces
 // of the mesh facing inwards, negative signed volume) are left out: the outer skin. With `tolerance_mm` > 0
 // the mesh is then simplified by edge collapse (meshoptimizer's quadric simplifier) as long as the surface
-// moves less than that. The unsimplified mesh is closed and manifold; the simplified one is closed (every edge
-// met as often one way as the other) and its folds are dropped, but where two sheets of the surface close up
-// an edge may be shared by four triangles (324 of the LSAM mould's 1.6 million edges at 0.3 mm) and a
-// triangle may have no area. Throws std::invalid_argument for an adaptivity outside [0, 1].
+// moves less than that. The unsimplified mesh is closed and manifold; the simplified one is closed (every
+// edge met as often one way as the other) and its folds are dropped, but where two sheets of the surface
+// close up an edge may be shared by four triangles (324 of the LSAM mould's 1.6 million edges at 0.3 mm) and
+// a triangle may have no area. Throws std::invalid_argument for an adaptivity outside [0, 1].
 SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only = true,
                       double tolerance_mm = 0.0);
+// The same from the fill grid's surface already meshed (mesh_fill).
+SkinMesh extract_skin(const FillSurface& surface, bool outer_only = true, double tolerance_mm = 0.0);
 
 // The volume the mesh encloses, mm³: positive when its triangles face outwards.
 double enclosed_volume_mm3(const SkinMesh& mesh);

@@ -236,7 +236,7 @@ TEST(Scenario, ThermalKeysAreReadAndCheckedWhereWritten) {
 TEST(Scenario, OutputFilesForOtherProgramsHaveDefaultsAndCanBeChosen) {
   const Variant def = load_scenario_text(kGood, "test.yaml").variants[0];
   EXPECT_EQ(def.output.skin_format, "ply");
-  EXPECT_DOUBLE_EQ(def.output.skin_adaptivity, 0.2);
+  EXPECT_DOUBLE_EQ(def.output.skin_adaptivity, 0.0);
   EXPECT_FALSE(def.output.write_fields);
   const Scenario chosen = load_scenario_text(
       replace(replace(kGood, "variants:\n",

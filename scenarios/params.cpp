@@ -443,7 +443,7 @@ constexpr ParamSpec kOutput[] = {
     {"skin_adaptivity", T::kQuantity, D::kDimensionless, "0", 0, 1, false,
      "how much the skin mesh merges triangles where the surface is flat before it is simplified: 0 about two "
      "per voxel face crossed, the surface the pictures draw, meshed once for both; 0.2 keeps the ridges "
-     "between beads within about a voxel and simplifies further at a loose skin_tolerance, for a second "
+     "between beads within about a voxel and ends a few per cent smaller once simplified, for a second "
      "meshing; near 1 it may cut through thin walls",
      "OpenVDB tools::volumeToMesh"},
     {"skin_tolerance", T::kQuantity, D::kLength, "0.3 mm", 0, 100, false,

@@ -526,10 +526,11 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
   } shared_surface;
   bool share_surface = false;  // set below, before either uses it
   pictures_in.whole_surface = [&]() -> std::optional<render::SurfaceMesh> {
-    if (!share_surface || deposit.fill->activeVoxelCount() == 0) return std::nullopt;
-    const sim::FillSurface* s = shared_surface.get(deposit);
-    if (s == nullptr) return std::nullopt;
-    return render::surface_mesh(s->points_mm, s->triangles, s->quads, deposit.fill->activeVoxelCount());
+    if (!share_surface) return std::nullopt;
+    const openvdb::Index64 active = deposit.fill->activeVoxelCount();
+    const sim::FillSurface* s = active > 0 ? shared_surface.get(deposit) : nullptr;
+    if (s == nullptr) return std::nullopt;  // the pictures say what is wrong themselves
+    return render::surface_mesh(s->points_mm, s->triangles, s->quads, active);
   };
   struct Beside {
     std::optional<CadCheck> cad;

@@ -156,9 +156,6 @@ void simplify(SkinMesh& mesh, double tolerance_mm) {
   if (mesh.triangles.empty()) return;
   static_assert(sizeof(openvdb::Vec3s) == 3 * sizeof(float) &&
                 sizeof(openvdb::Vec3I) == 3 * sizeof(unsigned));
-  const float* positions = mesh.points_mm[0].asPointer();
-  const float scale = meshopt_simplifyScale(positions, mesh.points_mm.size(), sizeof(openvdb::Vec3s));
-  if (!(scale > 0.0f)) return;
   const std::size_t count =
       std::clamp<std::size_t>(mesh.triangles.size() / kTrianglesPerPiece, 1, kSimplifyPieces);
   openvdb::BBoxd box;
@@ -186,7 +183,8 @@ void simplify(SkinMesh& mesh, double tolerance_mm) {
     for (std::size_t i = 0; i < own.size(); ++i) points[i] = mesh.points_mm[own[i]];
     for (unsigned& v : indices)
       v = static_cast<unsigned>(std::lower_bound(own.begin(), own.end(), v) - own.begin());
-    // meshoptimizer takes the error relative to the extent of the vertices it is given.
+    // meshoptimizer takes the error relative to the extent of the vertices it is given; a slab of no
+    // extent is left as it is.
     const float reach = meshopt_simplifyScale(points[0].asPointer(), points.size(), sizeof(openvdb::Vec3s));
     if (!(reach > 0.0f)) {
       for (unsigned& v : indices) v = own[v];

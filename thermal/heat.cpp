@@ -125,6 +125,7 @@ class PartModel final : public OdeSystem {
     for (std::size_t i = 0; i < n_; ++i)
       for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) exposed_m2_[i] += nb_area_m2_[k];
     loss_.assign(n_, 0.0);
+    born_end_.assign(first_.begin(), first_.end() - 1);
   }
 
   // The integrator's state: the first `capacity` cells (the born ones and room for the next) and the energy
@@ -186,7 +187,13 @@ class PartModel final : public OdeSystem {
       }
       energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
     }
+    const std::size_t before = born_;
     born_ = end;
+    for (std::size_t i = before; i < end; ++i) {
+      find_born_end(i);
+      for (std::size_t k = first_[i]; k < first_[i + 1] && nb_cell_[k] < before; ++k)
+        find_born_end(nb_cell_[k]);
+    }
   }
 
   std::size_t size_of_model() const { return n_; }
@@ -278,6 +285,8 @@ class PartModel final : public OdeSystem {
     nb_area_m2_ = std::move(nb_area);
     loss_.assign(n_, 0.0);
     born_ = born;
+    born_end_.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i) find_born_end(i);
     cap_ = cap;
     y = std::move(state);
   }
@@ -299,11 +308,9 @@ class PartModel final : public OdeSystem {
 
   // dT/dt of born cell i in state y (indexed by cell), K/s; its boundary loss, W, in `loss`.
   double rate(std::size_t i, const double* y, double& loss) const {
-    const std::size_t born = born_;
     const double t = y[i];
     double flux = 0.0;
-    for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
-      flux += nb_g_[k] * (y[nb_cell_[k]] - t);
+    for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) flux += nb_g_[k] * (y[nb_cell_[k]] - t);
     const double tk = t + kKelvinOffset;
     loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
            table_W_K_[i] * (t - bed_c_);
@@ -337,13 +344,13 @@ class PartModel final : public OdeSystem {
 
   void jacobian_times(double /*t*/, std::span<const double> /*y*/, std::span<const double> v,
                       std::span<double> jv) override {
-    const std::size_t born = born_, end = owned_born();
+    const std::size_t end = owned_born();
     const double* all_v = with_halo(v, halo_v_);
     BT_CHECK_OP(jt_capacity_.size(), ==, hi_ - lo_);
     for_cells(lo_, end, [&](std::size_t i) {
       double sum = 0.0;
       const double vi = all_v[i];
-      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k)
+      for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k)
         sum += nb_g_[k] * (all_v[nb_cell_[k]] - vi);
       const double d_loss = jt_loss_derivative_[i - lo_] * vi;
       loss_[i] = d_loss;
@@ -356,10 +363,10 @@ class PartModel final : public OdeSystem {
   }
 
   void jacobian_diagonal(double /*t*/, std::span<const double> y, std::span<double> diagonal) override {
-    const std::size_t born = born_, end = owned_born();
+    const std::size_t end = owned_born();
     for_cells(lo_, end, [&](std::size_t i) {
       double g = 0.0;
-      for (std::size_t k = first_[i], e = first_[i + 1]; k < e && nb_cell_[k] < born; ++k) g += nb_g_[k];
+      for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) g += nb_g_[k];
       diagonal[i - lo_] = -(g + loss_derivative(i, y[i - lo_])) / heat_capacity(i, y[i - lo_]);
     });
     for (std::size_t i = end; i < hi_; ++i) diagonal[i - lo_] = 0.0;
@@ -381,6 +388,12 @@ class PartModel final : public OdeSystem {
   double loss_derivative(std::size_t i, double t) const {
     const double tk = t + kKelvinOffset;
     return exposed_m2_[i] * (h_[i] + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
+  }
+
+  void find_born_end(std::size_t i) {
+    std::size_t k = first_[i];
+    while (k < first_[i + 1] && nb_cell_[k] < born_) ++k;
+    born_end_[i] = k;
   }
 
   // The end of this rank's born cells: [lo_, owned_born()).
@@ -465,6 +478,9 @@ class PartModel final : public OdeSystem {
   std::vector<std::uint32_t> nb_cell_;
   std::vector<double> nb_g_;
   std::vector<double> nb_area_m2_;
+  // Per cell: the end of its born neighbours, [first_[i], born_end_[i]) (kept for the born cells and their
+  // neighbours at every birth), so the integrator's loops need not test each neighbour.
+  std::vector<std::size_t> born_end_;
   mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
   // Per cell of this rank, at the y of the linear solve under way (jacobian_times_setup).
   std::vector<double> jt_capacity_, jt_loss_derivative_;

@@ -126,6 +126,7 @@ class PartModel final : public OdeSystem {
       for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) exposed_m2_[i] += nb_area_m2_[k];
     loss_.assign(n_, 0.0);
     born_end_.assign(first_.begin(), first_.end() - 1);
+    born_g_.assign(n_, 0.0);
   }
 
   // The integrator's state: the first `capacity` cells (the born ones and room for the next) and the energy
@@ -286,6 +287,7 @@ class PartModel final : public OdeSystem {
     loss_.assign(n_, 0.0);
     born_ = born;
     born_end_.resize(n_);
+    born_g_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) find_born_end(i);
     cap_ = cap;
     y = std::move(state);
@@ -365,9 +367,7 @@ class PartModel final : public OdeSystem {
   void jacobian_diagonal(double /*t*/, std::span<const double> y, std::span<double> diagonal) override {
     const std::size_t end = owned_born();
     for_cells(lo_, end, [&](std::size_t i) {
-      double g = 0.0;
-      for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) g += nb_g_[k];
-      diagonal[i - lo_] = -(g + loss_derivative(i, y[i - lo_])) / heat_capacity(i, y[i - lo_]);
+      diagonal[i - lo_] = -(born_g_[i] + loss_derivative(i, y[i - lo_])) / heat_capacity(i, y[i - lo_]);
     });
     for (std::size_t i = end; i < hi_; ++i) diagonal[i - lo_] = 0.0;
     diagonal[hi_ - lo_] = 0.0;
@@ -391,9 +391,11 @@ class PartModel final : public OdeSystem {
   }
 
   void find_born_end(std::size_t i) {
+    double g = 0.0;
     std::size_t k = first_[i];
-    while (k < first_[i + 1] && nb_cell_[k] < born_) ++k;
+    for (; k < first_[i + 1] && nb_cell_[k] < born_; ++k) g += nb_g_[k];
     born_end_[i] = k;
+    born_g_[i] = g;
   }
 
   // The end of this rank's born cells: [lo_, owned_born()).
@@ -481,6 +483,7 @@ class PartModel final : public OdeSystem {
   // Per cell: the end of its born neighbours, [first_[i], born_end_[i]) (kept for the born cells and their
   // neighbours at every birth), so the integrator's loops need not test each neighbour.
   std::vector<std::size_t> born_end_;
+  std::vector<double> born_g_;        // and the sum of their conductances, W/K
   mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
   // Per cell of this rank, at the y of the linear solve under way (jacobian_times_setup).
   std::vector<double> jt_capacity_, jt_loss_derivative_;

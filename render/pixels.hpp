@@ -34,6 +34,7 @@ namespace beadtwin::render {
 struct PreparedScene {
   embree::Device device;
   embree::Scene scene;
+  unsigned quad_geometry = RTC_INVALID_GEOMETRY_ID;  // the surface's quads (SurfaceMesh::quads), if any
 };
 
 namespace pixels {
@@ -373,6 +374,12 @@ class PixelSampler {
     h.triangle = camera_rays_.hit.primID[lane];
     h.u = camera_rays_.hit.u[lane];
     h.v = camera_rays_.hit.v[lane];
+    if (camera_rays_.hit.geomID[lane] == setup_.deposit().scene().quad_geometry) {
+      const TriangleHit on = quad_hit(setup_.deposit().surface(), h.triangle, h.u, h.v);
+      h.triangle = on.triangle;
+      h.u = on.u;
+      h.v = on.v;
+    }
     return h;
   }
 

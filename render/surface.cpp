@@ -16,18 +16,16 @@ Eigen::Vector3f to_eigen(const openvdb::Vec3s& v) {
   return {v.x(), v.y(), v.z()};
 }
 
-// Two triangles per quad, cut along the shorter diagonal: on a bent quad that follows the surface better.
+// Two triangles per quad, cut along the shorter diagonal (on a bent quad that follows the surface better),
+// in Embree's layout (SurfaceMesh::quads): the quad started at the corner before the diagonal's first end.
 void add_quad(const openvdb::Vec4I& q, const std::vector<Eigen::Vector3f>& points,
               std::vector<std::array<std::uint32_t, 3>>& triangles) {
   const float d02 = (points[q[0]] - points[q[2]]).squaredNorm();
   const float d13 = (points[q[1]] - points[q[3]]).squaredNorm();
-  if (d02 <= d13) {
-    triangles.push_back({q[0], q[1], q[2]});
-    triangles.push_back({q[0], q[2], q[3]});
-  } else {
-    triangles.push_back({q[0], q[1], q[3]});
-    triangles.push_back({q[1], q[2], q[3]});
-  }
+  const int s = d02 <= d13 ? 1 : 0;  // a = q[s]; the cut runs from b = q[s + 1] to d = q[s + 3]
+  const auto at = [&](int k) { return q[(s + k) % 4]; };
+  triangles.push_back({at(0), at(1), at(3)});
+  triangles.push_back({at(2), at(3), at(1)});
 }
 
 void compute_normals(SurfaceMesh& mesh) {
@@ -66,6 +64,7 @@ SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
   mesh.triangles.reserve(triangles.size() + 2 * quads.size());
   for (const auto& t : triangles) mesh.triangles.push_back({t[0], t[1], t[2]});
   for (const auto& q : quads) add_quad(q, mesh.points, mesh.triangles);
+  mesh.quads = quads.size();
   for (const auto& p : mesh.points) mesh.bounds.extend(p);
 
   if (mesh.triangles.empty() || mesh.bounds.isEmpty() || (mesh.bounds.sizes().array() <= 0.0f).any())

@@ -1,6 +1,9 @@
 #include "render/surface.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +45,51 @@ TEST(ExtractSurface, FullBlockGivesItsVoxelFaces) {
   EXPECT_LT(0.5 * total, 6 * 20.0 * 20.0);
   EXPECT_GT(0.5 * total, 0.9 * 6 * 20.0 * 20.0);
   EXPECT_LT(area.norm(), 1e-3 * total);
+}
+
+// The quads are cut along their shorter diagonal and laid out as Embree cuts a quad, and a hit on a quad at
+// Embree's quad coordinates is the same point on the triangle quad_hit names (Embree's manual,
+// RTC_GEOMETRY_TYPE_QUAD: the triangles v0, v1, v3 and v2, v3, v1, the second's coordinates taken as 1 - u,
+// 1 - v). A sphere-like blob, so that the quads are bent and their diagonals differ.
+TEST(ExtractSurface, QuadsAreTracedAsEmbreeCutsThem) {
+  auto grid = openvdb::FloatGrid::create(0.0f);
+  grid->setTransform(openvdb::math::Transform::createLinearTransform(1.0));
+  for (int i = -8; i <= 8; ++i)
+    for (int j = -8; j <= 8; ++j)
+      for (int k = -8; k <= 8; ++k) {
+        const float r = std::sqrt(static_cast<float>(i * i + 2 * j * j + 3 * k * k));
+        if (r < 9.0f) grid->tree().setValue(openvdb::Coord(i, j, k), std::clamp(7.5f - r, 0.0f, 1.0f));
+      }
+  const SurfaceMesh mesh = extract_surface(*grid);
+  ASSERT_GT(mesh.quads, 100u);
+  const std::size_t lone = mesh.triangles.size() - 2 * mesh.quads;
+  const auto at = [&](std::uint32_t t, float u, float v) {
+    const auto& c = mesh.triangles[t];
+    return Eigen::Vector3f((1.0f - u - v) * mesh.points[c[0]] + u * mesh.points[c[1]] +
+                           v * mesh.points[c[2]]);
+  };
+  int cut_across = 0;  // quads whose diagonals differ in length
+  for (std::uint32_t k = 0; k < mesh.quads; ++k) {
+    const auto& first = mesh.triangles[lone + 2 * k];
+    const auto& second = mesh.triangles[lone + 2 * k + 1];
+    // a, b, d and c, d, b.
+    ASSERT_EQ(second[1], first[2]);
+    ASSERT_EQ(second[2], first[1]);
+    const Eigen::Vector3f &a = mesh.points[first[0]], &b = mesh.points[first[1]], &c = mesh.points[second[0]],
+                          &d = mesh.points[first[2]];
+    EXPECT_LE((b - d).squaredNorm(), (a - c).squaredNorm() * (1.0f + 1e-6f));
+    if ((b - d).squaredNorm() < 0.99f * (a - c).squaredNorm()) ++cut_across;
+    for (const auto& [u, v] : {std::pair{0.2f, 0.3f}, std::pair{0.9f, 0.6f}, std::pair{0.0f, 1.0f}}) {
+      // Embree's point for (u, v) on the quad a, b, c, d.
+      const Eigen::Vector3f embree = u + v <= 1.0f
+                                         ? Eigen::Vector3f(a + u * (b - a) + v * (d - a))
+                                         : Eigen::Vector3f(c + (1.0f - u) * (d - c) + (1.0f - v) * (b - c));
+      const TriangleHit on = quad_hit(mesh, k, u, v);
+      EXPECT_EQ(on.triangle, lone + 2 * k + (u + v <= 1.0f ? 0 : 1));
+      EXPECT_LT((at(on.triangle, on.u, on.v) - embree).norm(), 1e-4f);
+    }
+  }
+  EXPECT_GT(cut_across, 10);  // both ways of cutting are exercised
 }
 
 TEST(ExtractSurface, NothingDepositedThrows) {

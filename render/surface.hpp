@@ -32,6 +32,13 @@ struct SurfaceMesh {
 // when the grid has no active voxels or no surface at `isovalue`.
 SurfaceMesh extract_surface(const openvdb::FloatGrid& fill, double isovalue = 0.5);
 
+// The same from the mesher's polygons (of a grid with `active_voxels` active voxels, meshed at `isovalue`
+// with adaptivity 0), as sim::mesh_fill gives them: a surface meshed once for the skin and the pictures.
+SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
+                         const std::vector<openvdb::Vec3I>& triangles,
+                         const std::vector<openvdb::Vec4I>& quads, openvdb::Index64 active_voxels,
+                         double isovalue = 0.5);
+
 // A hit on `mesh`'s quad k (0 .. quads - 1) at Embree's quad coordinates (u, v), as a hit on one of its two
 // triangles at that triangle's barycentric coordinates (u: the weight of its second corner, v: its third).
 struct TriangleHit {
@@ -44,12 +51,6 @@ inline TriangleHit quad_hit(const SurfaceMesh& mesh, std::uint32_t k, float u, f
   if (u + v <= 1.0f) return {first, u, v};
   return {first + 1, 1.0f - u, 1.0f - v};
 }
-// The same from the mesher's polygons (of a grid with `active_voxels` active voxels, meshed at `isovalue`
-// with adaptivity 0), as sim::mesh_fill gives them: a surface meshed once for the skin and the pictures.
-SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
-                         const std::vector<openvdb::Vec3I>& triangles,
-                         const std::vector<openvdb::Vec4I>& quads, openvdb::Index64 active_voxels,
-                         double isovalue = 0.5);
 
 // Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes), and
 // only while the grid does not change: its accessor is not registered with the tree (a registration per

@@ -20,8 +20,10 @@ packages=(
 # PrusaSlicer slices a box afresh for the reader's test against a peer slicer's program as that slicer
 # writes it today (GcodeReaderPrusaSlicer.FreshlySlicedBoxReadsAsSliced, skipped without it): 27 more
 # packages, 85 MB to download, 324 MB installed. (CuraEngine's test needs Cura's machine definitions too,
-# which come only with the Qt front end: it stays skipped.)
-test_packages=(chromium clang libclang-rt-14-dev llvm prusa-slicer)
+# which come only with the Qt front end: it stays skipped.) VTK's Python module reads the deposit's .vtu as
+# ParaView does (DepositVtu.VtkReadsIt, skipped without it): 32 more packages, 41 MB to download, 225 MB
+# installed.
+test_packages=(chromium clang libclang-rt-14-dev llvm prusa-slicer python3-vtk9)
 
 case "${1:-}" in
   "") ;;

@@ -34,7 +34,6 @@ namespace beadtwin::render {
 struct PreparedScene {
   embree::Device device;
   embree::Scene scene;
-  unsigned quad_geometry = RTC_INVALID_GEOMETRY_ID;  // the surface's quads (SurfaceMesh::quads), if any
 };
 
 namespace pixels {
@@ -371,15 +370,11 @@ class PixelSampler {
     h.t = camera_rays_.ray.tfar[lane];
     h.face_normal =
         Vec3(camera_rays_.hit.Ng_x[lane], camera_rays_.hit.Ng_y[lane], camera_rays_.hit.Ng_z[lane]);
-    h.triangle = camera_rays_.hit.primID[lane];
-    h.u = camera_rays_.hit.u[lane];
-    h.v = camera_rays_.hit.v[lane];
-    if (camera_rays_.hit.geomID[lane] == setup_.deposit().scene().quad_geometry) {
-      const TriangleHit on = quad_hit(setup_.deposit().surface(), h.triangle, h.u, h.v);
-      h.triangle = on.triangle;
-      h.u = on.u;
-      h.v = on.v;
-    }
+    const TriangleHit on = primitive_hit(setup_.deposit().surface(), camera_rays_.hit.primID[lane],
+                                         camera_rays_.hit.u[lane], camera_rays_.hit.v[lane]);
+    h.triangle = on.triangle;
+    h.u = on.u;
+    h.v = on.v;
     return h;
   }
 

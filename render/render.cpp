@@ -56,36 +56,27 @@ void validate(const RenderOptions& o) {
 
 namespace {
 
-// The mesh's triangles as one geometry and its quads (SurfaceMesh::quads) as another.
+// One Embree quad per primitive of the mesh (SurfaceMesh::quads): a lone triangle a, b, c as the quad a, b,
+// c, c, whose second half has no area; a quad's two triangles (a, b, d), (c, d, b) as the quad a, b, c, d.
 PreparedScene build_scene(const SurfaceMesh& mesh) {
   embree::Device device;
-  const auto add_points = [&](embree::Geometry& geometry) {
-    auto points = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                            mesh.points.size());
-    for (std::size_t i = 0; i < mesh.points.size(); ++i)
-      points[i] = {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()};
-  };
+  embree::Geometry geometry(device, RTC_GEOMETRY_TYPE_QUAD);
+  auto points = geometry.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    points[i] = {mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z()};
   const std::size_t lone = mesh.triangles.size() - 2 * mesh.quads;
-  std::optional<embree::Geometry> triangles, quads;
-  if (lone > 0) {
-    triangles.emplace(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    add_points(*triangles);
-    auto index =
-        triangles->new_buffer<std::array<std::uint32_t, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, lone);
-    std::copy_n(mesh.triangles.begin(), lone, index.begin());
-    triangles->commit();
+  auto index = geometry.new_buffer<std::array<std::uint32_t, 4>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
+                                                                 lone + mesh.quads);
+  for (std::size_t t = 0; t < lone; ++t) {
+    const auto& c = mesh.triangles[t];
+    index[t] = {c[0], c[1], c[2], c[2]};
   }
-  if (mesh.quads > 0) {
-    quads.emplace(device, RTC_GEOMETRY_TYPE_QUAD);
-    add_points(*quads);
-    auto index = quads->new_buffer<std::array<std::uint32_t, 4>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4,
-                                                                 mesh.quads);
-    for (std::size_t k = 0; k < mesh.quads; ++k) {
-      const auto& first = mesh.triangles[lone + 2 * k];  // a, b, d
-      index[k] = {first[0], first[1], mesh.triangles[lone + 2 * k + 1][0], first[2]};
-    }
-    quads->commit();
+  for (std::size_t k = 0; k < mesh.quads; ++k) {
+    const auto& first = mesh.triangles[lone + 2 * k];  // a, b, d
+    index[lone + k] = {first[0], first[1], mesh.triangles[lone + 2 * k + 1][0], first[2]};
   }
+  geometry.commit();
 
   embree::Scene scene(device);
   // Robust: no cracks along shared edges, where a sparkle of background would show through the part. It
@@ -93,10 +84,9 @@ PreparedScene build_scene(const SurfaceMesh& mesh) {
   // (docs/PERFORMANCE.md).
   scene.set_flags(RTC_SCENE_FLAG_ROBUST);
   scene.set_build_quality(RTC_BUILD_QUALITY_MEDIUM);
-  if (triangles) scene.attach(*triangles);
-  const unsigned quad_geometry = quads ? scene.attach(*quads) : RTC_INVALID_GEOMETRY_ID;
+  scene.attach(geometry);
   scene.commit();
-  return {std::move(device), std::move(scene), quad_geometry};
+  return {std::move(device), std::move(scene)};
 }
 
 // The deposit's surface, after the checks the deposit's overloads share.

@@ -21,8 +21,8 @@ struct SurfaceMesh {
   // The last 2 * quads triangles are the mesher's quads, each cut in two along its shorter diagonal and
   // written as Embree cuts a quad: a, b, c, d as (a, b, d), (c, d, b). The ray-tracing scene takes them as
   // quads (half as many primitives to build its hierarchy over: the LSAM mould's 5.3 million triangles in
-  // 0.45 to 0.70 s instead of 0.95 to 1.24 s, render_bench); quad_hit gives the triangle a hit on one lies
-  // on.
+  // 0.45 to 0.70 s instead of 0.95 to 1.24 s, render_bench), the triangles before them each as a quad of
+  // its own; primitive_hit gives the triangle a hit on a primitive lies on.
   std::size_t quads = 0;
   Eigen::AlignedBox3f bounds;  // of the points
 };
@@ -39,15 +39,18 @@ SurfaceMesh surface_mesh(const std::vector<openvdb::Vec3s>& points,
                          const std::vector<openvdb::Vec4I>& quads, openvdb::Index64 active_voxels,
                          double isovalue = 0.5);
 
-// A hit on `mesh`'s quad k (0 .. quads - 1) at Embree's quad coordinates (u, v), as a hit on one of its two
-// triangles at that triangle's barycentric coordinates (u: the weight of its second corner, v: its third).
+// A hit on the ray-tracing scene's primitive p (the lone triangles first, then the quads: SurfaceMesh::quads)
+// at Embree's quad coordinates (u, v), as a hit on one of `mesh`'s triangles at that triangle's barycentric
+// coordinates (u: the weight of its second corner, v: its third).
 struct TriangleHit {
   std::uint32_t triangle = 0;
   float u = 0.0f, v = 0.0f;
 };
-inline TriangleHit quad_hit(const SurfaceMesh& mesh, std::uint32_t k, float u, float v) {
+inline TriangleHit primitive_hit(const SurfaceMesh& mesh, std::uint32_t p, float u, float v) {
+  const auto lone = static_cast<std::uint32_t>(mesh.triangles.size() - 2 * mesh.quads);
+  if (p < lone) return {p, u, v};  // a, b, c, c: only its first half, a, b, c, has area
   // Embree's quad a, b, c, d is the triangles (a, b, d) at (u, v) and (c, d, b) at (1 - u, 1 - v).
-  const auto first = static_cast<std::uint32_t>(mesh.triangles.size() - 2 * mesh.quads + 2 * std::size_t{k});
+  const std::uint32_t first = lone + 2 * (p - lone);
   if (u + v <= 1.0f) return {first, u, v};
   return {first + 1, 1.0f - u, 1.0f - v};
 }

@@ -48,7 +48,7 @@ TEST(ExtractSurface, FullBlockGivesItsVoxelFaces) {
 }
 
 // The quads are cut along their shorter diagonal and laid out as Embree cuts a quad, and a hit on a quad at
-// Embree's quad coordinates is the same point on the triangle quad_hit names (Embree's manual,
+// Embree's quad coordinates is the same point on the triangle primitive_hit names (Embree's manual,
 // RTC_GEOMETRY_TYPE_QUAD: the triangles v0, v1, v3 and v2, v3, v1, the second's coordinates taken as 1 - u,
 // 1 - v). A sphere-like blob, so that the quads are bent and their diagonals differ.
 TEST(ExtractSurface, QuadsAreTracedAsEmbreeCutsThem) {
@@ -84,7 +84,7 @@ TEST(ExtractSurface, QuadsAreTracedAsEmbreeCutsThem) {
       const Eigen::Vector3f embree = u + v <= 1.0f
                                          ? Eigen::Vector3f(a + u * (b - a) + v * (d - a))
                                          : Eigen::Vector3f(c + (1.0f - u) * (d - c) + (1.0f - v) * (b - c));
-      const TriangleHit on = quad_hit(mesh, k, u, v);
+      const TriangleHit on = primitive_hit(mesh, static_cast<std::uint32_t>(lone) + k, u, v);
       EXPECT_EQ(on.triangle, lone + 2 * k + (u + v <= 1.0f ? 0 : 1));
       EXPECT_LT((at(on.triangle, on.u, on.v) - embree).norm(), 1e-4f);
     }

@@ -432,9 +432,10 @@ constexpr ParamSpec kOutput[] = {
     {"voxel_size", T::kQuantity, D::kLength, "0", 0, 1000, false,
      "voxel edge of the deposit model; 0 picks half the smallest layer height", "docs/physics.md"},
     {"memory_budget", T::kQuantity, D::kDimensionless, "0", 0, 1e6, false,
-     "memory the run may use, GB: a run whose deposit, with what the later stages build from it, would "
-     "need more stops with a voxel size that fits; a part mesh with advice to decimate it (0: three "
-     "quarters of the machine's memory)",
+     "memory the run may use, GB: a run whose deposit, with what the later stages build from it (checked "
+     "again once the deposit's surface is known), would need more stops with a voxel size that fits, or "
+     "an automatic voxel size is made coarser; a part mesh with advice to decimate it (0: three quarters "
+     "of the machine's memory)",
      "docs/RELIABILITY.md"},
     {"skin", T::kString, D::kDimensionless, "ply", 0, 0, false,
      "the as-printed outer skin as a triangle mesh in mm (the deposit's surface fill = 0.5): ply, stl "

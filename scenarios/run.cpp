@@ -11,6 +11,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <malloc.h>
 #include <tbb/task_arena.h>
 
 #include "core/atomic_file.hpp"
@@ -108,10 +109,25 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   return out;
 }
 
-// Deposits a variant's toolpath.
-sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress) {
+// Bytes a thermal cell takes while the heat is solved: its links, the integrator's vectors, its history.
+constexpr double kThermalBytesPerCell = 3000.0;
+// Bytes a face of the surface takes once meshed, in everything the run builds from it.
+constexpr double kSurfaceBytesPerFace = 280.0;
+// The rest of what the later stages build: the pictures' frames, the CAD's scene.
+constexpr double kLaterFixedBytes = 100e6;
+// What the run holds once its deposit is made: the program's own, the moves with their motion plan and what
+// the reader kept (per byte of moves), and the deposit's grids with what its work left to the allocator (per
+// byte of grids).
+constexpr double kHeldFixedBytes = 60e6;
+constexpr double kHeldPerMoveByte = 2.1;
+constexpr double kHeldPerGridByte = 1.6;
+
+// Deposits a variant's toolpath, at `voxel_size_mm` when positive (else the variant's).
+sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress,
+                             double voxel_size_mm = 0.0) {
   try {
     sim::DepositOptions o = deposit_options(v);
+    if (voxel_size_mm > 0.0) o.voxel_size_mm = voxel_size_mm;
     o.progress = std::move(progress);
     return sim::deposit(tp, o);
   } catch (const InputError& e) {
@@ -126,6 +142,67 @@ sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function
 bool ranks_agree(thermal::Communicator* ranks, bool ok) {
   if (ranks == nullptr) return ok;
   return ranks->gather_each(ok ? 1.0 : 0.0)[0] != 0.0;
+}
+
+// Bytes as a person reads them: "0.18 GB", "3.4 GB".
+std::string gigabytes(double bytes) {
+  return bytes < 10e9 ? fmt::format("{:.2f} GB", bytes / 1e9) : fmt::format("{:.1f} GB", bytes / 1e9);
+}
+
+// Under mpirun, the voxel size every rank deposits a variant at: rank 0's, said once its deposit is known to
+// fit the memory budget (0: it stopped on that). Every rank calls it once after each variant's deposit.
+// Alone: `mine`.
+double agreed_voxel_size(thermal::Communicator* ranks, double mine) {
+  return ranks == nullptr ? mine : ranks->gather_each(mine)[0];
+}
+
+// Deposits a variant and checks that the rest of the run fits the memory budget once the deposit's surface
+// is known (RunMemory). Over it, a voxel size the scenario set is an error naming one that would
+// fit; an automatic one is made coarser and the toolpath deposited again, with a note. `need` receives the
+// estimate for the deposit returned. Under mpirun the other ranks deposit at the size settled on here
+// (share_thermal).
+sim::Deposit deposit_within_budget(const Variant& v, const Toolpath& tp,
+                                   const std::function<void(double)>& progress, thermal::Communicator* ranks,
+                                   RunMemory& need) {
+  std::vector<std::string> notes;
+  double size = 0.0;  // the variant's
+  for (int attempt = 1;; ++attempt) {
+    // The deposit found too large is gone: what it freed goes back to the system, not left to the allocator
+    // (measured: the PrusaSlicer program's later stages peaked 0.5 GB higher after one at 0.2 mm).
+    if (attempt > 1) (void)::malloc_trim(0);
+    sim::Deposit d = deposit_variant(v, tp, progress, size);
+    need = run_memory(v, tp, d);
+    notes.insert(notes.end(), d.notes.begin(), d.notes.end());
+    if (need.in_turn() <= need.budget) {
+      (void)agreed_voxel_size(ranks, d.voxel_size_mm);
+      d.notes = std::move(notes);
+      return d;
+    }
+    double fitting = need.fitting_voxel_mm(d.voxel_size_mm);
+    if (fitting > 0.0 && fitting <= d.voxel_size_mm)
+      fitting = std::floor(d.voxel_size_mm * 10.0 + 1.0) / 10.0;
+    const std::string faces = d.surface_faces >= 1'000'000
+                                  ? fmt::format("{:.3g} million", static_cast<double>(d.surface_faces) / 1e6)
+                                  : fmt::format("{}", d.surface_faces);
+    const std::string over = fmt::format(
+        "voxel size {} mm: once the deposit's surface is meshed ({} voxel faces) the run would need "
+        "about {}, over the memory budget of {}",
+        d.voxel_size_mm, faces, gigabytes(need.in_turn()), gigabytes(need.budget));
+    if (v.output.voxel_size_mm > 0.0 || fitting == 0.0 || attempt == 3) {
+      (void)agreed_voxel_size(ranks, 0.0);
+      throw InputError(v.output.voxel_size_at, "output.voxel_size",
+                       fitting > 0.0
+                           ? fmt::format("{}; use a voxel size of {} mm or more, or raise "
+                                         "output.memory_budget",
+                                         over, fitting)
+                           : fmt::format("{}; at any voxel size the rest of the run (the program, the "
+                                         "thermal cells and what every run holds) needs about {}: "
+                                         "raise output.memory_budget",
+                                         over, gigabytes(need.least())));
+    }
+    notes.push_back(fmt::format("{}: {} mm used instead", over, fitting));
+    size = fitting;
+  }
 }
 
 // The variants a run runs: the ones named (all when none are).
@@ -487,8 +564,10 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     tbb::task_arena one_core(1);  // the deposit has the other
     return one_core.execute([&] { return cad_check_ahead(v, tp); });
   });
-  const sim::Deposit deposit =
-      stages.run("deposit", [&] { return deposit_variant(v, tp, progress_of("deposit")); });
+  RunMemory need;
+  const sim::Deposit deposit = stages.run("deposit", [&] {
+    return deposit_within_budget(v, tp, progress_of("deposit"), options.thermal_ranks, need);
+  });
   // Only the thermal stage and the pictures coloured by its results need it: the rest reads the deposit
   // alone and runs on a thread of its own beside the thermal stage: the CAD comparison, the deposit's files
   // (shared, below), the pictures' shapes (surfaces and ray-tracing scenes), the pictures that need no
@@ -581,14 +660,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     if (share_surface) shared_surface.done();
   };
   // The pictures' surfaces and scenes and the skin, held or built while the thermal stage holds its own,
-  // add to the run's peak: beside it only while the run's estimate (the deposit's, which counts the later
-  // stages one after another) is within a seventh of the memory budget. Measured on the PrusaSlicer
-  // program's check (docs/PERFORMANCE.md): 9.5 GB in turn and 15.0 GB side by side, 2.9 and 4.5 times its
-  // 3.3 GB estimate; a seventh keeps such a run within the budget with half as much again to spare. (The
-  // LSAM mould, estimated at 2.4 GB, peaks at 1.7 GB side by side, and keeps the overlap on a 19 GB budget.)
-  constexpr double kOverlapPeakPerEstimate = 7.0;
-  const bool room_beside = kOverlapPeakPerEstimate * deposit.memory_estimate_bytes <=
-                           memory_budget_bytes(v.output.memory_budget_gb * 1e9);
+  // add to the run's peak: beside it only while the run would stay within the memory budget so
+  // (RunMemory), else after it.
+  const bool room_beside = need.side_by_side() <= need.budget / 1.1;  // a tenth to spare, as when coarsening
   share_surface = room_beside && !v.output.skin_format.empty() && v.output.skin_adaptivity == 0.0;
   std::future<void> beside_thermal = std::async(std::launch::async, [&] {
     timed(beside.compare_s, [&] { beside.cad = check_against_cad(v, deposit, cad_ahead.get()); });
@@ -677,6 +751,52 @@ std::optional<sim::CadComparison> compare_variant_with_cad(const Variant& varian
   std::optional<CadCheck> check = check_against_cad(variant, deposit, std::nullopt);
   if (!check) return std::nullopt;
   return std::move(check->comparison);
+}
+
+double RunMemory::side_by_side() const {
+  return program + deposit + kLaterFixedBytes + cells + grids + surfaces;
+}
+
+double RunMemory::in_turn() const {
+  return program + deposit + kLaterFixedBytes + std::max(cells + grids, surfaces);
+}
+
+RunMemory RunMemory::at_voxel_ratio(double r) const {
+  RunMemory m = *this;
+  m.deposit *= r * r * r;
+  m.grids *= r * r * r;
+  m.surfaces *= r * r;
+  return m;
+}
+
+double RunMemory::least() const {
+  return program + kLaterFixedBytes + cells;
+}
+
+double RunMemory::fitting_voxel_mm(double voxel_mm) const {
+  const double room = budget / 1.1;   // a tenth to spare
+  if (!(least() < room)) return 0.0;  // no voxel size would do
+  // Tenths of a millimetre above the voxel size, until the run fits: it does before the voxels are as
+  // large as the room left over makes the deposit and its surface.
+  for (double tenths = std::floor(voxel_mm * 10.0 + 1e-9) + 1.0;; tenths += 1.0)
+    if (at_voxel_ratio(voxel_mm / (tenths / 10.0)).in_turn() <= room) return tenths / 10.0;
+}
+
+RunMemory run_memory(const Variant& v, const Toolpath& tp, const sim::Deposit& d) {
+  RunMemory m;
+  const auto bytes = [](const auto& grid) { return grid ? static_cast<double>(grid->memUsage()) : 0.0; };
+  m.program = kHeldFixedBytes + kHeldPerMoveByte * static_cast<double>(tp.moves.size() * sizeof(Move));
+  m.deposit =
+      kHeldPerGridByte * (bytes(d.fill) + bytes(d.time) + bytes(d.layer) + bytes(d.move) + bytes(d.gaps));
+  thermal::MeshOptions mo;
+  mo.cells_across = v.thermal.cells_across;
+  mo.cells_through = v.thermal.cells_through;
+  mo.cell_length_mm = v.thermal.cell_length_mm;
+  m.cells = kThermalBytesPerCell * static_cast<double>(thermal::planned_cell_count(tp, mo));
+  m.grids = bytes(d.layer);  // the thermal stage's grid of cells is as large as the layer grid
+  m.surfaces = kSurfaceBytesPerFace * static_cast<double>(d.surface_faces);
+  m.budget = memory_budget_bytes(v.output.memory_budget_gb * 1e9);
+  return m;
 }
 
 Toolpath variant_toolpath(const Variant& v) {
@@ -831,7 +951,13 @@ bool share_thermal(const Scenario& sc, const RunOptions& options) {
   std::vector<Toolpath> toolpaths;
   for (const Variant* v : chosen) toolpaths.push_back(slice_variant(*v, nullptr));
   for (std::size_t i = 0; i < chosen.size(); ++i) {
-    const sim::Deposit deposit = deposit_variant(*chosen[i], toolpaths[i], {});
+    sim::Deposit deposit = deposit_variant(*chosen[i], toolpaths[i], {});
+    const double agreed = agreed_voxel_size(options.thermal_ranks, deposit.voxel_size_mm);
+    if (agreed == 0.0) return false;        // rank 0 stopped: the run would not fit its memory budget
+    if (agreed != deposit.voxel_size_mm) {  // rank 0 made it coarser to fit
+      deposit = {};
+      deposit = deposit_variant(*chosen[i], toolpaths[i], {}, agreed);
+    }
     (void)run_thermal(*chosen[i], toolpaths[i], deposit, {}, options.thermal_ranks);
   }
   return true;

@@ -696,6 +696,7 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options) {
   out.void_volume_mm3 = porosity.void_voxels * voxel_volume;
   out.porosity = porosity.fraction();
   out.active_voxels = static_cast<std::size_t>(grids.fill->activeVoxelCount());
+  out.surface_faces = porosity.surface_faces;
   BT_CHECK_OP(out.active_voxels, ==, static_cast<std::size_t>(grids.layer->activeVoxelCount()));
   summarise_layers(toolpath, sweeps, out);
   VoidsFound voids = locate_voids(*out.gaps, out, toolpath, voxel_volume, kMaxListedVoids);

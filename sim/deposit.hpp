@@ -135,6 +135,7 @@ struct Deposit {
   double porosity = 0.0;                  // void fraction inside the printed envelope
   double void_volume_mm3 = 0.0;           // empty volume inside the printed envelope (sim/porosity.hpp)
   std::size_t active_voxels = 0;
+  std::size_t surface_faces = 0;  // voxel faces on the part's surface (sim/porosity.hpp)
 
   std::vector<Defect> defects;       // in toolpath order; voids last
   std::vector<LayerDeposit> layers;  // parallel to Toolpath::layers

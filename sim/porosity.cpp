@@ -37,6 +37,27 @@ void append_gap(const FillAccessor& fill, const openvdb::Coord& from, const open
   }
 }
 
+// How many of the six faces of solid voxel `offset` of `leaf` face a voxel that is not solid. Neighbours
+// inside the leaf are read from it directly, the others through the accessor.
+int open_faces(const openvdb::FloatTree::LeafNodeType& leaf, openvdb::Index offset,
+               const FillAccessor& fill) {
+  using Leaf = openvdb::FloatTree::LeafNodeType;
+  constexpr int kLast = static_cast<int>(Leaf::DIM) - 1;
+  const openvdb::Coord local = Leaf::offsetToLocalCoord(offset);
+  const openvdb::Coord ijk = leaf.origin() + local;
+  // Offsets of one step along x, y and z inside a leaf.
+  constexpr openvdb::Index kStride[3] = {Leaf::DIM * Leaf::DIM, Leaf::DIM, 1};
+  int open = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int at = local[axis];
+    openvdb::Coord step(0, 0, 0);
+    step[axis] = 1;
+    open += at > 0 ? leaf.getValue(offset - kStride[axis]) < kSolidFill : !solid(fill, ijk - step);
+    open += at < kLast ? leaf.getValue(offset + kStride[axis]) < kSolidFill : !solid(fill, ijk + step);
+  }
+  return open;
+}
+
 // Runs `per_leaf(leaf, accessor) -> double` over all leaves in parallel; sums in leaf order, so the result
 // never depends on the number of threads.
 template <class F>
@@ -62,6 +83,7 @@ Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels, op
 
   // Material, and the enclosed gaps each leaf's solid voxels open.
   std::vector<std::vector<openvdb::Coord>> gaps(leaves.leafCount());
+  std::vector<std::size_t> faces(leaves.leafCount(), 0);
   result.material_voxels = sum_over_leaves(
       fill, leaves,
       [&](std::size_t n, const openvdb::FloatTree::LeafNodeType& leaf, const FillAccessor& accessor) {
@@ -69,11 +91,13 @@ Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels, op
         for (auto it = leaf.cbeginValueOn(); it; ++it) {
           material += *it;
           if (*it < kSolidFill) continue;
+          faces[n] += open_faces(leaf, it.pos(), accessor);
           for (const openvdb::Coord& step : kPlanSteps)
             append_gap(accessor, it.getCoord(), step, max_gap_voxels, gaps[n]);
         }
         return material;
       });
+  for (const std::size_t f : faces) result.surface_faces += f;
 
   // A gap closed along both x and y is one void: the mask holds each voxel once.
   openvdb::MaskGrid enclosed;

@@ -15,6 +15,8 @@
 // top does not fall on a voxel boundary counts as void.
 #pragma once
 
+#include <cstddef>
+
 #include <openvdb/openvdb.h>
 
 namespace beadtwin::sim {
@@ -22,6 +24,10 @@ namespace beadtwin::sim {
 struct Porosity {
   double material_voxels = 0.0;  // total fill, in voxel volumes
   double void_voxels = 0.0;      // empty volume inside the envelope, in voxel volumes
+  // Faces between a solid voxel (at least half full) and one that is not: the part's surface, inside (voids,
+  // gaps) and out, in voxel faces. The fill's iso-surface at one half, meshed at adaptivity 0, has one quad
+  // for each; what is meshed from the deposit (the pictures' surfaces, the skin) grows with it.
+  std::size_t surface_faces = 0;
   double fraction() const {
     const double envelope = material_voxels + void_voxels;
     return envelope > 0.0 ? void_voxels / envelope : 0.0;

@@ -379,4 +379,12 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   return mesh;
 }
 
+std::size_t planned_cell_count(const Toolpath& toolpath, const MeshOptions& options) {
+  const Chains chains = find_chains(toolpath, options);
+  std::size_t pieces = 0;
+  for (const std::uint32_t n : chains.pieces) pieces += n;
+  return pieces * static_cast<std::size_t>(options.cells_across) *
+         static_cast<std::size_t>(options.cells_through);
+}
+
 }  // namespace beadtwin::thermal

@@ -88,4 +88,8 @@ struct ThermalMesh {
 ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& deposit,
                                const MeshOptions& options = {});
 
+// How many cells build_thermal_mesh would make for `toolpath` with `options` before any lumping, known
+// from the toolpath alone (a pass over its moves): what the thermal stage will hold grows with it.
+std::size_t planned_cell_count(const Toolpath& toolpath, const MeshOptions& options = {});
+
 }  // namespace beadtwin::thermal

@@ -36,8 +36,8 @@ gates:
   - interfaces.too_hot_fraction <= 0.5
 )";
 
-// With little memory to spare (the run's estimate over a seventh of the budget: here a quarter, which the
-// rule before 2026-11-23 evening, half, still let run side by side) the pictures and the deposit's files
+// With too little memory to spare for the pictures' surfaces beside the thermal stage (a budget between the
+// run's peak estimated side by side and in turn, scenarios::RunMemory) the pictures and the deposit's files
 // wait for the thermal stage instead of running beside it: the same figures and the same pictures as with
 // room. With room the skin and the pictures share one meshing of the deposit's surface, without it each
 // meshes its own: the same skin.
@@ -45,10 +45,13 @@ TEST(Run, WithoutRoomBesideTheThermalStageTheSameFiguresAndPictures) {
   const std::string output = "voxel_size: 2.5 mm, skin: ply, fields: vtu";
   const Scenario roomy = load_scenario_text(testing::small_box("tight", "{" + output + "}"), "tight.yaml");
   const Variant& v = roomy.variants.front();
-  const double estimate = sim::deposit(variant_toolpath(v), deposit_options(v)).memory_estimate_bytes;
-  ASSERT_GT(estimate, 0.0);
+  const Toolpath tp = variant_toolpath(v);
+  const RunMemory need = run_memory(v, tp, sim::deposit(tp, deposit_options(v)));
+  ASSERT_LT(need.in_turn(), need.side_by_side());
+  ASSERT_LT(need.side_by_side(), need.budget);  // the roomy run is side by side
   const Scenario tight = load_scenario_text(
-      testing::small_box("tight", fmt::format("{{{}, memory_budget: {:.9g}}}", output, 4.0 * estimate / 1e9)),
+      testing::small_box("tight", fmt::format("{{{}, memory_budget: {:.9g}}}", output,
+                                              0.5 * (need.in_turn() + need.side_by_side()) / 1e9)),
       "tight.yaml");
   const auto base = std::filesystem::temp_directory_path();
   std::map<std::string, nlohmann::json> reports;
@@ -75,6 +78,73 @@ TEST(Run, WithoutRoomBesideTheThermalStageTheSameFiguresAndPictures) {
     EXPECT_TRUE(std::filesystem::exists(base / "tight" / v.name / file)) << file;
   EXPECT_EQ(a["files"]["skin"], b["files"]["skin"]);
   EXPECT_EQ(read_file(base / "roomy" / v.name / "skin.ply"), read_file(base / "tight" / v.name / "skin.ply"));
+}
+
+// A part that is mostly surface, at fine voxels: what is meshed from its surface outgrows a budget its
+// volume fits (the estimate before the deposit passes). Once the deposit shows it (scenarios::RunMemory),
+// an automatic voxel size is made coarser, with a note, and the run fits; a voxel size the scenario set is
+// an error naming its key and a size that would fit, before any file is written.
+TEST(Run, ASurfaceOverTheMemoryBudgetCoarsensAnAutomaticVoxelOrStops) {
+  const auto scenario = [](std::string_view output) {
+    return fmt::format(R"(name: surface
+units: {{length: mm}}
+machine: lsam-ph15
+material: cf-abs-20
+part:
+  open_box: {{size: [200, 150, 40], wall: 4, floor: 1}}
+output: {}
+render: {{width: 160, height: 100}}
+sections:
+  - {{name: floor, z: [0, 1], layer_height: 1, bead_width: 4, boundary: {{passes: 1}}, fill: {{angle: 45 deg}}}}
+  - {{name: walls, z: [1, 40], layer_height: 1, bead_width: 4, boundary: {{passes: 1}}, fill: none}}
+)",
+                       output);
+  };
+  const Scenario roomy = load_scenario_text(scenario("{skin: none}"), "surface.yaml");
+  const Variant& v = roomy.variants.front();
+  const Toolpath tp = variant_toolpath(v);
+  const sim::Deposit fine = sim::deposit(tp, deposit_options(v));
+  ASSERT_DOUBLE_EQ(fine.voxel_size_mm, 0.5);  // half the layer height
+  RunMemory need = run_memory(v, tp, fine);
+  need.budget = need.in_turn() - 1e6;
+  const double budget = need.budget;
+  ASSERT_GT(budget, fine.memory_estimate_bytes);  // the volume fits
+  const double fitting = need.fitting_voxel_mm(fine.voxel_size_mm);
+  ASSERT_GT(fitting, fine.voxel_size_mm);
+
+  const auto out = std::filesystem::temp_directory_path() / "beadtwin_run_surface";
+  std::filesystem::remove_all(out);
+  RunOptions o;
+  o.out_dir = out;
+  const Scenario automatic = load_scenario_text(
+      scenario(fmt::format("{{skin: none, memory_budget: {:.9g}}}", budget / 1e9)), "a.yaml");
+  (void)run_scenario(automatic, o);
+  const nlohmann::json report = nlohmann::json::parse(read_file(out / "report.json"))["variants"][0];
+  EXPECT_DOUBLE_EQ(report["metrics"]["deposit"]["voxel_size_mm"].get<double>(), fitting);
+  const std::string notes = report["notes"].dump();
+  EXPECT_NE(notes.find("voxel size 0.5 mm: once the deposit's surface is meshed"), std::string::npos)
+      << notes;
+  EXPECT_NE(notes.find(fmt::format("{} mm used instead", fitting)), std::string::npos) << notes;
+  const Toolpath same = variant_toolpath(automatic.variants.front());
+  sim::DepositOptions coarser = deposit_options(automatic.variants.front());
+  coarser.voxel_size_mm = fitting;
+  EXPECT_LE(run_memory(automatic.variants.front(), same, sim::deposit(same, coarser)).in_turn(), budget);
+
+  std::filesystem::remove_all(out);
+  const Scenario set = load_scenario_text(
+      scenario(fmt::format("{{skin: none, voxel_size: 0.5 mm, memory_budget: {:.9g}}}", budget / 1e9)),
+      "s.yaml");
+  try {
+    (void)run_scenario(set, o);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), "output.voxel_size");
+    EXPECT_EQ(e.where().line, set.variants.front().output.voxel_size_at.line);
+    EXPECT_NE(std::string(e.what()).find(fmt::format("use a voxel size of {} mm or more", fitting)),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / "report.json"));
 }
 
 TEST(Run, SmallScenarioEndToEnd) {

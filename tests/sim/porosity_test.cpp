@@ -1,8 +1,11 @@
 // Tests of the local porosity field (sim/porosity.hpp) on hand-made grids whose answer can be counted.
 #include "sim/porosity.hpp"
 
+#include <vector>
+
 #include <gtest/gtest.h>
 
+#include <openvdb/tools/VolumeToMesh.h>
 #include <tbb/global_control.h>
 
 namespace beadtwin::sim {
@@ -28,6 +31,25 @@ struct Channel {
         }
   }
 };
+
+// The surface in voxel faces: the block's six sides of 11 x 11 faces less the channel's two mouths, and the
+// channel's four walls 11 voxels long; the block spans leaves (8 voxels a side), so faces are counted across
+// their borders too. The fill's iso-surface at one half, meshed at adaptivity 0, has a quad for each.
+TEST(Porosity, CountsTheSurfaceInVoxelFaces) {
+  const Channel c;
+  const Porosity p = measure_porosity(*c.fill, 3);
+  EXPECT_EQ(p.surface_faces, 6u * 121u - 2u + 4u * 11u);
+  std::vector<openvdb::Vec3s> points;
+  std::vector<openvdb::Vec3I> triangles;
+  std::vector<openvdb::Vec4I> quads;
+  openvdb::tools::volumeToMesh(*c.fill, points, triangles, quads, 0.5, 0.0);
+  EXPECT_EQ(quads.size() + triangles.size() / 2, p.surface_faces);
+  // A voxel half full is solid; one a little less is not.
+  openvdb::FloatGrid::Ptr two = openvdb::FloatGrid::create(0.0f);
+  two->tree().setValue({0, 0, 0}, 0.5f);
+  two->tree().setValue({1, 0, 0}, 0.49f);
+  EXPECT_EQ(measure_porosity(*two, 3).surface_faces, 6u);
+}
 
 TEST(LocalPorosity, CountsTheVoidInTheCubeAroundAVoxel) {
   const Channel c;

@@ -241,6 +241,7 @@ TEST(ThermalMeshTest, AnAutomaticCellLengthIsMadeLongerWhenItWouldMakeTooManyCel
   const ThermalMesh mesh = build_thermal_mesh(toolpath, deposit, o);
   EXPECT_NEAR(mesh.cell_length_factor, kLength / (2.0 * kBeadWidth) * 3.0 / 9.0, 1e-12);
   EXPECT_EQ(mesh.cells.size(), 9u);
+  EXPECT_EQ(planned_cell_count(toolpath, o), mesh.cells.size());  // known before the deposit's voxels
   // The note gives the count there would have been as a count (21), not as "2.13e-05 million".
   ASSERT_EQ(mesh.notes.size(), 1u);
   EXPECT_NE(mesh.notes[0].find("there would be about 21, too many"), std::string::npos) << mesh.notes[0];
@@ -248,6 +249,7 @@ TEST(ThermalMeshTest, AnAutomaticCellLengthIsMadeLongerWhenItWouldMakeTooManyCel
   const ThermalMesh asked = build_thermal_mesh(toolpath, deposit, o);
   EXPECT_EQ(asked.cell_length_factor, 1.0);
   EXPECT_EQ(asked.cells.size(), 21u);
+  EXPECT_EQ(planned_cell_count(toolpath, o), asked.cells.size());
   EXPECT_EQ(build_thermal_mesh(toolpath, deposit).cell_length_factor, 1.0);  // 21 cells are few
 }
 

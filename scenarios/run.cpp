@@ -78,14 +78,19 @@ slicer::GcodeOptions gcode_options(const Variant& v) {
   return o;
 }
 
+// How the variant's thermal settings cut its beads into cells.
+thermal::MeshOptions thermal_mesh_options(const Variant& v) {
+  thermal::MeshOptions o;
+  o.cells_across = v.thermal.cells_across;
+  o.cells_through = v.thermal.cells_through;
+  o.cell_length_mm = v.thermal.cell_length_mm;
+  return o;
+}
+
 ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
                        std::function<void(double)> progress, thermal::Communicator* ranks) {
   ThermalRun out;
-  thermal::MeshOptions mo;
-  mo.cells_across = v.thermal.cells_across;
-  mo.cells_through = v.thermal.cells_through;
-  mo.cell_length_mm = v.thermal.cell_length_mm;
-  out.mesh = thermal::build_thermal_mesh(tp, deposit, mo);
+  out.mesh = thermal::build_thermal_mesh(tp, deposit, thermal_mesh_options(v));
   thermal::HeatOptions ho;
   ho.rel_tol = v.thermal.rel_tol;
   ho.abs_tol_k = v.thermal.abs_tol_k;
@@ -178,9 +183,7 @@ sim::Deposit deposit_within_budget(const Variant& v, const Toolpath& tp,
       d.notes = std::move(notes);
       return d;
     }
-    double fitting = need.fitting_voxel_mm(d.voxel_size_mm);
-    if (fitting > 0.0 && fitting <= d.voxel_size_mm)
-      fitting = std::floor(d.voxel_size_mm * 10.0 + 1.0) / 10.0;
+    const double fitting = need.fitting_voxel_mm(d.voxel_size_mm);  // above the voxel size, or 0
     const std::string faces = d.surface_faces >= 1'000'000
                                   ? fmt::format("{:.3g} million", static_cast<double>(d.surface_faces) / 1e6)
                                   : fmt::format("{}", d.surface_faces);
@@ -788,11 +791,8 @@ RunMemory run_memory(const Variant& v, const Toolpath& tp, const sim::Deposit& d
   m.program = kHeldFixedBytes + kHeldPerMoveByte * static_cast<double>(tp.moves.size() * sizeof(Move));
   m.deposit =
       kHeldPerGridByte * (bytes(d.fill) + bytes(d.time) + bytes(d.layer) + bytes(d.move) + bytes(d.gaps));
-  thermal::MeshOptions mo;
-  mo.cells_across = v.thermal.cells_across;
-  mo.cells_through = v.thermal.cells_through;
-  mo.cell_length_mm = v.thermal.cell_length_mm;
-  m.cells = kThermalBytesPerCell * static_cast<double>(thermal::planned_cell_count(tp, mo));
+  m.cells =
+      kThermalBytesPerCell * static_cast<double>(thermal::planned_cell_count(tp, thermal_mesh_options(v)));
   m.grids = bytes(d.layer);  // the thermal stage's grid of cells is as large as the layer grid
   m.surfaces = kSurfaceBytesPerFace * static_cast<double>(d.surface_faces);
   m.budget = memory_budget_bytes(v.output.memory_budget_gb * 1e9);

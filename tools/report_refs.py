@@ -4,7 +4,7 @@
 Runs `beadtwin run` on every shipped scenario (scenarios/*.yaml, the built-in default among them) and
 `beadtwin check` on every shipped program (scenarios/programs/), and compares each report.json with its
 reference in tests/data/reports/, leaving out what changes from run to run: the wall and stage times and
-the scenario file's path. The references are regenerated only in a commit that says why they changed.
+the scenario file's path, with the checkout's own path written as <repo>. The references are regenerated only in a commit that says why they changed.
 
   report_refs.py compare BEADTWIN [--only NAME ...]   run and compare; exit 1 on any difference
   report_refs.py update BEADTWIN [--only NAME ...]    run and write the references
@@ -40,10 +40,13 @@ def jobs():
 
 
 def strip(value):
+    """The report without its volatile keys, with the checkout's path written as <repo>."""
     if isinstance(value, dict):
         return {k: strip(v) for k, v in value.items() if k not in VOLATILE}
     if isinstance(value, list):
         return [strip(v) for v in value]
+    if isinstance(value, str):
+        return value.replace(str(ROOT), "<repo>")
     return value
 
 

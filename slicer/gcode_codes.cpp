@@ -129,6 +129,8 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   };
   o.melt_on = codes(d.melt_on);
   o.melt_off = codes(d.melt_off);
+  o.heat_on = codes(d.heat_on);
+  o.heat_off = codes(d.heat_off);
   o.roller_down = codes(d.roller_down);
   o.roller_up = codes(d.roller_up);
   o.prime = codes(d.prime_code);

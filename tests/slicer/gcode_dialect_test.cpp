@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/flow.hpp"
@@ -67,32 +68,36 @@ TEST(GcodeDialect, RelativeAndAbsoluteEWordsFeedTheSameFilament) {
   EXPECT_NEAR(filament_total(absolute, true), expected, 1e-3);
 }
 
-// Seed 002's heating codes: M27 at the program's start, M28 at its end, read back as heater events.
+// Heating codes: M27 at the program's start, M28 at its end (seed 002's), or a machine's own; read back as
+// heater events with the machine's codes.
 TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
   const Toolpath tp = small_part();
-  GcodeDialect d;
-  d.heat_on = "M27";
-  d.heat_off = "M28";
-  const std::string program = write_gcode(tp, d, {});
-  const std::size_t on = program.find("\nM27 (heaters on)\n"), off = program.find("\nM28 (heaters off)\n");
-  ASSERT_NE(on, std::string::npos);
-  ASSERT_NE(off, std::string::npos);
-  EXPECT_LT(on, program.find("(LAYER 0"));
-  EXPECT_GT(off, program.rfind("(LAYER "));
-  EXPECT_LT(off, program.find("\nM30"));
-  std::istringstream in(program);
-  const Toolpath read = read_gcode(in, "heat.nc", reader_options_for(d, nullptr));
-  int heat_on = 0, heat_off = 0;
-  for (const Move& m : read.moves) {
-    heat_on += m.event == ExtruderEvent::kHeatOn;
-    heat_off += m.event == ExtruderEvent::kHeatOff;
+  for (const auto& [on_code, off_code] : {std::pair{"M27", "M28"}, std::pair{"M127", "M128"}}) {
+    GcodeDialect d;
+    d.heat_on = on_code;
+    d.heat_off = off_code;
+    const std::string program = write_gcode(tp, d, {});
+    const std::size_t on = program.find(fmt::format("\n{} (heaters on)\n", on_code));
+    const std::size_t off = program.find(fmt::format("\n{} (heaters off)\n", off_code));
+    ASSERT_NE(on, std::string::npos) << on_code;
+    ASSERT_NE(off, std::string::npos) << off_code;
+    EXPECT_LT(on, program.find("(LAYER 0"));
+    EXPECT_GT(off, program.rfind("(LAYER "));
+    EXPECT_LT(off, program.find("\nM30"));
+    std::istringstream in(program);
+    const Toolpath read = read_gcode(in, "heat.nc", reader_options_for(d, nullptr));
+    int heat_on = 0, heat_off = 0;
+    for (const Move& m : read.moves) {
+      heat_on += m.event == ExtruderEvent::kHeatOn;
+      heat_off += m.event == ExtruderEvent::kHeatOff;
+    }
+    EXPECT_EQ(heat_on, 1) << on_code;
+    EXPECT_EQ(heat_off, 1) << off_code;
+    // Written again, the events are the codes, once each.
+    const std::string again = write_gcode(read, d, {});
+    EXPECT_EQ(again.find(on_code), again.rfind(on_code));
+    EXPECT_NE(again.find(on_code), std::string::npos);
   }
-  EXPECT_EQ(heat_on, 1);
-  EXPECT_EQ(heat_off, 1);
-  // Written again, the events are the codes, once each.
-  const std::string again = write_gcode(read, d, {});
-  EXPECT_EQ(again.find("M27"), again.rfind("M27"));
-  EXPECT_NE(again.find("M27"), std::string::npos);
 }
 
 // A CNC controller (Fanuc, Siemens; ISO 6983-1) runs G0 at its rapid traverse whatever F says; Marlin runs it

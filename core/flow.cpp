@@ -8,18 +8,6 @@
 
 namespace beadtwin {
 
-std::string_view to_string(ExtruderKind kind) {
-  switch (kind) {
-    case ExtruderKind::kGearPump:
-      return "gear-pump";
-    case ExtruderKind::kScrew:
-      return "screw";
-    case ExtruderKind::kFilament:
-      return "filament";
-  }
-  return "?";
-}
-
 void validate(const Extruder& e) {
   std::string problems;
   const auto problem = [&](const std::string& text) { problems += (problems.empty() ? "" : "; ") + text; };

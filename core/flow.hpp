@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/enum_names.hpp"
 #include "core/toolpath.hpp"
 
 namespace beadtwin {
@@ -25,7 +26,16 @@ enum class ExtruderKind : std::uint8_t {
   kFilament,  // filament drive (E words, eq. 1)
 };
 
-std::string_view to_string(ExtruderKind kind);
+inline constexpr EnumName<ExtruderKind> kExtruderKindNames[] = {{ExtruderKind::kGearPump, "gear_pump"},
+                                                                {ExtruderKind::kScrew, "screw"},
+                                                                {ExtruderKind::kFilament, "filament"}};
+constexpr std::span<const EnumName<ExtruderKind>> enum_names(ExtruderKind) {
+  return kExtruderKindNames;
+}
+// The kind's name in machine files and messages: gear_pump, screw or filament.
+inline std::string_view to_string(ExtruderKind kind) {
+  return name_of(kind);
+}
 
 // What the machine's extruder can do. Inputs give the displacement in cm³/rev; it is kept in mm³/rev
 // (1 cm³ = 1000 mm³) inside.

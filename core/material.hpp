@@ -10,6 +10,8 @@ namespace beadtwin {
 
 struct Material {
   std::string name;
+  std::string description = "-";
+  std::string sources;  // where the values come from, as the material file says (free text)
   double density_kg_m3 = 1140.0;
   double specific_heat_J_kgK = 1640.0;
   // When not empty, the specific heat by temperature instead: (°C, J/kg·K) points in increasing temperature,

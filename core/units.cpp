@@ -25,7 +25,6 @@ struct DimensionDef {
   std::vector<UnitDef> units;  // first one is the internal unit
 };
 
-constexpr double kLbKg = 0.45359237;
 constexpr double kIn3Mm3 = 25.4 * 25.4 * 25.4;
 
 const std::vector<DimensionDef>& table() {
@@ -45,7 +44,7 @@ const std::vector<DimensionDef>& table() {
         {"F", 5.0 / 9.0, -32.0 * 5.0 / 9.0},
         {"degF", 5.0 / 9.0, -32.0 * 5.0 / 9.0}}},
       {Dimension::kTime, "time", {{"s", 1}, {"ms", 1e-3}, {"min", 60}, {"h", 3600}}},
-      {Dimension::kMass, "mass", {{"kg", 1}, {"g", 1e-3}, {"lb", kLbKg}, {"t", 1000}}},
+      {Dimension::kMass, "mass", {{"kg", 1}, {"g", 1e-3}, {"lb", kKgPerLb}, {"t", 1000}}},
       {Dimension::kSpeed,
        "speed",
        {{"mm/s", 1},
@@ -71,8 +70,8 @@ const std::vector<DimensionDef>& table() {
         {"kg/h", 1.0 / 3600},
         {"g/s", 1e-3},
         {"g/min", 1e-3 / 60},
-        {"lb/h", kLbKg / 3600},
-        {"lb/min", kLbKg / 60}}},
+        {"lb/h", kKgPerLb / 3600},
+        {"lb/min", kKgPerLb / 60}}},
       {Dimension::kVolume,
        "volume",
        {{"mm3", 1},
@@ -84,7 +83,9 @@ const std::vector<DimensionDef>& table() {
         {"in3/rev", kIn3Mm3}}},
       {Dimension::kAngle, "angle", {{"deg", 1}, {"°", 1}, {"rad", 180.0 / kPi}}},
       {Dimension::kFraction, "fraction", {{"", 1}, {"%", 0.01}}},
-      {Dimension::kDensity, "density", {{"kg/m3", 1}, {"g/cm3", 1000}, {"lb/in3", kLbKg / (kIn3Mm3 * 1e-9)}}},
+      {Dimension::kDensity,
+       "density",
+       {{"kg/m3", 1}, {"g/cm3", 1000}, {"lb/in3", kKgPerLb / (kIn3Mm3 * 1e-9)}}},
       {Dimension::kSpecificHeat,
        "specific heat",
        {{"J/kgK", 1}, {"J/(kg*K)", 1}, {"J/kg/K", 1}, {"kJ/kgK", 1000}, {"kJ/(kg*K)", 1000}}},

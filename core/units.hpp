@@ -59,6 +59,7 @@ double from_internal(double value, std::string_view unit, Dimension dim);
 
 // Handy constants for code that must state a unit (for example writers in inches).
 inline constexpr double kMmPerInch = 25.4;
+inline constexpr double kKgPerLb = 0.45359237;
 inline constexpr double kKelvinOffset = 273.15;
 inline constexpr double kPi = 3.14159265358979323846;
 

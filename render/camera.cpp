@@ -43,22 +43,6 @@ void check_margins(const Margins& m) {
 
 }  // namespace
 
-std::string_view to_string(View view) {
-  switch (view) {
-    case View::kIsometric:
-      return "isometric";
-    case View::kTop:
-      return "top";
-    case View::kFront:
-      return "front";
-    case View::kSide:
-      return "side";
-    case View::kUser:
-      return "user";
-  }
-  return "?";
-}
-
 Camera Camera::framed(View view, const Eigen::AlignedBox3f& bounds, int width, int height,
                       double field_of_view_deg, double margin) {
   BT_CHECK(view != View::kUser);

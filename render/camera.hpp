@@ -16,11 +16,23 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "core/enum_names.hpp"
+
 namespace beadtwin::render {
 
 enum class View { kIsometric, kTop, kFront, kSide, kUser };
+inline constexpr EnumName<View> kViewNames[] = {{View::kIsometric, "isometric"},
+                                                {View::kTop, "top"},
+                                                {View::kFront, "front"},
+                                                {View::kSide, "side"},
+                                                {View::kUser, "user"}};
+constexpr std::span<const EnumName<View>> enum_names(View) {
+  return kViewNames;
+}
 // The view's name in scenario files ("isometric", "top", "front", "side", "user").
-std::string_view to_string(View view);
+inline std::string_view to_string(View view) {
+  return name_of(view);
+}
 
 // A camera as a scenario states it.
 struct CameraSpec {

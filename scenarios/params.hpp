@@ -1,45 +1,31 @@
-// Every scenario parameter declared once (STYLE.md rule 4): key, type, unit, range, default, meaning and
-// where it comes from. The loader reads through these tables, so validation, defaults and documentation
-// can never disagree.
+// The declarations of a scenario's parameters (core/param.hpp): one per key, bound to the member it sets.
+// A section's are the slicer's (slicer::section_params); the rest are declared here, beside nothing else:
+// the scenario reader reads every block through them, `beadtwin params` and docs/parameters.md print them,
+// and the report lists a variant's parameters from them.
 #pragma once
 
-#include <limits>
 #include <span>
 #include <string>
-#include <string_view>
 
-#include "core/units.hpp"
-
-namespace beadtwin::scenarios {
-
-enum class ParamType { kQuantity, kInteger, kBool, kString };
-
-struct ParamSpec {
-  std::string_view key;  // dotted path inside its block ("boundary.passes")
-  ParamType type = ParamType::kQuantity;
-  Dimension dim = Dimension::kDimensionless;
-  std::string_view default_text;  // empty: required
-  double min = -std::numeric_limits<double>::infinity();
-  double max = std::numeric_limits<double>::infinity();
-  bool min_exclusive = false;  // the value must be strictly above min
-  std::string_view meaning;
-  std::string_view source;  // patent paragraph, paper, or "estimate"
-  bool derived = false;     // absent means "derived from other parameters" (the meaning says how)
-};
-
-// The blocks of a scenario and of the machine and material files.
-std::span<const ParamSpec> section_params();
-std::span<const ParamSpec> machine_params();
-std::span<const ParamSpec> material_params();
-std::span<const ParamSpec> output_params();
-std::span<const ParamSpec> thermal_params();
-std::span<const ParamSpec> tool_params();
-std::span<const ParamSpec> render_params();
-std::span<const ParamSpec> image_params();
-
-}  // namespace beadtwin::scenarios
+#include "core/material.hpp"
+#include "core/param.hpp"
+#include "scenarios/scenario.hpp"
 
 namespace beadtwin::scenarios {
+
+// The keys of each block of a scenario and of the machine and material files. Declarations without a
+// member are read by their block's own code (scenarios/scenario.cpp), which says how.
+std::span<const Param<Scenario>> scenario_params();  // the top level of a scenario file
+std::span<const Param<Machine>> machine_params();
+std::span<const Param<Material>> material_params();
+std::span<const Param<PartSpec>> part_params();
+std::span<const Param<Tool>> tool_params();
+std::span<const Param<OutputSpec>> output_params();
+std::span<const Param<ThermalSpec>> thermal_params();
+std::span<const Param<RenderSpec>> render_params();
+std::span<const Param<ImageSpec>> image_params();
+std::span<const Param<render::CameraSpec>> camera_params();  // an image's or the progress frames' view
+std::span<const Param<ProgressSpec>> progress_params();
 
 // Every parameter table as Markdown: what `beadtwin params` prints and docs/parameters.md holds.
 std::string params_markdown();

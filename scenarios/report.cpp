@@ -12,6 +12,7 @@
 #include "core/atomic_file.hpp"
 #include "render/colormap.hpp"
 #include "scenarios/colours.hpp"
+#include "scenarios/report_parameters.hpp"
 #include "scenarios/report_scripts.hpp"
 #include "scenarios/report_text.hpp"
 #include "scenarios/run.hpp"
@@ -36,44 +37,6 @@ json stats_json(const Stats3& s) {
 }
 
 // Polygons as [[[x, y], ...], ...] in mm.
-json polygons_json(const slicer::Polygons& polys) {
-  json out = json::array();
-  for (const auto& poly : polys) {
-    json pts = json::array();
-    for (const auto& p : poly) pts.push_back({p.x(), p.y()});
-    out.push_back(std::move(pts));
-  }
-  return out;
-}
-
-json fill_json(const slicer::FillParams& f) {
-  return {{"style", slicer::to_string(f.style)},
-          {"angle_deg", f.angle_deg},
-          {"angle_step_deg", f.angle_step_deg},
-          {"overlap", f.overlap},
-          {"max_overlap", f.max_overlap},
-          {"max_sparse_spacing_mm", f.max_sparse_spacing_mm},
-          {"sparse_fill_gaps", f.sparse_fill_gaps},
-          {"boundary_overlap", f.boundary_overlap},
-          {"boundary_side_overlap", f.boundary_side_overlap},
-          {"max_end_overlap_mm", f.max_end_overlap_mm},
-          {"max_side_overlap_mm", f.max_side_overlap_mm},
-          {"optimize_to_surface", f.optimize_to_surface},
-          {"link_with_rapids", f.link_with_rapids},
-          {"min_length_mm", f.min_length_mm},
-          {"lead_in_mm", f.lead_in_mm},
-          {"lead_out_mm", f.lead_out_mm},
-          {"force_tangential_lead_out", f.tangential_lead_out},
-          {"fillet_radius", f.fillet_radius},
-          {"corner_melt_reduction", f.corner_melt_reduction},
-          {"corner_speed_mm_s", f.corner_speed_mm_s},
-          {"turns_outside", f.turns_outside},
-          {"line_matching_limit_mm", f.line_matching_limit_mm},
-          {"line_extension_mm", f.line_extension_mm},
-          {"step_tolerance_mm", f.step_tolerance_mm},
-          {"angle_tolerance_deg", f.angle_tolerance_deg}};
-}
-
 // The rest of the part-versus-CAD comparison, or null without a CAD.
 json cad_json(const Metrics& m) {
   if (!m.cad) return nullptr;
@@ -104,79 +67,6 @@ json cad_json(const Metrics& m) {
            {{"white_at_mm", number_or_null(c.requested_stock_mm)},
             {"blue_at_mm", number_or_null(c.requested_stock_mm - c.map_half_range_mm)},
             {"red_at_mm", number_or_null(c.requested_stock_mm + c.map_half_range_mm)}}}};
-}
-
-json parameters_json(const Variant& v) {
-  json sections = json::array();
-  for (const auto& s : v.sections) {
-    sections.push_back(
-        {{"name", s.name},
-         {"z_mm", {s.z_min_mm, s.z_max_mm}},
-         {"layer_height_mm", s.layer_height_mm},
-         {"bead_width_mm", s.bead_width_mm},
-         {"speed_mm_s", s.print_speed_mm_s},
-         {"travel_speed_mm_s", s.travel_speed_mm_s},
-         {"start_point_mm", {s.start_point_mm.x(), s.start_point_mm.y()}},
-         {"seam_offset_mm", s.seam_offset_mm},
-         {"chord_tolerance_mm", s.chord_tolerance_mm},
-         {"min_polygon_area_mm2", s.min_polygon_area_mm2},
-         {"contact_offset_mm", s.contact_offset_mm},
-         {"shift_mm", {s.shift_mm.x(), s.shift_mm.y()}},
-         {"outer_stock_mm", s.outer_stock_mm},
-         {"inner_stock_mm", s.inner_stock_mm},
-         {"combine_stock_offset", s.combine_stock_offset},
-         {"containment",
-          {{"outside", polygons_json(s.containment_outside)},
-           {"inside", polygons_json(s.containment_inside)}}},
-         {"slice_plane", slicer::to_string(s.slice_plane)},
-         {"shares_wall_with", s.shares_wall_with},
-         {"pull_back",
-          {{"length_mm", s.pull_back.length_mm},
-           {"extension_mm", s.pull_back.extension_mm},
-           {"min_turn_deg", s.pull_back.min_turn_deg}}},
-         {"smoothing",
-          {{"smooth_curves", s.smoothing.smooth_curves},
-           {"never_start_in_corner", s.smoothing.never_start_in_corner},
-           {"min_polygon_angle_deg", s.smoothing.min_polygon_angle_deg}}},
-         {"voids",
-          {{"detect", s.voids.detect}, {"fill", s.voids.fill}, {"min_width_mm", s.voids.min_width_mm}}},
-         {"merge_slices", s.merge_slices},
-         {"ignore_inner_contours", s.ignore_inner_contours},
-         {"layer_order", s.fill_first ? "fill_first" : "boundary_first"},
-         {"clearance_height_mm", s.clearance_height_mm},
-         {"initial_clearance_height_mm", s.initial_clearance_height_mm},
-         {"melt_reduction", s.melt_reduction},
-         {"rafts", s.rafts},
-         {"stock_on_top", s.stock_on_top},
-         {"boundary",
-          {{"passes", s.boundary.passes},
-           {"reverse_alternate", s.boundary.reverse_alternate},
-           {"lead_in_mm", s.boundary.lead_in_mm},
-           {"lead_out_mm", s.boundary.lead_out_mm},
-           {"force_tangential_lead_out", s.boundary.tangential_lead_out},
-           {"start_stop_overlap", s.boundary.start_stop_overlap},
-           {"min_pass_length_mm", s.boundary.min_pass_length_mm},
-           {"thin_walls", s.boundary.thin_walls},
-           {"thin_wall_max_width_mm", s.boundary.thin_wall_max_width_mm},
-           {"thin_wall_one_bead_width_mm", s.boundary.thin_wall_one_bead_width_mm},
-           {"thin_wall_thickness_deviation_mm", s.boundary.thin_wall_thickness_deviation_mm},
-           {"thin_wall_stitching_gap_mm", s.boundary.thin_wall_stitching_gap_mm},
-           {"thin_wall_intersection_distance_mm", s.boundary.thin_wall_intersection_distance_mm},
-           {"overlap", s.boundary.overlap},
-           {"max_overlap", s.boundary.max_overlap},
-           {"inside_out", s.boundary.inside_out}}},
-         {"fill", s.fill.enabled ? fill_json(s.fill) : json("none")}});
-  }
-  if (v.program)
-    return {{"machine", v.machine.name},
-            {"material", v.material.name},
-            {"program", v.program_file.string()},
-            {"program_read", v.program_summary},
-            {"voxel_size_mm", v.output.voxel_size_mm},
-            {"overrides", v.overrides}};
-  return {{"machine", v.machine.name}, {"material", v.material.name},
-          {"part", v.part.describe()}, {"voxel_size_mm", v.output.voxel_size_mm},
-          {"overrides", v.overrides},  {"sections", sections}};
 }
 
 // The files for other programs, with their sizes; a file not written is null.

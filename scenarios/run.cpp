@@ -738,9 +738,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
 sim::DepositOptions deposit_options(const Variant& v) {
   sim::DepositOptions o;
   o.voxel_size_mm = v.output.voxel_size_mm;
-  o.flattening = v.machine.kind == "roller-gantry"   ? sim::Flattening::kRoller
-                 : v.machine.kind == "tamper-gantry" ? sim::Flattening::kTamper
-                                                     : sim::Flattening::kNozzle;
+  o.flattening = v.machine.kind == MachineKind::kRollerGantry   ? sim::Flattening::kRoller
+                 : v.machine.kind == MachineKind::kTamperGantry ? sim::Flattening::kTamper
+                                                                : sim::Flattening::kNozzle;
   o.roller_width_mm = v.machine.roller_width_mm;
   o.roller_diameter_mm = v.machine.roller_diameter_mm;
   o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/flow.hpp"
 #include "core/material.hpp"
@@ -25,21 +26,50 @@
 
 namespace beadtwin::scenarios {
 
+// What flattens the bead, and so how the machine lays it: a roller following the nozzle, a tamper, or
+// neither (a robot cell's or a desktop printer's round bead).
+enum class MachineKind : std::uint8_t { kRollerGantry, kTamperGantry, kRobot, kDesktop };
+inline constexpr EnumName<MachineKind> kMachineKindNames[] = {{MachineKind::kRollerGantry, "roller-gantry"},
+                                                              {MachineKind::kTamperGantry, "tamper-gantry"},
+                                                              {MachineKind::kRobot, "robot"},
+                                                              {MachineKind::kDesktop, "desktop"}};
+constexpr std::span<const EnumName<MachineKind>> enum_names(MachineKind) {
+  return kMachineKindNames;
+}
+
+// A machine as a machine file describes it (machine_params(): its keys, defaults and meanings). The defaults
+// are those of the declaration: an LSAM-class gantry with a gear pump, programs in inches.
 struct Machine {
   std::string name;
-  std::string description;
-  std::string kind;
-  MotionLimits motion;
-  double roller_width_mm = 0.0;     // 0: unknown
-  double roller_diameter_mm = 0.0;  // 0: unknown
-  double nozzle_diameter_mm = 0.0;  // 0: unknown
-  double ooze_time_s = 0.0;         // 0: no ooze after melt off
-  double extruder_output_kg_s = 0.0;
-  double extruder_max_output_kg_s = 0.0;
+  std::string description = "-";
+  MachineKind kind = MachineKind::kRollerGantry;
+  MotionLimits motion{.max_feed_mm_s = 20 * kMmPerInch,
+                      .max_travel_mm_s = 40 * kMmPerInch,
+                      .acceleration_mm_s2 = 40 * kMmPerInch,
+                      .junction_deviation_mm = 0.02 * kMmPerInch};
+  double roller_width_mm = 0.0;                             // 0: unknown
+  double roller_diameter_mm = 0.0;                          // 0: unknown
+  double nozzle_diameter_mm = 0.0;                          // 0: unknown
+  double ooze_time_s = 0.0;                                 // 0: no ooze after melt off
+  double extruder_output_kg_s = 150 * kKgPerLb / 3600;      // nominal output (a Thermwood PH15 head)
+  double extruder_max_output_kg_s = 200 * kKgPerLb / 3600;  // most it delivers
   Extruder extruder;  // its max flow is set from max_output once the material's density is known
   Environment environment;
-  slicer::GcodeDialect dialect;
+  slicer::GcodeDialect dialect{.inches = true};
   long macro_step_limit = 10'000'000;  // statements a macro program may run (gcode.macro_step_limit)
+  // G0 runs at the machine's max travel speed whatever its F, as CNC controllers run it: the dialect's
+  // rapid feed is set from it.
+  bool rapid_g0 = false;
+
+  // Whether a roller or a tamper flattens the bead.
+  bool flattens() const { return kind == MachineKind::kRollerGantry || kind == MachineKind::kTamperGantry; }
+};
+
+// A tool / melt configuration (patent (48)): the bead a section lays when it names the tool.
+struct Tool {
+  std::string description = "-";
+  double bead_width_mm = 0.0;
+  double bead_thickness_mm = 0.0;
 };
 
 struct PartSpec {
@@ -68,8 +98,22 @@ enum class Colouring {
   kTemperature,  // by the temperature at a moment (render.images[].time)
 };
 
+inline constexpr EnumName<Colouring> kColouringNames[] = {{Colouring::kFusion, "fusion"},
+                                                          {Colouring::kSection, "section"},
+                                                          {Colouring::kLayer, "layer"},
+                                                          {Colouring::kTime, "time"},
+                                                          {Colouring::kSubstrate, "substrate"},
+                                                          {Colouring::kHealing, "healing"},
+                                                          {Colouring::kDeviation, "deviation"},
+                                                          {Colouring::kPorosity, "porosity"},
+                                                          {Colouring::kTemperature, "temperature"}};
+constexpr std::span<const EnumName<Colouring>> enum_names(Colouring) {
+  return kColouringNames;
+}
 // The colouring's name in scenario files ("fusion", "substrate", ...).
-std::string_view to_string(Colouring colouring);
+inline std::string_view to_string(Colouring colouring) {
+  return name_of(colouring);
+}
 
 // A plane through the part: the half the normal points into is cut away, so the inside shows.
 struct CutSpec {

@@ -372,18 +372,6 @@ TriangleMesh select_body(const TriangleMesh& mesh, int body) {
   return out;
 }
 
-std::string_view to_string(SlicePlane plane) {
-  switch (plane) {
-    case SlicePlane::kTop:
-      return "top";
-    case SlicePlane::kFront:
-      return "front";
-    case SlicePlane::kSide:
-      return "side";
-  }
-  return "top";
-}
-
 TriangleMesh lay_down(const TriangleMesh& mesh, SlicePlane plane) {
   if (plane == SlicePlane::kTop || mesh.vertices.empty()) return mesh;
   const Eigen::Vector3d before = mesh.min_corner();

@@ -12,6 +12,8 @@
 
 #include <Eigen/Core>
 
+#include "core/enum_names.hpp"
+
 namespace beadtwin::slicer {
 
 struct TriangleMesh {
@@ -75,9 +77,15 @@ TriangleMesh select_body(const TriangleMesh& mesh, int body);
 // (layers parallel to XY); kFront lays it down so layers are parallel to its XZ plane (the part's +Y
 // becomes up), kSide so they are parallel to its YZ plane (+X becomes up).
 enum class SlicePlane : std::uint8_t { kTop, kFront, kSide };
-inline constexpr SlicePlane kSlicePlanes[] = {SlicePlane::kTop, SlicePlane::kFront, SlicePlane::kSide};
+inline constexpr EnumName<SlicePlane> kSlicePlaneNames[] = {
+    {SlicePlane::kTop, "top"}, {SlicePlane::kFront, "front"}, {SlicePlane::kSide, "side"}};
+constexpr std::span<const EnumName<SlicePlane>> enum_names(SlicePlane) {
+  return kSlicePlaneNames;
+}
 // The plane's name in scenarios and reports: top, front or side.
-std::string_view to_string(SlicePlane plane);
+inline std::string_view to_string(SlicePlane plane) {
+  return name_of(plane);
+}
 // The part turned (a proper rotation: the faces keep their outward winding) so `plane` lies horizontal,
 // and moved so its bounding box keeps its minimum corner.
 TriangleMesh lay_down(const TriangleMesh& mesh, SlicePlane plane);

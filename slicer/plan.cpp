@@ -388,10 +388,11 @@ std::optional<std::size_t> wall_provider(const std::vector<SectionParams>& secti
   return provider;
 }
 
+// Every value within its declared range (slicer/section_params.hpp), then what the ranges cannot say.
 void validate(const std::vector<SectionParams>& sections) {
   for (const auto& s : sections) {
+    check_section_ranges(s);
     const std::string key = "sections." + s.name;
-    if (!(s.layer_height_mm > 0)) throw InputError({}, key + ".layer_height", "must be positive");
     if (!(s.bead_width_mm >= s.layer_height_mm))
       throw InputError({}, key + ".bead_width",
                        fmt::format("must be at least the layer height ({} mm), got {} mm", s.layer_height_mm,
@@ -399,11 +400,8 @@ void validate(const std::vector<SectionParams>& sections) {
     if (!(s.z_max_mm > s.z_min_mm))
       throw InputError({}, key + ".z", "upper limit must be above the lower one");
     if (!(s.print_speed_mm_s > 0)) throw InputError({}, key + ".speed", "must be positive");
-    if (s.boundary.passes < 0) throw InputError({}, key + ".boundary.passes", "must not be negative");
-    if (!(s.boundary.overlap >= 0 && s.boundary.overlap < 0.5))
-      throw InputError({}, key + ".boundary.overlap", "must be in [0, 50 %)");
-    if (!(s.fill.overlap >= 0 && s.fill.overlap < 0.5))
-      throw InputError({}, key + ".fill.overlap", "must be in [0, 50 %)");
+    if (!(s.boundary.overlap < 0.5)) throw InputError({}, key + ".boundary.overlap", "must be in [0, 50 %)");
+    if (!(s.fill.overlap < 0.5)) throw InputError({}, key + ".fill.overlap", "must be in [0, 50 %)");
   }
 }
 
@@ -476,24 +474,6 @@ std::string shared_wall_problem(const std::vector<SectionParams>& sections, cons
         it->name, it->layer_height_mm, it->z_min_mm, h, s.z_min_mm);
   if (provider) *provider = static_cast<std::size_t>(it - sections.begin());
   return {};
-}
-
-std::string_view to_string(FillStyleKind style) {
-  switch (style) {
-    case FillStyleKind::kOneWay:
-      return "one_way";
-    case FillStyleKind::kSimpleZigzag:
-      return "simple_zigzag";
-    case FillStyleKind::kSmartZigzag:
-      return "smart_zigzag";
-    case FillStyleKind::kSmartZigzagConstantOverlap:
-      return "smart_zigzag_constant_overlap";
-    case FillStyleKind::kSparseZigzag:
-      return "sparse_zigzag";
-    case FillStyleKind::kVariableBeadRegions:
-      return "variable_bead_regions";
-  }
-  return "smart_zigzag";
 }
 
 Toolpath plan_toolpath(const TriangleMesh& mesh, const std::vector<SectionParams>& sections,

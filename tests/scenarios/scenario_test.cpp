@@ -256,11 +256,11 @@ TEST(Scenario, UnknownOutputFileTypesNameTheKeyAndTheChoices) {
   };
   const InputError skin = load_error(with_output("{skin: obj}"));
   EXPECT_EQ(skin.key(), "output.skin");
-  EXPECT_NE(std::string(skin.what()).find("expected ply, stl or none but found 'obj'"), std::string::npos)
+  EXPECT_NE(std::string(skin.what()).find("expected one of ply, stl, none but found 'obj'"), std::string::npos)
       << skin.what();
   const InputError fields = load_error(with_output("{fields: vti}"));
   EXPECT_EQ(fields.key(), "output.fields");
-  EXPECT_NE(std::string(fields.what()).find("expected vtu or none but found 'vti'"), std::string::npos)
+  EXPECT_NE(std::string(fields.what()).find("expected one of none, vtu but found 'vti'"), std::string::npos)
       << fields.what();
   const InputError adaptivity = load_error(with_output("{skin_adaptivity: 2}"));
   EXPECT_EQ(adaptivity.key(), "output.skin_adaptivity");

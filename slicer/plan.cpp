@@ -400,8 +400,6 @@ void validate(const std::vector<SectionParams>& sections) {
     if (!(s.z_max_mm > s.z_min_mm))
       throw InputError({}, key + ".z", "upper limit must be above the lower one");
     if (!(s.print_speed_mm_s > 0)) throw InputError({}, key + ".speed", "must be positive");
-    if (!(s.boundary.overlap < 0.5)) throw InputError({}, key + ".boundary.overlap", "must be in [0, 50 %)");
-    if (!(s.fill.overlap < 0.5)) throw InputError({}, key + ".fill.overlap", "must be in [0, 50 %)");
   }
 }
 

@@ -219,7 +219,7 @@ struct Gate {
 
 struct Scenario {
   std::string name;
-  std::string description;
+  std::string description = "-";
   std::string file;     // where it was read from ("<built-in default>" for the embedded one)
   bool inches = false;  // the file writes lengths in inches (units: {length: in}): scale bars follow
   std::vector<Variant> variants;

@@ -145,7 +145,7 @@ struct SectionParams {
   double z_min_mm = 0.0;  // bottom of the section's first layer
   double z_max_mm = 0.0;  // top of the section's last layer
   double layer_height_mm = 0.2 * kMmPerInch;
-  double bead_width_mm = 21.08;
+  double bead_width_mm = 0.83 * kMmPerInch;
   double print_speed_mm_s = 100.0;
   double travel_speed_mm_s = 300.0;
   // Closed passes start at the contour point nearest this point (patent (43) start point location)...

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/flow.hpp"
+#include "core/melt_settings.hpp"
 #include "core/toolpath.hpp"
-#include "slicer/melt_events.hpp"
 
 namespace beadtwin::slicer {
 

@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "core/flow.hpp"
+#include "core/melt_settings.hpp"
 #include "core/toolpath.hpp"
-#include "slicer/melt_events.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/polygons.hpp"
 

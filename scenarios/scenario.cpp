@@ -10,10 +10,10 @@
 
 #include "core/bead.hpp"
 #include "core/hash.hpp"
+#include "gcode/block_reader.hpp"
 #include "scenarios/embedded.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/yaml_reader.hpp"
-#include "slicer/gcode_reader.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -155,8 +155,8 @@ YAML::Node resolve_library(const YAML::Node& root, const std::string& kind,
 
 // How the machine's programs are read: its dialect and extruder, and its roller engaged from the start when
 // it has a roller or tamper but no codes for it.
-slicer::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
-  slicer::ReaderOptions o = slicer::reader_options_for(m.dialect, extruder);
+gcode::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
+  gcode::ReaderOptions o = gcode::reader_options_for(m.dialect, extruder);
   o.max_macro_steps = m.macro_step_limit;
   o.roller_down_at_start =
       (m.kind == "roller-gantry" || m.kind == "tamper-gantry") && m.dialect.roller_down.empty();
@@ -1181,10 +1181,10 @@ Variant build_variant(const Tree& tree, const std::string& name, const std::file
       pr.fail(prog, "program", fmt::format("'{}' is not a regular file", v.program_file.string()));
     std::ifstream in(v.program_file, std::ios::binary);
     if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
-    slicer::ReadStats stats;
+    gcode::ReadStats stats;
     const Extruder* extruder = v.machine.extruder.has_commands() ? &v.machine.extruder : nullptr;
     v.program = std::make_shared<const Toolpath>(
-        slicer::read_gcode(in, v.program_file.string(), reader_options(v.machine, extruder), &stats));
+        gcode::read_gcode(in, v.program_file.string(), reader_options(v.machine, extruder), &stats));
     v.program_summary = fmt::format("{}: {} lines, {} layers, {} moves", v.program_file.filename().string(),
                                     stats.lines, v.program->layers.size(), v.program->moves.size());
     for (const std::string& w : stats.messages) meshes.warnings.push_back(w);
@@ -1512,7 +1512,7 @@ std::string infer_machine(const std::filesystem::path& program, std::string* why
 
 std::string stated_filament_type(const std::filesystem::path& program) {
   std::ifstream in = open_program(program);
-  std::string type = slicer::stated_setting(in, "filament_type").value_or("");
+  std::string type = gcode::stated_setting(in, "filament_type").value_or("");
   type = type.substr(0, type.find(';'));  // several extruders: "PLA;PETG", the first taken
   while (!type.empty() && type.back() == ' ') type.pop_back();
   return type;

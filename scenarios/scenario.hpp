@@ -18,8 +18,8 @@
 #include "core/flow.hpp"
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
+#include "gcode/writer.hpp"
 #include "render/camera.hpp"
-#include "slicer/gcode_writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -38,7 +38,7 @@ struct Machine {
   double extruder_max_output_kg_s = 0.0;
   Extruder extruder;  // its max flow is set from max_output once the material's density is known
   Environment environment;
-  slicer::GcodeDialect dialect;
+  gcode::GcodeDialect dialect;
   long macro_step_limit = 10'000'000;  // statements a macro program may run (gcode.macro_step_limit)
 };
 

@@ -29,7 +29,7 @@
 //            The controller supplies the prime and reverse times and RPMs (patent (53)). The prime and
 //            reverse are recorded as dwells with the times given here, whatever the delay settings, as the
 //            slicer's estimate; the program writer writes only the codes that start them
-//            (slicer/gcode_writer.hpp).
+//            (gcode/writer.hpp).
 //
 // Toolpath::commanded_volume_mm3 stays the material commanded: the beads' own, plus the prime blobs, with
 // the coasts' reduced material.

@@ -1,6 +1,6 @@
 // Fanuc macro print programs (seed 002, section 2.7): repeated layers written once in a WHILE loop must
 // command what the plain program commands.
-#include "slicer/macro_loops.hpp"
+#include "gcode/macro_loops.hpp"
 
 #include <cmath>
 #include <regex>
@@ -12,9 +12,9 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/gcode_writer.hpp"
-#include "slicer/macro.hpp"
+#include "gcode/block_reader.hpp"
+#include "gcode/macro.hpp"
+#include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -82,35 +82,35 @@ SectionParams ring(int layers) {
 TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
   SectionParams s = ring(8);
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
-  GcodeDialect plain_d;
-  const std::string plain = write_gcode(tp, plain_d, {});
-  GcodeDialect loop_d;
+  gcode::GcodeDialect plain_d;
+  const std::string plain = gcode::write_gcode(tp, plain_d, {});
+  gcode::GcodeDialect loop_d;
   loop_d.macro_loops = true;
-  const std::string looped = write_gcode(tp, loop_d, {});
+  const std::string looped = gcode::write_gcode(tp, loop_d, {});
   EXPECT_NE(looped.find("WHILE [#100 LT 7] DO 1"), std::string::npos) << looped;
   EXPECT_LT(lines_of(looped).size(), lines_of(plain).size() / 2);
   EXPECT_EQ(unrolled(looped), unrolled(plain));
   // Layers that differ (a seam moving along the path) stay as they are.
   s.seam_offset_mm = 37;
   const Toolpath moving = plan_toolpath(TriangleMesh{}, {s}, {});
-  EXPECT_EQ(write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
+  EXPECT_EQ(gcode::write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
 }
 
 // The looped program run by the macro interpreter commands the plain program's blocks, word for word.
 TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
   const SectionParams s = ring(10);
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
-  GcodeDialect d;
-  const std::string plain = write_gcode(tp, d, {});
+  gcode::GcodeDialect d;
+  const std::string plain = gcode::write_gcode(tp, d, {});
   d.macro_loops = true;
-  const std::string looped = write_gcode(tp, d, {});
+  const std::string looped = gcode::write_gcode(tp, d, {});
   ASSERT_NE(looped.find("WHILE"), std::string::npos);
   auto blocks = [](const std::string& program) {
     std::vector<std::vector<std::pair<char, double>>> out;
-    MacroProgram(program).run([&](const Block& b) {
+    gcode::MacroProgram(program).run([&](const gcode::Block& b) {
       if (b.words.empty()) return;
       std::vector<std::pair<char, double>> words;
-      for (const Word& w : b.words) words.emplace_back(w.letter, w.value);
+      for (const gcode::Word& w : b.words) words.emplace_back(w.letter, w.value);
       out.push_back(std::move(words));
     });
     return out;
@@ -129,13 +129,13 @@ TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
 // read_gcode hands a macro program to the interpreter: the looped program reads back as the plain one.
 TEST(MacroLoops, ReadGcodeRunsMacroProgramsThroughTheInterpreter) {
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {ring(6)}, {});
-  GcodeDialect d;
-  const ReaderOptions ro = reader_options_for(d, nullptr);
-  std::istringstream plain_in(write_gcode(tp, d, {}));
+  gcode::GcodeDialect d;
+  const gcode::ReaderOptions ro = gcode::reader_options_for(d, nullptr);
+  std::istringstream plain_in(gcode::write_gcode(tp, d, {}));
   d.macro_loops = true;
-  std::istringstream looped_in(write_gcode(tp, d, {}));
-  const Toolpath plain = read_gcode(plain_in, "plain.nc", ro),
-                 looped = read_gcode(looped_in, "looped.nc", ro);
+  std::istringstream looped_in(gcode::write_gcode(tp, d, {}));
+  const Toolpath plain = gcode::read_gcode(plain_in, "plain.nc", ro),
+                 looped = gcode::read_gcode(looped_in, "looped.nc", ro);
   ASSERT_EQ(looped.moves.size(), plain.moves.size());
   ASSERT_EQ(looped.layers.size(), 6u);
   for (std::size_t i = 0; i < plain.moves.size(); ++i) {
@@ -145,9 +145,9 @@ TEST(MacroLoops, ReadGcodeRunsMacroProgramsThroughTheInterpreter) {
   }
   // An endless loop is an error naming its line, not a hang.
   std::istringstream endless("#1=0\nWHILE [#1 LT 1] DO 1\nG1 X1\nEND 1\nM30\n");
-  ReaderOptions short_run = ro;
+  gcode::ReaderOptions short_run = ro;
   short_run.max_macro_steps = 1000;
-  EXPECT_THROW((void)read_gcode(endless, "endless.nc", short_run), InputError);
+  EXPECT_THROW((void)gcode::read_gcode(endless, "endless.nc", short_run), InputError);
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 enum class PieceKind : std::uint8_t {
   kLine,   // straight to `end`
@@ -52,4 +52,4 @@ inline constexpr double kMaxArcRadiusPerTolerance = 1.0e5;  // radius bound, as 
 // Returns the pieces in order; the last one ends on the last point (empty for fewer than 2 points).
 std::vector<PathPiece> fit_arcs(std::span<const Eigen::Vector2d> points, double tolerance_mm);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

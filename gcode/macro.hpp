@@ -46,9 +46,9 @@
 #include <string>
 #include <string_view>
 
-#include "slicer/gcode_block.hpp"
+#include "gcode/block.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 namespace macro {
 struct Parsed;
@@ -83,4 +83,4 @@ class MacroProgram {
   MacroOptions options_;
 };
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

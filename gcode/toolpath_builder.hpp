@@ -1,4 +1,4 @@
-// The G-code reader's toolpath (slicer/gcode_reader.hpp): moves in program order, gathered into layers,
+// The G-code reader's toolpath (gcode/block_reader.hpp): moves in program order, gathered into layers,
 // with the bead each print move lays.
 //
 // A layer starts when material is laid at a new Z; its height is that Z less the layer before's, or what a
@@ -17,7 +17,7 @@
 #include "core/memory.hpp"
 #include "core/toolpath.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 class GcodeToolpathBuilder {
  public:
@@ -71,4 +71,4 @@ class GcodeToolpathBuilder {
   std::optional<std::size_t> last_print_;  // the last move laid along a path
 };
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

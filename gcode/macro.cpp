@@ -1,4 +1,4 @@
-#include "slicer/macro.hpp"
+#include "gcode/macro.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "slicer/macro_parse.hpp"
+#include "gcode/macro_parse.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 namespace {
 
@@ -498,4 +498,4 @@ void MacroProgram::run(const std::function<void(const Block&)>& emit) const {
   Interpreter(*parsed_, options_, emit).run();
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

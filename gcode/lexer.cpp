@@ -1,4 +1,4 @@
-#include "slicer/gcode_lexer.hpp"
+#include "gcode/lexer.hpp"
 
 #include <array>
 #include <charconv>
@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 bool is_space(char c) {
@@ -230,4 +230,4 @@ LineKind lex_gcode_line(std::string_view text, int line, const std::string& file
   return Lexer(text, line, file_name).run(block);
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

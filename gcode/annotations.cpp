@@ -1,11 +1,11 @@
-#include "slicer/gcode_annotations.hpp"
+#include "gcode/annotations.hpp"
 
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <utility>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 struct TypeName {
@@ -159,4 +159,4 @@ Annotation read_annotation(std::string_view comment) {
   return a;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

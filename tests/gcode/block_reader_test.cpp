@@ -1,4 +1,4 @@
-#include "slicer/gcode_reader.hpp"
+#include "gcode/block_reader.hpp"
 
 #include <cmath>
 #include <limits>
@@ -12,9 +12,9 @@
 #include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
-#include "slicer/gcode_lexer.hpp"
+#include "gcode/lexer.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 using Eigen::Vector2d;
@@ -620,4 +620,4 @@ TEST(GcodeReader, RotaryAxesAreKeptWithTheMoves) {
 }
 
 }  // namespace
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -13,10 +13,10 @@
 
 #include "core/toolpath.hpp"
 #include "core/units.hpp"
-#include "slicer/arc_fit.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/arc_fit.hpp"
+#include "gcode/writer.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 using Eigen::Vector2d;
@@ -440,4 +440,4 @@ TEST(GcodeArcs, InchProgramsGiveCentresInInches) {
 }
 
 }  // namespace
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

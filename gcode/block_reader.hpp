@@ -1,8 +1,8 @@
 // Reading G-code programs into the Toolpath IR (core/toolpath.hpp): a program from any slicer, or one of
-// our own (slicer/gcode_writer.hpp), becomes the moves, layers and extruder events the simulation runs on.
+// our own (gcode/writer.hpp), becomes the moves, layers and extruder events the simulation runs on.
 //
-// The reader consumes Blocks (slicer/gcode_block.hpp) one at a time, from the plain lexer
-// (slicer/gcode_lexer.hpp) or from the macro interpreter, and keeps only the Toolpath it builds: memory
+// The reader consumes Blocks (gcode/block.hpp) one at a time, from the plain lexer
+// (gcode/lexer.hpp) or from the macro interpreter, and keeps only the Toolpath it builds: memory
 // grows with the moves, not with the program's text.
 //
 // What the blocks mean:
@@ -16,7 +16,7 @@
 //              offsets (from the start) or R (negative: the longer arc) in the plane of G17 (XY), G18 (ZX)
 //              or G19 (YZ), start == end with I/J/K being a full circle, the third axis moving along (a
 //              helix), P the number of turns; they become straight moves within the chord tolerance
-//              (slicer/gcode_arc.hpp). A, B and C (rotary axes) are read and left out of the motion, with
+//              (gcode/arc.hpp). A, B and C (rotary axes) are read and left out of the motion, with
 //              a warning.
 //   modes      G20/G21 inch/mm, G90/G91 absolute/relative (E too, as Marlin does), M82/M83 absolute/relative
 //              E, G92 sets the position (axes shift the program's origin, E restarts), G28 homes to 0,
@@ -35,14 +35,14 @@
 //              height is its Z less the previous layer's (the first layer's: its Z) unless a HEIGHT
 //              annotation says otherwise. Moves without material just before, at the new Z (the travel
 //              there, a melt on, an unretract), belong to the new layer. Layer markers in comments are
-//              counted and checked against the layers found. (slicer/gcode_annotations.hpp)
+//              counted and checked against the layers found. (gcode/annotations.hpp)
 //   events     Melt on/off codes (ReaderOptions) become kMeltOn/kMeltOff dwells of no duration (only when
 //              the state changes); heat on/off kHeatOn/kHeatOff; roller codes set Move::roller_down; the
 //              prime code and reverse codes give kPrime and kReverse dwells, timed by the G4 after them. A
 //              retraction in place is a kReverse dwell, feeding E in place (unretract, prime) a kPrime dwell
 //              carrying the material laid, each lasting its E length over its feed. A dwell while the pump
 //              turns lays material: a kPrime dwell.
-//   features   From TYPE: and region comments (slicer/gcode_annotations.hpp), else kUnknown; travel and
+//   features   From TYPE: and region comments (gcode/annotations.hpp), else kUnknown; travel and
 //              events are kTravel, prime and reverse dwells kPrime and kReverse.
 //   the end    M2 or M30 ends the program: later blocks are ignored.
 //
@@ -68,10 +68,10 @@
 
 #include "core/flow.hpp"
 #include "core/toolpath.hpp"
-#include "slicer/gcode_block.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/block.hpp"
+#include "gcode/writer.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 // Firmware and controller housekeeping that changes nothing the Toolpath records (temperatures, fans,
 // motors, acceleration limits, progress, bed levelling, work offset G54...): read silently.
@@ -182,4 +182,4 @@ std::optional<std::string> stated_setting(std::istream& in, std::string_view key
 Toolpath read_gcode(std::istream& in, const std::string& file_name, const ReaderOptions& options = {},
                     ReadStats* stats = nullptr);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

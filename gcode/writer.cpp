@@ -1,4 +1,4 @@
-#include "slicer/gcode_writer.hpp"
+#include "gcode/writer.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,12 +8,12 @@
 
 #include <fmt/format.h>
 
-#include "slicer/macro_loops.hpp"
+#include "gcode/macro_loops.hpp"
 
 #include "core/units.hpp"
-#include "slicer/arc_fit.hpp"
+#include "gcode/arc_fit.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 std::string program_number(double value, int decimals) {
   std::string s = fmt::format("{:.{}f}", value, decimals);
@@ -492,4 +492,4 @@ std::string write_gcode(const Toolpath& tp, const GcodeDialect& d, const GcodeHe
   return std::move(w.out());
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

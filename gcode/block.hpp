@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 struct Word {
   char letter = 0;   // 'G', 'X', 'M', ... (upper case)
@@ -30,4 +30,4 @@ struct Block {
   bool has(char letter) const { return get(letter).has_value(); }
 };
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -1,14 +1,14 @@
 // Machine codes and the reader's options: parsing, validation, defaults.
-#include "slicer/gcode_codes.hpp"
+#include "gcode/codes.hpp"
 
 #include <charconv>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "slicer/gcode_reader.hpp"
+#include "gcode/block_reader.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 std::optional<MachineCode> parse_code(std::string_view text) {
@@ -155,4 +155,4 @@ std::size_t ReadStats::count(const std::string& kind) const {
   return it == warnings.end() ? 0 : it->second;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

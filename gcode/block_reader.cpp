@@ -1,4 +1,4 @@
-#include "slicer/gcode_reader.hpp"
+#include "gcode/block_reader.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,12 +12,12 @@
 #include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
-#include "slicer/gcode_annotations.hpp"
-#include "slicer/gcode_arc.hpp"
-#include "slicer/gcode_codes.hpp"
-#include "slicer/gcode_toolpath_builder.hpp"
+#include "gcode/annotations.hpp"
+#include "gcode/arc.hpp"
+#include "gcode/codes.hpp"
+#include "gcode/toolpath_builder.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 std::string section_name(const std::string& file) {
@@ -632,4 +632,4 @@ Toolpath GcodeReader::finish() {
   return state_->finish();
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

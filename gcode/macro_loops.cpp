@@ -1,4 +1,4 @@
-#include "slicer/macro_loops.hpp"
+#include "gcode/macro_loops.hpp"
 
 #include <cmath>
 #include <optional>
@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "slicer/gcode_writer.hpp"
+#include "gcode/writer.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 // A block split around its Z word: `before` + Z<value> + `after`, or no Z word at all.
@@ -163,4 +163,4 @@ std::string loop_repeated_layers(const std::string& program, int min_layers) {
   return out;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -1,4 +1,4 @@
-#include "slicer/gcode_toolpath_builder.hpp"
+#include "gcode/toolpath_builder.hpp"
 
 #include <cmath>
 
@@ -7,7 +7,7 @@
 #include "core/bead.hpp"
 #include "core/units.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 constexpr double kSameZMm = 1e-4;  // material laid this close in Z lies in one layer
@@ -103,4 +103,4 @@ void GcodeToolpathBuilder::shape_bead(Move& m) const {
   }
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -9,11 +9,11 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "slicer/gcode_lexer.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/macro.hpp"
+#include "gcode/block_reader.hpp"
+#include "gcode/lexer.hpp"
+#include "gcode/macro.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 constexpr std::size_t kChunk = std::size_t{1} << 16;
@@ -180,4 +180,4 @@ Toolpath read_gcode(std::istream& in, const std::string& file_name, const Reader
   return tp;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

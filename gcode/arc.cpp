@@ -1,4 +1,4 @@
-#include "slicer/gcode_arc.hpp"
+#include "gcode/arc.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "core/units.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 Eigen::Vector2d in_plane(const Eigen::Vector3d& p, const PlaneAxes& a) {
@@ -106,4 +106,4 @@ std::vector<Eigen::Vector3d> linearise_arc(const Eigen::Vector3d& start, const E
   return points;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -9,7 +9,7 @@
 #include "core/melt_settings.hpp"
 #include "core/toolpath.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 struct GcodeDialect {
   std::string name = "gantry";
@@ -22,7 +22,7 @@ struct GcodeDialect {
   std::string roller_up = "";
   int decimals = 3;
   // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
-  // (slicer/macro_loops.hpp).
+  // (gcode/macro_loops.hpp).
   bool macro_loops = false;
   // Filament machines: E as the running total (M82, Marlin/RepRap absolute extrusion) instead of per move
   // (M83).
@@ -52,7 +52,7 @@ struct GcodeHeader {
 struct GcodeOptions {
   // Arc chord tolerance per section (indexed by Move::section), mm; patent paragraph (45). With
   // GcodeDialect::arcs, runs of print moves are written as G2/G3 arcs that stay within this distance of the
-  // moves (slicer/arc_fit.hpp). A missing entry, 0 or a dialect without arcs writes straight moves only.
+  // moves (gcode/arc_fit.hpp). A missing entry, 0 or a dialect without arcs writes straight moves only.
   std::vector<double> arc_tolerance_mm;
   // The machine's extruder. Without it (nullptr) the program carries no extruder words: melt events are the
   // dialect's codes, other timed dwells plain G4 blocks. With a gear pump or screw, the speed word
@@ -77,7 +77,7 @@ std::string program_number(double value, int decimals);
 // travel, dwells and extruder events end a run. Each arc block writes X and Y, then I and J (the centre
 // relative to the arc's start, in the program's units), and F when the feed changes.
 //
-// Prime and reverse (slicer/melt_events.hpp), with an extruder:
+// Prime and reverse (core/melt_settings.hpp; slicer/melt_events.hpp plans them), with an extruder:
 //   prime    The melt on starts the pump at the priming speed; the prime code (if any), then G4 P<prime
 //            time>; the first print move sets the bead's speed. A filament machine feeds the prime's length
 //            in place, G1 E<length> F<feed>.
@@ -92,4 +92,4 @@ std::string program_number(double value, int decimals);
 std::string write_gcode(const Toolpath& toolpath, const GcodeDialect& dialect, const GcodeHeader& header,
                         const GcodeOptions& options = {});
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

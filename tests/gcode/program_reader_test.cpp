@@ -17,10 +17,10 @@
 #include "core/bead.hpp"
 #include "core/flow.hpp"
 #include "core/units.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/block_reader.hpp"
+#include "gcode/writer.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 using Eigen::Vector3d;
@@ -548,4 +548,4 @@ TEST(GcodeReaderCuraEngine, FreshlySlicedBoxReadsAsSliced) {
 }
 
 }  // namespace
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -1,4 +1,4 @@
-// What slicers say in G-code comments, for the G-code reader (slicer/gcode_reader.hpp): layer changes,
+// What slicers say in G-code comments, for the G-code reader (gcode/block_reader.hpp): layer changes,
 // layer heights, extrusion widths and what a move is for.
 //
 // Read from comments (without their delimiters, as the lexer keeps them; matched case-sensitively):
@@ -22,7 +22,7 @@
 
 #include "core/toolpath.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 struct Annotation {
   bool layer_marker = false;
@@ -38,4 +38,4 @@ struct Annotation {
 // The annotation in one comment; all fields empty when it holds none.
 Annotation read_annotation(std::string_view comment);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

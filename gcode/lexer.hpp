@@ -1,5 +1,5 @@
-// The plain G-code lexer: one line of program text into one Block (slicer/gcode_block.hpp) of words and
-// comments, for the G-code reader (slicer/gcode_reader.hpp).
+// The plain G-code lexer: one line of program text into one Block (gcode/block.hpp) of words and
+// comments, for the G-code reader (gcode/block_reader.hpp).
 //
 // What a line may hold:
 //   words        a letter and a number, `G1`, `X-12.5`, `F1800`, `M862.3`; letters in either case (kept upper
@@ -21,9 +21,9 @@
 #include <string>
 #include <string_view>
 
-#include "slicer/gcode_block.hpp"
+#include "gcode/block.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 enum class LineKind : std::uint8_t {
   kPlain,  // words and comments, lexed into the block
@@ -45,4 +45,4 @@ LexedLine lex_gcode_line(std::string_view text, int line, const std::string& fil
 // is a macro line.
 LineKind lex_gcode_line(std::string_view text, int line, const std::string& file_name, Block& block);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

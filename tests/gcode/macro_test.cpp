@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "slicer/macro.hpp"
+#include "gcode/macro.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 std::vector<Block> run(std::string_view text, MacroOptions options = {}) {
@@ -497,4 +497,4 @@ TEST(Macro, O2023PrintsACylinderWithVariableFeed) {
 }
 
 }  // namespace
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -1,4 +1,4 @@
-// The parsed form of a Fanuc Custom Macro B program (slicer/macro.hpp runs it). Parsing reads the whole text
+// The parsed form of a Fanuc Custom Macro B program (gcode/macro.hpp runs it). Parsing reads the whole text
 // once, so every syntax error, unknown function, unbalanced bracket and unmatched DO/END is reported with its
 // line and column before anything runs.
 //
@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-namespace beadtwin::slicer::macro {
+namespace beadtwin::gcode::macro {
 
 enum class Op {
   kNumber,    // `number`
@@ -121,4 +121,4 @@ struct Parsed {
 // unbalanced brackets or comments, a DO/END that does not match, or a program number given twice.
 Parsed parse_macro_program(std::string_view text, const std::string& file_name);
 
-}  // namespace beadtwin::slicer::macro
+}  // namespace beadtwin::gcode::macro

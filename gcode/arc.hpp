@@ -1,5 +1,5 @@
 // G2/G3 arcs as the straight moves of the Toolpath IR (core/toolpath.hpp): the G-code reader
-// (slicer/gcode_reader.hpp) linearises every arc it reads within a chord tolerance.
+// (gcode/block_reader.hpp) linearises every arc it reads within a chord tolerance.
 //
 // An arc turns in one of three planes, each named by two axes (u, v) and its normal n, so that u × v = n:
 // G17 XY (normal Z), G18 ZX (normal Y), G19 YZ (normal X). G2 turns clockwise and G3 counter-clockwise seen
@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 enum class ArcPlane : std::uint8_t {
   kXY,  // G17
@@ -45,4 +45,4 @@ std::vector<Eigen::Vector3d> linearise_arc(const Eigen::Vector3d& start, const E
                                            const Eigen::Vector3d& centre, ArcPlane plane, bool clockwise,
                                            int turns, double chord_tolerance_mm, std::size_t max_points);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 // Rewrites a program from write_gcode: every run of at least `min_layers` consecutive layers whose blocks
 // are the same but for Z, which rises by one constant step from layer to layer, becomes
@@ -20,4 +20,4 @@ namespace beadtwin::slicer {
 // Everything else passes through unchanged.
 std::string loop_repeated_layers(const std::string& program, int min_layers = 3);
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

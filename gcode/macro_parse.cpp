@@ -1,4 +1,4 @@
-#include "slicer/macro_parse.hpp"
+#include "gcode/macro_parse.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 
-namespace beadtwin::slicer::macro {
+namespace beadtwin::gcode::macro {
 
 namespace {
 
@@ -570,4 +570,4 @@ Parsed parse_macro_program(std::string_view text, const std::string& file_name) 
   return p;
 }
 
-}  // namespace beadtwin::slicer::macro
+}  // namespace beadtwin::gcode::macro

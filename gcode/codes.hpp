@@ -1,4 +1,4 @@
-// Machine codes for the G-code reader (slicer/gcode_reader.hpp): "M23" as a letter and a number, the sets
+// Machine codes for the G-code reader (gcode/block_reader.hpp): "M23" as a letter and a number, the sets
 // of them ReaderOptions names, matched against a block's words, a block's parameter words, and a block
 // sorted by what its words mean.
 #pragma once
@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "slicer/gcode_block.hpp"
+#include "gcode/block.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 
 struct ReaderOptions;
 
@@ -135,4 +135,4 @@ struct SortedBlock {
   }
 };
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

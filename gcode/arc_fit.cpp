@@ -1,4 +1,4 @@
-#include "slicer/arc_fit.hpp"
+#include "gcode/arc_fit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <optional>
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
 
 using Eigen::Vector2d;
@@ -189,4 +189,4 @@ std::vector<PathPiece> fit_arcs(std::span<const Vector2d> points, double toleran
   return pieces;
 }
 
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

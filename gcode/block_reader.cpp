@@ -632,4 +632,15 @@ Toolpath GcodeReader::finish() {
   return state_->finish();
 }
 
+std::size_t ReadStats::warning_count() const {
+  std::size_t n = 0;
+  for (const auto& [kind, count] : warnings) n += count;
+  return n;
+}
+
+std::size_t ReadStats::count(const std::string& kind) const {
+  const auto it = warnings.find(kind);
+  return it == warnings.end() ? 0 : it->second;
+}
+
 }  // namespace beadtwin::gcode

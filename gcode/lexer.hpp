@@ -1,5 +1,5 @@
 // The plain G-code lexer: one line of program text into one Block (gcode/block.hpp) of words and
-// comments, for the G-code reader (gcode/block_reader.hpp).
+// comments, for read_gcode (gcode/program_reader.hpp).
 //
 // What a line may hold:
 //   words        a letter and a number, `G1`, `X-12.5`, `F1800`, `M862.3`; letters in either case (kept upper

@@ -1,4 +1,5 @@
-// read_gcode: a program's text streamed line by line through the lexer into the reader.
+#include "gcode/program_reader.hpp"
+
 #include <algorithm>
 #include <cstring>
 #include <istream>
@@ -9,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "gcode/block_reader.hpp"
 #include "gcode/lexer.hpp"
 #include "gcode/macro.hpp"
 

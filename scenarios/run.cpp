@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory.hpp"
+#include "gcode/writer.hpp"
 #include "render/surface.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"

@@ -10,7 +10,8 @@
 
 #include "core/bead.hpp"
 #include "core/hash.hpp"
-#include "gcode/block_reader.hpp"
+#include "gcode/program_reader.hpp"
+#include "gcode/reader_options.hpp"
 #include "scenarios/embedded.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/yaml_reader.hpp"

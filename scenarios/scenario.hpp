@@ -18,7 +18,7 @@
 #include "core/flow.hpp"
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
-#include "gcode/writer.hpp"
+#include "gcode/dialect.hpp"
 #include "render/camera.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "gcode/block_reader.hpp"
+#include "gcode/program_reader.hpp"
 
 using namespace beadtwin;
 

@@ -17,7 +17,7 @@
 #include "core/bead.hpp"
 #include "core/flow.hpp"
 #include "core/units.hpp"
-#include "gcode/block_reader.hpp"
+#include "gcode/program_reader.hpp"
 #include "gcode/writer.hpp"
 
 namespace beadtwin::gcode {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/flow.hpp"
-#include "gcode/block_reader.hpp"
+#include "gcode/program_reader.hpp"
 #include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"

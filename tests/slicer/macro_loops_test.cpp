@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "gcode/block_reader.hpp"
 #include "gcode/macro.hpp"
+#include "gcode/program_reader.hpp"
 #include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"

@@ -11,15 +11,17 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "core/bead.hpp"
 #include "core/error.hpp"
+#include "core/toolpath.hpp"
 #include "gcode/macro.hpp"
 #include "gcode/program_reader.hpp"
 #include "gcode/writer.hpp"
-#include "slicer/mesh.hpp"
-#include "slicer/plan.hpp"
 
-namespace beadtwin::slicer {
+namespace beadtwin::gcode {
 namespace {
+
+using Eigen::Vector3d;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> out;
@@ -66,51 +68,95 @@ std::vector<std::string> unrolled(const std::string& program) {
   return out;
 }
 
-// An AM Outline ring of `layers` 5 mm layers: every layer the same path.
-SectionParams ring(int layers) {
-  SectionParams s;
-  s.name = "ring";
-  s.z_max_mm = 5.0 * layers;
-  s.layer_height_mm = 5;
-  s.bead_width_mm = 20;
-  s.print_speed_mm_s = 60;
-  s.travel_speed_mm_s = 300;
-  s.outline_path = {{0, 0}, {400, 0}, {400, 300}, {0, 300}};
-  return s;
+// An AM Outline ring as the planner lays one: `layers` 5 mm layers of a 20 mm bead around a 400 × 300 mm
+// rectangle, each layer a travel up to its Z (none before the first), melt on, the sides at 60 mm/s with
+// the roller down, melt off; timed by the motion model. Every layer is the same path one layer higher,
+// unless `seam_step_mm` moves each layer's start (and end) that far along the first side.
+Toolpath ring(int layers, double seam_step_mm = 0.0) {
+  constexpr double kHeight = 5.0, kWidth = 20.0, kX = 400.0, kY = 300.0;
+  Toolpath tp;
+  tp.sections = {"ring"};
+  for (int k = 0; k < layers; ++k) {
+    const double z = kHeight * (k + 1), seam = seam_step_mm * k;
+    ToolpathLayer layer;
+    layer.z_mm = z;
+    layer.height_mm = kHeight;
+    layer.section = 0;
+    tp.layers.push_back(layer);
+    Move base;
+    base.section = 0;
+    base.layer = k;
+    base.bead_width_mm = kWidth;
+    base.layer_height_mm = kHeight;
+    const Vector3d start(seam, 0, z);
+    if (k > 0) {
+      Move travel = base;
+      travel.kind = MoveKind::kTravel;
+      travel.feature = Feature::kTravel;
+      travel.start = tp.moves.back().end;
+      travel.end = start;
+      travel.feed_mm_s = 300;
+      tp.moves.push_back(travel);
+    }
+    Move on = base;
+    on.kind = MoveKind::kDwell;
+    on.event = ExtruderEvent::kMeltOn;
+    on.start = on.end = start;
+    tp.moves.push_back(on);
+    Vector3d at = start;
+    for (const Vector3d& corner :
+         {Vector3d(kX, 0, z), Vector3d(kX, kY, z), Vector3d(0, kY, z), Vector3d(0, 0, z), start}) {
+      if ((corner - at).norm() == 0.0) continue;
+      Move side = base;
+      side.kind = MoveKind::kPrint;
+      side.feature = Feature::kBoundary;
+      side.pass = 0;
+      side.roller_down = true;
+      side.start = at;
+      side.end = corner;
+      side.feed_mm_s = 60;
+      side.volume_mm3 = bead_area_mm2(kWidth, kHeight) * side.length_mm();
+      tp.moves.push_back(side);
+      at = corner;
+    }
+    Move off = on;
+    off.event = ExtruderEvent::kMeltOff;
+    off.start = off.end = at;
+    tp.moves.push_back(off);
+  }
+  time_toolpath(tp, MotionLimits{});
+  return tp;
 }
 
 TEST(MacroLoops, RepeatedLayersBecomeOneWhileLoopCommandingTheSame) {
-  SectionParams s = ring(8);
-  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
-  gcode::GcodeDialect plain_d;
-  const std::string plain = gcode::write_gcode(tp, plain_d, {});
-  gcode::GcodeDialect loop_d;
+  const Toolpath tp = ring(8);
+  GcodeDialect plain_d;
+  const std::string plain = write_gcode(tp, plain_d, {});
+  GcodeDialect loop_d;
   loop_d.macro_loops = true;
-  const std::string looped = gcode::write_gcode(tp, loop_d, {});
+  const std::string looped = write_gcode(tp, loop_d, {});
   EXPECT_NE(looped.find("WHILE [#100 LT 7] DO 1"), std::string::npos) << looped;
   EXPECT_LT(lines_of(looped).size(), lines_of(plain).size() / 2);
   EXPECT_EQ(unrolled(looped), unrolled(plain));
   // Layers that differ (a seam moving along the path) stay as they are.
-  s.seam_offset_mm = 37;
-  const Toolpath moving = plan_toolpath(TriangleMesh{}, {s}, {});
-  EXPECT_EQ(gcode::write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
+  const Toolpath moving = ring(8, 37);
+  EXPECT_EQ(write_gcode(moving, loop_d, {}).find("WHILE"), std::string::npos);
 }
 
 // The looped program run by the macro interpreter commands the plain program's blocks, word for word.
 TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
-  const SectionParams s = ring(10);
-  const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, {});
-  gcode::GcodeDialect d;
-  const std::string plain = gcode::write_gcode(tp, d, {});
+  const Toolpath tp = ring(10);
+  GcodeDialect d;
+  const std::string plain = write_gcode(tp, d, {});
   d.macro_loops = true;
-  const std::string looped = gcode::write_gcode(tp, d, {});
+  const std::string looped = write_gcode(tp, d, {});
   ASSERT_NE(looped.find("WHILE"), std::string::npos);
   auto blocks = [](const std::string& program) {
     std::vector<std::vector<std::pair<char, double>>> out;
-    gcode::MacroProgram(program).run([&](const gcode::Block& b) {
+    MacroProgram(program).run([&](const Block& b) {
       if (b.words.empty()) return;
       std::vector<std::pair<char, double>> words;
-      for (const gcode::Word& w : b.words) words.emplace_back(w.letter, w.value);
+      for (const Word& w : b.words) words.emplace_back(w.letter, w.value);
       out.push_back(std::move(words));
     });
     return out;
@@ -128,14 +174,14 @@ TEST(MacroLoops, TheInterpreterRunsTheLoopIntoThePlainProgram) {
 
 // read_gcode hands a macro program to the interpreter: the looped program reads back as the plain one.
 TEST(MacroLoops, ReadGcodeRunsMacroProgramsThroughTheInterpreter) {
-  const Toolpath tp = plan_toolpath(TriangleMesh{}, {ring(6)}, {});
-  gcode::GcodeDialect d;
-  const gcode::ReaderOptions ro = gcode::reader_options_for(d, nullptr);
-  std::istringstream plain_in(gcode::write_gcode(tp, d, {}));
+  const Toolpath tp = ring(6);
+  GcodeDialect d;
+  const ReaderOptions ro = reader_options_for(d, nullptr);
+  std::istringstream plain_in(write_gcode(tp, d, {}));
   d.macro_loops = true;
-  std::istringstream looped_in(gcode::write_gcode(tp, d, {}));
-  const Toolpath plain = gcode::read_gcode(plain_in, "plain.nc", ro),
-                 looped = gcode::read_gcode(looped_in, "looped.nc", ro);
+  std::istringstream looped_in(write_gcode(tp, d, {}));
+  const Toolpath plain = read_gcode(plain_in, "plain.nc", ro),
+                 looped = read_gcode(looped_in, "looped.nc", ro);
   ASSERT_EQ(looped.moves.size(), plain.moves.size());
   ASSERT_EQ(looped.layers.size(), 6u);
   for (std::size_t i = 0; i < plain.moves.size(); ++i) {
@@ -145,10 +191,10 @@ TEST(MacroLoops, ReadGcodeRunsMacroProgramsThroughTheInterpreter) {
   }
   // An endless loop is an error naming its line, not a hang.
   std::istringstream endless("#1=0\nWHILE [#1 LT 1] DO 1\nG1 X1\nEND 1\nM30\n");
-  gcode::ReaderOptions short_run = ro;
+  ReaderOptions short_run = ro;
   short_run.max_macro_steps = 1000;
-  EXPECT_THROW((void)gcode::read_gcode(endless, "endless.nc", short_run), InputError);
+  EXPECT_THROW((void)read_gcode(endless, "endless.nc", short_run), InputError);
 }
 
 }  // namespace
-}  // namespace beadtwin::slicer
+}  // namespace beadtwin::gcode

@@ -7,11 +7,12 @@
 
 #include <fmt/format.h>
 
+#include "gcode/program_reader.hpp"
+#include "gcode/reader_options.hpp"
 #include "scenarios/embedded.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/scenario_blocks.hpp"
 #include "scenarios/yaml_reader.hpp"
-#include "slicer/gcode_reader.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -52,7 +53,7 @@ std::string infer_machine(const std::filesystem::path& program, std::string* why
 
 std::string stated_filament_type(const std::filesystem::path& program) {
   std::ifstream in = open_program(program);
-  std::string type = slicer::stated_setting(in, "filament_type").value_or("");
+  std::string type = gcode::stated_setting(in, "filament_type").value_or("");
   type = type.substr(0, type.find(';'));  // several extruders: "PLA;PETG", the first taken
   while (!type.empty() && type.back() == ' ') type.pop_back();
   return type;

@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/memory.hpp"
+#include "gcode/writer.hpp"
 #include "render/surface.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
@@ -67,8 +68,8 @@ Toolpath slice_variant(const Variant& v, slicer::PlanStats* stats = nullptr) {
 }
 
 // What the program writer needs of the sections (arc chord tolerance, melt settings) and of the extruder.
-slicer::GcodeOptions gcode_options(const Variant& v) {
-  slicer::GcodeOptions o;
+gcode::GcodeOptions gcode_options(const Variant& v) {
+  gcode::GcodeOptions o;
   for (const auto& s : v.sections) {
     o.arc_tolerance_mm.push_back(s.arc_chord_tolerance_mm);
     o.melt.push_back(s.melt);
@@ -555,9 +556,9 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
           v.sections[i].name, asked, laid));
   }
   stages.run("program", [&] {
-    slicer::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
+    gcode::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
     write_file_atomic(dir / "program.nc",
-                      slicer::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
+                      gcode::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
   });
   res.program = (std::filesystem::path(v.name) / "program.nc").string();
   // The deposit keeps one core busy; the CAD's side of the comparison (its distance grid) needs only the
@@ -878,8 +879,8 @@ std::string slice_program(const Scenario& sc, const std::string& variant_name) {
   for (const Variant& v : sc.variants) {
     if (!variant_name.empty() && v.name != variant_name) continue;
     const Toolpath tp = slice_variant(v);
-    return slicer::write_gcode(tp, v.machine.dialect,
-                               {v.name, sc.name, v.name, v.machine.name, v.material.name}, gcode_options(v));
+    return gcode::write_gcode(tp, v.machine.dialect,
+                              {v.name, sc.name, v.name, v.machine.name, v.material.name}, gcode_options(v));
   }
   throw InputError({}, "--variant",
                    fmt::format("scenario '{}' has no variant named '{}'", sc.name, variant_name));

@@ -6,11 +6,12 @@
 #include <fmt/format.h>
 
 #include "core/hash.hpp"
+#include "gcode/program_reader.hpp"
+#include "gcode/reader_options.hpp"
 #include "scenarios/embedded.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/scenario_blocks.hpp"
 #include "scenarios/yaml_reader.hpp"
-#include "slicer/gcode_reader.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -102,8 +103,8 @@ YAML::Node resolve_library(const YAML::Node& root, const std::string& kind,
 
 // How the machine's programs are read: its dialect and extruder, and its roller engaged from the start when
 // it has a roller or tamper but no codes for it.
-slicer::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
-  slicer::ReaderOptions o = slicer::reader_options_for(m.dialect, extruder);
+gcode::ReaderOptions reader_options(const Machine& m, const Extruder* extruder) {
+  gcode::ReaderOptions o = gcode::reader_options_for(m.dialect, extruder);
   o.max_macro_steps = m.macro_step_limit;
   o.roller_down_at_start = m.flattens() && m.dialect.roller_down.empty();
   return o;
@@ -180,10 +181,10 @@ void read_program(const Tree& tree, const std::filesystem::path& dir, Variant& v
     pr.fail(prog, "program", fmt::format("'{}' is not a regular file", v.program_file.string()));
   std::ifstream in(v.program_file, std::ios::binary);
   if (!in) pr.fail(prog, "program", fmt::format("cannot open '{}'", v.program_file.string()));
-  slicer::ReadStats stats;
+  gcode::ReadStats stats;
   const Extruder* extruder = v.machine.extruder.has_commands() ? &v.machine.extruder : nullptr;
   v.program = std::make_shared<const Toolpath>(
-      slicer::read_gcode(in, v.program_file.string(), reader_options(v.machine, extruder), &stats));
+      gcode::read_gcode(in, v.program_file.string(), reader_options(v.machine, extruder), &stats));
   v.program_summary = fmt::format("{}: {} lines, {} layers, {} moves", v.program_file.filename().string(),
                                   stats.lines, v.program->layers.size(), v.program->moves.size());
   for (const std::string& w : stats.messages) meshes.warnings.push_back(w);

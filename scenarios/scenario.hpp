@@ -19,8 +19,8 @@
 #include "core/flow.hpp"
 #include "core/material.hpp"
 #include "core/toolpath.hpp"
+#include "gcode/dialect.hpp"
 #include "render/camera.hpp"
-#include "slicer/gcode_writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -55,7 +55,7 @@ struct Machine {
   double extruder_max_output_kg_s = 200 * kKgPerLb / 3600;  // most it delivers
   Extruder extruder;  // its max flow is set from max_output once the material's density is known
   Environment environment;
-  slicer::GcodeDialect dialect{.inches = true};
+  gcode::GcodeDialect dialect{.inches = true};
   long macro_step_limit = 10'000'000;  // statements a macro program may run (gcode.macro_step_limit)
   // G0 runs at the machine's max travel speed whatever its F, as CNC controllers run it: the dialect's
   // rapid feed is set from it.

@@ -144,7 +144,7 @@ void check_passes(BlockReader& r, const slicer::SectionParams& s) {
 
 // A prime or reverse at a pump speed means nothing without the pump's displacement.
 void check_melt(BlockReader& r, const slicer::SectionParams& s, const Machine& machine) {
-  const slicer::MeltSettings& m = s.melt;
+  const MeltSettings& m = s.melt;
   if (!((m.prime && m.prime_rpm > 0) || (m.reverse && m.reverse_rpm > 0)) || machine.extruder.has_rpm())
     return;
   const char* key = m.prime ? "melt_on.prime_rpm" : "melt_off.reverse_rpm";

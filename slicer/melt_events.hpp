@@ -1,5 +1,5 @@
-// Melt on and melt off settings (Thermwood patent, paragraphs (51)-(53)): what the extruder does when a bead
-// starts (prime) and when it ends (coast, reverse), applied to a planned toolpath.
+// Melt on and melt off settings (Thermwood patent, paragraphs (51)-(53); core/melt_settings.hpp): what the
+// extruder does when a bead starts (prime) and when it ends (coast, reverse), applied to a planned toolpath.
 //
 // A planned bead is a melt-on dwell, its print moves, and a melt-off dwell (slicer/layer_builder.hpp).
 // apply_melt_settings rewrites each bead by the settings of its section:
@@ -29,7 +29,7 @@
 //            The controller supplies the prime and reverse times and RPMs (patent (53)). The prime and
 //            reverse are recorded as dwells with the times given here, whatever the delay settings, as the
 //            slicer's estimate; the program writer writes only the codes that start them
-//            (slicer/gcode_writer.hpp).
+//            (gcode/writer.hpp).
 //
 // Toolpath::commanded_volume_mm3 stays the material commanded: the beads' own, plus the prime blobs, with
 // the coasts' reduced material.
@@ -38,26 +38,10 @@
 #include <vector>
 
 #include "core/flow.hpp"
+#include "core/melt_settings.hpp"
 #include "core/toolpath.hpp"
 
 namespace beadtwin::slicer {
-
-// One section's melt on / melt off settings (patent (51)-(53)). Times in s, distances in mm, speeds in
-// rev/min.
-struct MeltSettings {
-  bool prime = false;                 // prime melt when turning on (51)
-  bool delay_during_prime = true;     // the head waits at the bead's start while priming (51)
-  double prime_time_s = 0;            // how long the prime runs (51)
-  double prime_rpm = 0;               // pump or screw speed while priming (51)
-  bool coast = false;                 // apply coast off motion (52)
-  double coast_distance_mm = 0;       // distance before the bead's end at which the pump stops (52)
-  bool reverse = false;               // reverse melt when turning off (52)
-  bool reverse_during_coast = false;  // the reverse starts with the coast instead of at the bead's end (53)
-  bool delay_during_reverse = true;   // the head waits for the reverse time (53)
-  double reverse_time_s = 0;          // how long the pump reverses (53)
-  double reverse_rpm = 0;             // pump or screw speed while reversing (53)
-  bool set_at_control = false;        // prime and reverse times and RPMs come from the controller (53)
-};
 
 // Coast moves written per coast (see the file comment).
 inline constexpr int kCoastSteps = 4;

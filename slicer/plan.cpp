@@ -15,6 +15,7 @@
 #include "slicer/centre_beads.hpp"
 #include "slicer/fill.hpp"
 #include "slicer/layer_builder.hpp"
+#include "slicer/melt_events.hpp"
 #include "slicer/polygons.hpp"
 #include "slicer/slice.hpp"
 

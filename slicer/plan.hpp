@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/flow.hpp"
+#include "core/melt_settings.hpp"
 #include "core/toolpath.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/polygons.hpp"

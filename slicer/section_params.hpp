@@ -11,7 +11,7 @@
 
 #include "core/enum_names.hpp"
 #include "core/param.hpp"
-#include "slicer/melt_events.hpp"
+#include "core/melt_settings.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/polygons.hpp"
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The readers under the sanitizers and the fuzzer (docs/RELIABILITY.md): builds with Clang,
 # AddressSanitizer, UndefinedBehaviorSanitizer and libFuzzer's coverage the libraries that read users' files
-# (BEADTWIN_READERS_ONLY: core, slicer, the scenario files), their test suites and the fuzz targets in
+# (BEADTWIN_READERS_ONLY: core, gcode, slicer, the scenario files), their test suites and the fuzz targets in
 # tests/fuzz, then runs them all under ctest: the tests, every seed and past crash once, and
 # BEADTWIN_FUZZ_SECONDS (default 30) of fuzzing per target. tools/test.sh runs it after the main suite.
 #

@@ -11,12 +11,12 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "slicer/gcode_reader.hpp"
+#include "gcode/program_reader.hpp"
 
 using namespace beadtwin;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  slicer::ReaderOptions options;
+  gcode::ReaderOptions options;
   options.max_macro_steps = 20'000;  // an endless loop is found quickly, not after the fuzzer's timeout
   options.max_moves = 1'000'000;     // the limit is tested, not the machine's memory
   switch (size % 3) {
@@ -37,7 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));
   try {
-    slicer::read_gcode(in, "fuzz.gcode", options);
+    gcode::read_gcode(in, "fuzz.gcode", options);
   } catch (const InputError&) {
   }
   return 0;

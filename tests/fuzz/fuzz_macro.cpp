@@ -6,17 +6,17 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "slicer/macro.hpp"
+#include "gcode/macro.hpp"
 
 using namespace beadtwin;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  slicer::MacroOptions options;
+  gcode::MacroOptions options;
   options.max_steps = 20'000;  // an endless loop is found quickly, not after the fuzzer's timeout
   options.file_name = "fuzz.nc";
   try {
-    const slicer::MacroProgram program(std::string_view(reinterpret_cast<const char*>(data), size), options);
-    program.run([](const slicer::Block&) {});
+    const gcode::MacroProgram program(std::string_view(reinterpret_cast<const char*>(data), size), options);
+    program.run([](const gcode::Block&) {});
   } catch (const InputError&) {
   }
   return 0;

@@ -15,8 +15,9 @@
 
 #include "scenarios/params.hpp"
 #include "scenarios/yaml_reader.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/program_reader.hpp"
+#include "gcode/reader_options.hpp"
+#include "gcode/writer.hpp"
 #include "slicer/section_params.hpp"
 
 namespace beadtwin::scenarios {
@@ -439,7 +440,7 @@ TEST(Declarations, EveryMachineCodeReachesTheWriterAndTheReader) {
                                                       : m.dialect.reverse_off;
     EXPECT_EQ(set, code) << s.key;
   }
-  const slicer::ReaderOptions reader = slicer::reader_options_for(m.dialect, nullptr);
+  const gcode::ReaderOptions reader = gcode::reader_options_for(m.dialect, nullptr);
   const auto has = [](const std::vector<std::string>& codes, const std::string& c) {
     return std::find(codes.begin(), codes.end(), c) != codes.end();
   };

@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "core/flow.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/program_reader.hpp"
+#include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -48,14 +48,14 @@ TEST(GcodeDialect, RelativeAndAbsoluteEWordsFeedTheSameFilament) {
   Extruder filament;
   filament.kind = ExtruderKind::kFilament;
   filament.filament_diameter_mm = 1.75;
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &filament;
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.melt_on.clear();
   d.melt_off.clear();
-  const std::string relative = write_gcode(tp, d, {}, o);
+  const std::string relative = gcode::write_gcode(tp, d, {}, o);
   d.absolute_e = true;
-  const std::string absolute = write_gcode(tp, d, {}, o);
+  const std::string absolute = gcode::write_gcode(tp, d, {}, o);
   EXPECT_NE(relative.find("M83"), std::string::npos);
   EXPECT_NE(absolute.find("M82"), std::string::npos);
   EXPECT_NE(absolute.find("G92 E0"), std::string::npos);
@@ -73,10 +73,10 @@ TEST(GcodeDialect, RelativeAndAbsoluteEWordsFeedTheSameFilament) {
 TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
   const Toolpath tp = small_part();
   for (const auto& [on_code, off_code] : {std::pair{"M27", "M28"}, std::pair{"M127", "M128"}}) {
-    GcodeDialect d;
+    gcode::GcodeDialect d;
     d.heat_on = on_code;
     d.heat_off = off_code;
-    const std::string program = write_gcode(tp, d, {});
+    const std::string program = gcode::write_gcode(tp, d, {});
     const std::size_t on = program.find(fmt::format("\n{} (heaters on)\n", on_code));
     const std::size_t off = program.find(fmt::format("\n{} (heaters off)\n", off_code));
     ASSERT_NE(on, std::string::npos) << on_code;
@@ -85,7 +85,7 @@ TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
     EXPECT_GT(off, program.rfind("(LAYER "));
     EXPECT_LT(off, program.find("\nM30"));
     std::istringstream in(program);
-    const Toolpath read = read_gcode(in, "heat.nc", reader_options_for(d, nullptr));
+    const Toolpath read = gcode::read_gcode(in, "heat.nc", gcode::reader_options_for(d, nullptr));
     int heat_on = 0, heat_off = 0;
     for (const Move& m : read.moves) {
       heat_on += m.event == ExtruderEvent::kHeatOn;
@@ -94,7 +94,7 @@ TEST(GcodeDialect, HeatersOnAtTheStartOffAtTheEnd) {
     EXPECT_EQ(heat_on, 1) << on_code;
     EXPECT_EQ(heat_off, 1) << off_code;
     // Written again, the events are the codes, once each.
-    const std::string again = write_gcode(read, d, {});
+    const std::string again = gcode::write_gcode(read, d, {});
     EXPECT_EQ(again.find(on_code), again.rfind(on_code));
     EXPECT_NE(again.find(on_code), std::string::npos);
   }
@@ -107,15 +107,15 @@ TEST(GcodeDialect, AControllersRapidTraverseTimesItsG0AndSlowerTravelIsWrittenAs
   const std::string program =
       "G21 G90\nM24\nG1 X0 Y0 Z1 F60\n"  // 1 mm/s: the modal feed
       "G0 X300\n";                       // rapid: 300 mm
-  GcodeDialect cnc;
+  gcode::GcodeDialect cnc;
   cnc.rapid_feed_mm_s = 500;
-  const auto travel_feed = [&](const GcodeDialect& d) {
+  const auto travel_feed = [&](const gcode::GcodeDialect& d) {
     std::istringstream in(program);
-    const Toolpath tp = read_gcode(in, "rapid.nc", reader_options_for(d, nullptr));
+    const Toolpath tp = gcode::read_gcode(in, "rapid.nc", gcode::reader_options_for(d, nullptr));
     return tp.moves.back().feed_mm_s;
   };
   EXPECT_DOUBLE_EQ(travel_feed(cnc), 500.0);
-  EXPECT_DOUBLE_EQ(travel_feed(GcodeDialect{}), 1.0);  // at F, as Marlin runs it
+  EXPECT_DOUBLE_EQ(travel_feed(gcode::GcodeDialect{}), 1.0);  // at F, as Marlin runs it
 
   // Travel at the rapid traverse is G0; slower travel is G1 at its feed, and reads back at that feed.
   Toolpath tp = small_part();  // travel at 150 mm/s
@@ -130,12 +130,12 @@ TEST(GcodeDialect, AControllersRapidTraverseTimesItsG0AndSlowerTravelIsWrittenAs
     return n;
   };
   cnc.rapid_feed_mm_s = 150;
-  EXPECT_EQ(count(write_gcode(tp, cnc, {}), "G0"), travels);
+  EXPECT_EQ(count(gcode::write_gcode(tp, cnc, {}), "G0"), travels);
   cnc.rapid_feed_mm_s = 500;
-  const std::string slower = write_gcode(tp, cnc, {});
+  const std::string slower = gcode::write_gcode(tp, cnc, {});
   EXPECT_EQ(count(slower, "G0"), 0u);
   std::istringstream in(slower);
-  const Toolpath read = read_gcode(in, "slower.nc", reader_options_for(cnc, nullptr));
+  const Toolpath read = gcode::read_gcode(in, "slower.nc", gcode::reader_options_for(cnc, nullptr));
   for (const Move& m : read.moves) {
     if (m.kind == MoveKind::kTravel && m.length_mm() > 0) {
       EXPECT_NEAR(m.feed_mm_s, 150.0, 1e-6);

@@ -12,7 +12,7 @@
 #include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/writer.hpp"
 
 namespace beadtwin::slicer {
 namespace {
@@ -417,13 +417,13 @@ TEST(MeltGcode, GearPumpWritesThePrimeDwellAndTheSpeed) {
   const Extruder pump = gear_pump();
   apply_melt_settings(tp, {s, s}, pump);
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.reverse_on = "M25";
   d.reverse_off = "M26";
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &pump;
   o.melt = {s, s};
-  const std::string g = write_gcode(tp, d, {}, o);
+  const std::string g = gcode::write_gcode(tp, d, {}, o);
   const std::vector<std::string> lines = lines_of(g);
   // The pump starts at the priming speed, the head waits, then the bead's speed: A v / D =
   // 94.635 mm² · 50 mm/s · 60 / 10000 mm³ = 28.39 rpm.
@@ -444,8 +444,8 @@ TEST(MeltGcode, GearPumpWritesThePrimeDwellAndTheSpeed) {
   EXPECT_LT(index_of(lines, "M23 S30 (melt on)", on + 1), lines.size());
 
   // Codes left empty are comments.
-  GcodeDialect plain;
-  const std::string c = write_gcode(tp, plain, {}, o);
+  gcode::GcodeDialect plain;
+  const std::string c = gcode::write_gcode(tp, plain, {}, o);
   EXPECT_NE(c.find("\n(reverse at 10 rpm)\nG4 P500 (reverse)\n(reverse off)\n"), std::string::npos) << c;
 }
 
@@ -459,13 +459,13 @@ TEST(MeltGcode, ReverseWithoutDelayRunsThroughTheCoast) {
   const Extruder pump = gear_pump();
   apply_melt_settings(tp, {s}, pump);
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.reverse_on = "M25";
   d.reverse_off = "M26";
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &pump;
   o.melt = {s};
-  const std::vector<std::string> lines = lines_of(write_gcode(tp, d, {}, o));
+  const std::vector<std::string> lines = lines_of(gcode::write_gcode(tp, d, {}, o));
   const std::size_t off = index_of(lines, "M24 (melt off)");
   ASSERT_LT(off, lines.size());
   EXPECT_EQ(lines[off + 1], "M25 S10 (reverse)");
@@ -488,14 +488,14 @@ TEST(MeltGcode, SetAtControlWritesOnlyTheCodes) {
   const Extruder pump = gear_pump();
   apply_melt_settings(tp, {s, s}, pump);
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.prime_code = "M27";
   d.reverse_on = "M25";
   d.reverse_off = "M26";
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &pump;
   o.melt = {s, s};
-  const std::string g = write_gcode(tp, d, {}, o);
+  const std::string g = gcode::write_gcode(tp, d, {}, o);
   EXPECT_NE(g.find("M23 S28.4 (melt on)\nM27 (prime, set at control)\n"), std::string::npos) << g;
   EXPECT_NE(g.find("M24 (melt off)\nM25 (reverse, set at control)\n"), std::string::npos) << g;
   for (const char* absent : {"G4", "S30", "S10", "M26"})
@@ -512,11 +512,11 @@ TEST(MeltGcode, FilamentEWordsFollowEquationThree) {
   f.filament_diameter_mm = d_f;
   Toolpath tp = two_beads(w, h);
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.decimals = 4;
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &f;
-  const std::string g = write_gcode(tp, d, {}, o);
+  const std::string g = gcode::write_gcode(tp, d, {}, o);
   EXPECT_NE(g.find("G90 (absolute)\nM83 (relative extrusion)\n"), std::string::npos);
   EXPECT_NEAR(e_total(g), 350.0 * e_per_mm, 0.6e-4) << g;
   for (const std::string& l : lines_of(g)) {
@@ -534,7 +534,7 @@ TEST(MeltGcode, FilamentEWordsFollowEquationThree) {
   Toolpath primed = two_beads(w, h);
   apply_melt_settings(primed, {priming(2.0, 6.0)}, f);
   time_toolpath(primed, {});
-  const std::string p = write_gcode(primed, d, {}, o);
+  const std::string p = gcode::write_gcode(primed, d, {}, o);
   const double prime_e = 10.0 / (kPi * d_f * d_f / 4.0);
   EXPECT_NE(p.find(fmt::format("G1 E{:.4f} F", prime_e)), std::string::npos) << p;
   EXPECT_NEAR(e_total(p), 350.0 * e_per_mm + prime_e, 0.6e-4);
@@ -558,13 +558,13 @@ TEST(MeltGcode, FilamentArcsCarryTheMaterialOfTheirMoves) {
   tp.layers[0].z_mm = tp.layers[0].height_mm = h;
   add_bead(tp, 0, ring, w, h);
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.arcs = true;
   d.decimals = 4;
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = &f;
   o.arc_tolerance_mm = {0.05};
-  const std::string g = write_gcode(tp, d, {}, o);
+  const std::string g = gcode::write_gcode(tp, d, {}, o);
   int arcs = 0;
   for (const std::string& l : lines_of(g)) arcs += l.rfind("G3", 0) == 0;
   EXPECT_GE(arcs, 2) << g;
@@ -582,13 +582,13 @@ TEST(MeltGcode, NothingChangesWithoutAnExtruder) {
   Toolpath tp = two_beads();
   apply_melt_settings(tp, {s, s}, gear_pump());
   time_toolpath(tp, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.reverse_on = "M25";
   d.prime_code = "M27";
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.melt = {s, s};
-  const std::string g = write_gcode(tp, d, {});
-  EXPECT_EQ(write_gcode(tp, d, {}, o), g) << "melt settings alone change nothing";
+  const std::string g = gcode::write_gcode(tp, d, {});
+  EXPECT_EQ(gcode::write_gcode(tp, d, {}, o), g) << "melt settings alone change nothing";
   // The events are plain dwells, as every program had them.
   EXPECT_NE(g.find("M23 (melt on)\nG4 P2000 (prime)\n"), std::string::npos) << g;
   EXPECT_NE(g.find("\nG4 P500 (reverse)\n"), std::string::npos) << g;

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "core/flow.hpp"
-#include "slicer/gcode_reader.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/program_reader.hpp"
+#include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 
@@ -37,14 +37,14 @@ int beads(const Toolpath& tp) {
 
 // `time_tol` is relative: a program without melt codes (Marlin) reads back without the melt-on and melt-off
 // stops between beads, so the head carries its speed from one bead into the next travel.
-void expect_round_trip(const Toolpath& want, const GcodeDialect& dialect, const Extruder* extruder,
+void expect_round_trip(const Toolpath& want, const gcode::GcodeDialect& dialect, const Extruder* extruder,
                        const MotionLimits& motion, double position_tol_mm, double time_tol = 1e-3,
                        double volume_tol = 1e-3) {
-  GcodeOptions o;
+  gcode::GcodeOptions o;
   o.extruder = extruder;
-  std::istringstream in(write_gcode(want, dialect, {}, o));
-  ReadStats stats;
-  Toolpath got = read_gcode(in, "round-trip.nc", reader_options_for(dialect, extruder), &stats);
+  std::istringstream in(gcode::write_gcode(want, dialect, {}, o));
+  gcode::ReadStats stats;
+  Toolpath got = gcode::read_gcode(in, "round-trip.nc", gcode::reader_options_for(dialect, extruder), &stats);
   time_toolpath(got, motion);
   EXPECT_EQ(stats.warning_count(), 0u) << (stats.messages.empty() ? "" : stats.messages.front());
   ASSERT_EQ(got.layers.size(), want.layers.size());
@@ -73,7 +73,7 @@ TEST(RoundTrip, GantryProgramWithPumpSpeedsInInches) {
   const Toolpath tp = planned(motion, 20, 5);
   Extruder pump;
   pump.displacement_mm3_per_rev = 10000;
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.inches = true;
   d.decimals = 4;
   expect_round_trip(tp, d, &pump, motion, 0.5 * 25.4e-4 * std::sqrt(3.0) + 1e-9);
@@ -87,7 +87,7 @@ TEST(RoundTrip, MarlinProgramsWithRelativeAndAbsoluteE) {
   Extruder filament;
   filament.kind = ExtruderKind::kFilament;
   filament.filament_diameter_mm = 1.75;
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.melt_on.clear();
   d.melt_off.clear();
   d.decimals = 5;
@@ -109,7 +109,7 @@ TEST(RoundTrip, FanucMacroProgramWithLoopedLayers) {
   const Toolpath tp = plan_toolpath(TriangleMesh{}, {s}, motion);
   Extruder pump;
   pump.displacement_mm3_per_rev = 10000;
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.macro_loops = true;
   // The pump's speed word has one decimal (S34.6): material within 0.2 %.
   expect_round_trip(tp, d, &pump, motion, 1e-3, 1e-3, 2e-3);

@@ -7,7 +7,7 @@
 #include "core/bead.hpp"
 #include "core/error.hpp"
 #include "core/units.hpp"
-#include "slicer/gcode_writer.hpp"
+#include "gcode/writer.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
 #include "slicer/polygons.hpp"
@@ -151,9 +151,9 @@ TEST(Gcode, ProgramNamesLayersSectionsAndFeatures) {
   SectionParams s = section(0, 10, 5, 20, 2, true);
   s.name = "base";
   const Toolpath tp = plan_toolpath(make_box({200, 100, 10}), {s}, {});
-  GcodeDialect d;
+  gcode::GcodeDialect d;
   d.inches = true;
-  const std::string g = write_gcode(tp, d, {"T", "sc", "v", "m", "x"});
+  const std::string g = gcode::write_gcode(tp, d, {"T", "sc", "v", "m", "x"});
   EXPECT_NE(g.find("G20"), std::string::npos);
   EXPECT_NE(g.find("(LAYER 1 SECTION base Z 0.394"), std::string::npos) << g.substr(0, 600);
   EXPECT_NE(g.find("(BOUNDARY PASS 2)"), std::string::npos);

@@ -1,0 +1,38 @@
+// A machine's G-code dialect: the codes, units and number format its print programs use. The writer writes
+// programs in it (gcode/writer.hpp); reader_options_for (gcode/reader_options.hpp) reads such a program back.
+#pragma once
+
+#include <string>
+
+namespace beadtwin::gcode {
+
+struct GcodeDialect {
+  std::string name = "gantry";
+  bool inches = false;           // G20 and inch coordinates/feeds, else G21 and mm
+  std::string melt_on = "M23";   // extruder feed on (the M23/M24 convention of Fanuc macro print programs);
+  std::string melt_off = "M24";  // extruder feed off; empty: a comment (desktop machines extrude by E)
+  std::string heat_on = "";      // extruder heaters on (seed 002's M27), written at the program's start
+  std::string heat_off = "";     // heaters off (M28), at its end
+  std::string roller_down = "";  // optional code to engage the compression roller
+  std::string roller_up = "";
+  int decimals = 3;
+  // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
+  // (gcode/macro_loops.hpp).
+  bool macro_loops = false;
+  // Filament machines: E as the running total (M82, Marlin/RepRap absolute extrusion) instead of per move
+  // (M83).
+  bool absolute_e = false;
+  bool arcs =
+      false;  // the controller takes G2/G3 in the XY plane (G17) with I/J centre offsets from the start
+  // Written only with an extruder (GcodeOptions::extruder):
+  std::string rpm_word = "S";    // pump or screw speed, rev/min; empty: never written
+  std::string prime_code = "";   // starts a prime (patent (51)); empty: a comment
+  std::string reverse_on = "";   // pump or screw turns backwards (patent (52)); empty: a comment
+  std::string reverse_off = "";  // it stops turning backwards; empty: a comment
+  // A controller that runs G0 at its rapid traverse whatever the F word (CNC controllers: Fanuc, Siemens;
+  // ISO 6983-1's positioning at rapid traverse) moves at this speed, mm/s; 0: G0 moves at the programmed
+  // feed, as Marlin and RepRap firmware run it. Travel slower than the rapid traverse is written as G1.
+  double rapid_feed_mm_s = 0.0;
+};
+
+}  // namespace beadtwin::gcode

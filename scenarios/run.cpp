@@ -17,6 +17,7 @@
 #include "core/atomic_file.hpp"
 #include "core/memory.hpp"
 #include "render/surface.hpp"
+#include "scenarios/metrics.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"

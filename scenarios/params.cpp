@@ -460,7 +460,7 @@ constexpr ParamSpec kOutput[] = {
      "temperature against time report.html plots and report.json keeps (temperature_history), every "
      "thermal.sample_interval; layers the print does not reach are left out; [] for none. The default is "
      "the 1st, 15th and 30th layer",
-     "scenarios/report.cpp"},
+     "scenarios/report_html.cpp"},
 };
 
 constexpr ParamSpec kRender[] = {

@@ -13,7 +13,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
-#include "scenarios/report_scripts.hpp"
 #include "scenarios/report_text.hpp"
 #include "scenarios/run.hpp"
 
@@ -357,10 +356,7 @@ std::string sweep_html(const SweepResult& r) {
       r.pareto ? pareto_front(r.records, r.pareto->first, r.pareto->second) : std::vector<std::size_t>{};
   const std::set<std::size_t> on_front(front.begin(), front.end());
 
-  std::string h = "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">";
-  h += fmt::format("<title>beadtwin sweep — {}</title>", esc(r.scenario_name));
-  h += report_style();
-  h += "</head><body>\n";
+  std::string h = html_page_start("beadtwin sweep — " + r.scenario_name);
   h += fmt::format("<h1>Sweep of {}</h1>", esc(r.scenario_name));
   h += fmt::format("<p><span class=\"verdict {}\">{}</span> beadtwin {} · {} · {} · {:.1f} s{}</p>",
                    r.passed() ? "pass" : "fail", r.passed() ? "PASSED" : "FAILED", BEADTWIN_VERSION,
@@ -422,9 +418,7 @@ std::string sweep_html(const SweepResult& r) {
         rec.exit_code >= 0 ? fmt::format("exit code {}", rec.exit_code) : std::string("killed"),
         esc(rec.worker.empty() ? std::string("not started") : rec.worker), esc(rec.name), esc(rec.message));
   }
-  h += "<script>" + std::string(chartjs_source()) + "</script>\n<script>" +
-       std::string(report_plots_source()) + "</script>\n</body></html>\n";
-  return h;
+  return h + html_page_end();
 }
 
 std::string sweep_summary_md(const SweepResult& r) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "scenarios/metrics.hpp"
 #include "scenarios/scenario.hpp"
 #include "scenarios/scenario_blocks.hpp"
 
@@ -36,15 +37,7 @@ Gate parse_gate_text(const std::string& expr, const SourceLocation& at) {
   };
   g.metric = trim(g.expr.substr(0, pos));
   const std::string rhs = trim(g.expr.substr(pos + len));
-  if (!is_gate_metric(g.metric)) {
-    std::string names;
-    for (const auto& n : gate_metrics()) names += (names.empty() ? "" : ", ") + n;
-    std::string figures;
-    for (const auto& n : section_gate_metrics()) figures += (figures.empty() ? "" : ", ") + n;
-    throw InputError(at, "gates",
-                     fmt::format("unknown metric '{}'; expected one of: {}; or sections.NAME. and one of: {}",
-                                 g.metric, names, figures));
-  }
+  if (!is_gate_metric(g.metric)) throw InputError(at, "gates", unknown_metric_message(g.metric));
   const auto number = [&](const std::string& text) {
     try {
       return parse_quantity(trim(text), Dimension::kFraction);

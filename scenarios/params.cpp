@@ -201,7 +201,7 @@ const Param<OutputSpec> kOutput[] = {
                  "whose mean temperature against time report.html plots and report.json keeps "
                  "(temperature_history), every thermal.sample_interval; layers the print does not reach "
                  "are left out; [] for none. The default is the 1st, 15th and 30th layer",
-      .source = "scenarios/report.cpp"},
+      .source = "scenarios/report_html.cpp"},
      BT_MEMBER(OutputSpec, history_layers)},
 };
 

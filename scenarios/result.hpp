@@ -104,10 +104,11 @@ struct Metrics {
   // Per section, in the toolpath's order.
   std::vector<SectionRow> sections;
 
-  // The value of a gate metric by its dotted name (a section's as sections.NAME.FIGURE); nullopt when not
-  // measured (or no section has that name). Throws InternalError on a name is_gate_metric() refuses.
+  // The value of a declared metric (scenarios/metrics.hpp) by its dotted name, a section's figure as
+  // sections.NAME.FIGURE; nullopt when not measured (or no section has that name). Throws InternalError on
+  // a name not declared.
   std::optional<double> get(const std::string& name) const;
-  // Every metric get() measures (those it leaves unset are absent).
+  // Every gate metric measured, by its name (those not measured are absent).
   MetricValues values() const;
 };
 

@@ -260,15 +260,6 @@ Gate parse_gate_text(const std::string& expr, const SourceLocation& at);
 // The gates of a file: a YAML list of gates, or a scenario's `gates:` list.
 std::vector<Gate> load_gates(const std::filesystem::path& path);
 
-// Metric names a gate may use (the report's metrics).
-const std::vector<std::string>& gate_metrics();
-// A section's figures a gate may use as sections.NAME.FIGURE (the report's per-section rows).
-const std::vector<std::string>& section_gate_metrics();
-// Whether a gate may name `name`: one of gate_metrics(), or sections.NAME.FIGURE with a figure of
-// section_gate_metrics() (whether the section exists is known once the variants are: check_gate_sections).
-bool is_gate_metric(const std::string& name);
-// NAME of a sections.NAME.FIGURE metric; nullopt for a part-wide one.
-std::optional<std::string> gate_metric_section(const std::string& name);
 // Throws InputError (key "gates") for a gate on a section no variant of `sc` has, naming the sections.
 void check_gate_sections(const Scenario& sc);
 

@@ -40,6 +40,8 @@ struct SweepRecord {
   double wall_time_s = 0;
   std::string worker;  // where it ran: "local", or "rank 3 on node7"
   bool ran() const { return status != SweepStatus::kFailed; }
+  // What it measured of `metric`; nullopt when it did not run or did not measure it.
+  std::optional<double> value(const std::string& metric) const;
 };
 
 // The record as JSON text (one line) and back: what a worker rank sends to rank 0, and what a variant's
@@ -82,7 +84,8 @@ struct SweepResult {
 };
 
 // The sweep's reports, written into `dir` atomically: sweep.json, sweep.html (with the Pareto plot),
-// summary.md, junit.xml (a test case per variant and gate, an error per variant that failed to run).
+// summary.md, junit.xml (a test case per variant and gate, an error per variant that failed to run). Each
+// has its own file (sweep_json.cpp, sweep_html.cpp, sweep_summary.cpp, sweep_junit.cpp).
 void write_sweep_reports(const SweepResult& result, const std::filesystem::path& dir);
 std::string sweep_json(const SweepResult& result);
 std::string sweep_html(const SweepResult& result);

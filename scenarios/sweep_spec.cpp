@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
+#include "scenarios/metrics.hpp"
 #include "scenarios/sweep_spec.hpp"
 #include "scenarios/yaml_reader.hpp"
 
@@ -173,11 +174,7 @@ Objective parse_objective(const std::string& text, const std::string& option) {
     o.maximise = sense == "max";
     o.metric = trimmed(o.metric.substr(0, colon));
   }
-  if (!is_gate_metric(o.metric))
-    throw InputError(
-        kCommandLine, option,
-        fmt::format("unknown metric '{}'; expected one of: {}; or sections.NAME. and one of: {}", o.metric,
-                    fmt::join(gate_metrics(), ", "), fmt::join(section_gate_metrics(), ", ")));
+  if (!is_gate_metric(o.metric)) throw InputError(kCommandLine, option, unknown_metric_message(o.metric));
   return o;
 }
 

@@ -51,6 +51,8 @@ struct Objective {
   std::string metric;
   bool maximise = false;
   std::string text() const { return maximise ? metric + ":max" : metric; }
+  // Whether `a` is strictly better than `b`.
+  bool better(double a, double b) const { return maximise ? a > b : a < b; }
 };
 // Parses "METRIC" or "METRIC:min|max"; `option` names the command-line option for messages. Throws
 // InputError for a name that is not a gate metric (gate_metrics(), sections.NAME.FIGURE).

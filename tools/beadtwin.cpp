@@ -21,6 +21,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
+#include "scenarios/metrics.hpp"
 #include "scenarios/params.hpp"
 #include "scenarios/run.hpp"
 #include "scenarios/scenario.hpp"
@@ -243,9 +244,26 @@ int cmd_read(const beadtwin::scenarios::ProgramCheck& check) {
   return kExitPass;
 }
 
-// The parameter tables, as Markdown (docs/parameters.md is this output).
-int cmd_params() {
-  const std::string text = beadtwin::scenarios::params_markdown();
+// A subcommand that prints a table generated from the declarations, as Markdown: docs/parameters.md and
+// docs/metrics.md are their output.
+struct TableCommand {
+  CLI::App* command;
+  std::string (*markdown)();
+};
+
+std::vector<TableCommand> add_table_commands(CLI::App& app) {
+  return {
+      {app.add_subcommand(
+           "params",
+           "List every scenario parameter (key, type, default, range, meaning, source) as Markdown."),
+       beadtwin::scenarios::params_markdown},
+      {app.add_subcommand("metrics",
+                          "List every metric a run measures (name, unit, which way is better, whether gates "
+                          "may use it, meaning) as Markdown."),
+       beadtwin::scenarios::metrics_markdown}};
+}
+
+int cmd_print(const std::string& text) {
   std::fwrite(text.data(), 1, text.size(), stdout);
   return kExitPass;
 }
@@ -268,8 +286,8 @@ int main(int argc, char** argv) {
   int threads = 0;
   const std::string threads_help = "Use at most N threads (default: every core); results do not depend on it";
   const std::string gate_help =
-      "A gate over the report's metrics, absolute or relative to the baseline variant: 'porosity < 0.03', "
-      "'print_time_s <= baseline * 1.05'; repeat for several";
+      "A gate over the report's metrics (beadtwin metrics lists them), absolute or relative to the baseline "
+      "variant: 'porosity < 0.03', 'print_time_s <= baseline * 1.05'; repeat for several";
   const std::string gates_help = "A YAML file of gates (a list, or a scenario's gates:), added to the others";
   const std::string set_help =
       "Set a parameter for every variant, after the variants' own settings: KEY=VALUE, KEY as a variant's "
@@ -360,8 +378,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1024));
   sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print only the verdict and the report path");
 
-  CLI::App* params = app.add_subcommand(
-      "params", "List every scenario parameter (key, type, default, range, meaning, source) as Markdown.");
+  const std::vector<TableCommand> tables = add_table_commands(app);
 
   try {
     app.parse(argc, argv);
@@ -397,7 +414,8 @@ int main(int argc, char** argv) {
       return cmd_check(check, gates, out_dir, quiet);
     }
     if (*sweep_cmd) return beadtwin::tools::run_sweep(sweep);
-    if (*params) return cmd_params();
+    for (const TableCommand& t : tables)
+      if (*t.command) return cmd_print(t.markdown());
   } catch (const beadtwin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;

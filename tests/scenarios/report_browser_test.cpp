@@ -143,10 +143,10 @@ std::vector<std::string> console_problems(const Chromium& browser, const Page& p
   return problems;
 }
 
-// What report.cpp writes, as the page lays it out: the variants table with the first cell of each data row,
-// every picture with whether it loaded, every plot (an inline SVG or a chart's canvas; not the SVG inside
-// another) with its box, and the page's size. Boxes are in page pixels, {x, y, width, height}. A plot in a
-// closed <details> is not laid out, so it is left out.
+// What report_html.cpp writes, as the page lays it out: the variants table with the first cell of each data
+// row, every picture with whether it loaded, every plot (an inline SVG or a chart's canvas; not the SVG
+// inside another) with its box, and the page's size. Boxes are in page pixels, {x, y, width, height}. A plot
+// in a closed <details> is not laid out, so it is left out.
 const char* const kInspect = R"((() => {
   const box = e => {
     const r = e.getBoundingClientRect();

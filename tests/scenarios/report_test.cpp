@@ -1,5 +1,5 @@
-// The reports as their readers take them, from made-up results: summary.md short enough for a
-// pull-request comment, junit.xml valid whatever a gate's message holds.
+// The reports as their readers take them, from made-up results: report.json's metrics where their names
+// say, summary.md short enough for a pull-request comment, junit.xml valid whatever a gate's message holds.
 #include "scenarios/report.hpp"
 
 #include <algorithm>
@@ -8,6 +8,9 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "scenarios/metrics.hpp"
 
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"
@@ -44,6 +47,48 @@ std::vector<std::string> lines_of(const std::string& text) {
   for (std::size_t end; (end = text.find('\n', at)) != std::string::npos; at = end + 1)
     lines.push_back(text.substr(at, end - at));
   return lines;
+}
+
+// report.json's "metrics": every declared metric at its dotted path, a count as an integer, null where it
+// was not measured; "values" the gate metrics measured; a section's row its figures by their metric names.
+TEST(ReportJson, MetricsStandAtTheirDottedNames) {
+  using nlohmann::json;
+  RunResult r = made_up(1);
+  Metrics& m = r.variants[0].metrics;
+  m.voxels = 1234;
+  m.thermal_steps = 55;
+  SectionRow walls;
+  walls.name = "walls";
+  walls.layers = 3;
+  walls.print_time_s = 120;
+  m.sections = {walls};
+  const json j = json::parse(report_json(r));
+  const json& metrics = j["variants"][0]["metrics"];
+  for (const MetricDef& d : metric_defs()) {
+    std::string pointer = "/" + std::string(d.name);
+    std::replace(pointer.begin(), pointer.end(), '.', '/');
+    ASSERT_TRUE(metrics.contains(json::json_pointer(pointer))) << d.name;
+    const json& v = metrics[json::json_pointer(pointer)];
+    const std::optional<double> want = d.read(m);
+    if (!want) {
+      EXPECT_TRUE(v.is_null()) << d.name << ": " << v;
+      continue;
+    }
+    EXPECT_EQ(v.is_number_integer(), d.unit == MetricUnit::kCount) << d.name << ": " << v;
+    EXPECT_EQ(v.get<double>(), *want) << d.name;
+  }
+  EXPECT_EQ(metrics["interfaces"]["count"].dump(), "100");
+  EXPECT_EQ(metrics["print_time_s"].dump(), "3600.0");
+  EXPECT_EQ(metrics["deposit"]["voxels"].dump(), "1234");
+  EXPECT_TRUE(metrics["min_stock_mm"].is_null());
+  EXPECT_TRUE(metrics["cad"].is_null());
+  EXPECT_EQ(j["variants"][0]["values"], json(m.values()));
+  EXPECT_FALSE(j["variants"][0]["values"].contains("deposit.voxels"));
+  const json& row = j["variants"][0]["sections"][0];
+  EXPECT_EQ(row["layers"].dump(), "3");
+  EXPECT_EQ(row["print_time_s"].dump(), "120.0");
+  EXPECT_EQ(row["interfaces"].dump(), "0");  // its interfaces as a layer row has them
+  EXPECT_FALSE(row.contains("interfaces.count"));
 }
 
 // Against the baseline: the differences, the worse ones in bold, and the failed gates with their messages.

@@ -130,6 +130,20 @@ TEST(Cli, ParametersDocIsCurrent) {
   EXPECT_EQ(doc, r.output) << "regenerate it: beadtwin params > docs/parameters.md";
 }
 
+// docs/metrics.md is generated from the metric declarations; it must be what the program prints now.
+TEST(Cli, MetricsDocIsCurrent) {
+  const Result r = run("metrics");
+  ASSERT_EQ(r.code, 0);
+  EXPECT_NE(r.output.find("| `interfaces.too_cold_fraction` | fraction | lower | yes |"), std::string::npos)
+      << r.output.substr(0, 2000);
+  EXPECT_NE(r.output.find("| `sections.NAME.print_time_s` | s | lower | yes |"), std::string::npos)
+      << r.output;
+  std::ifstream f(std::string(BEADTWIN_SOURCE_DIR) + "/docs/metrics.md");
+  ASSERT_TRUE(f) << "docs/metrics.md is missing";
+  const std::string doc((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(doc, r.output) << "regenerate it: beadtwin metrics > docs/metrics.md";
+}
+
 // Inputs that would need absurd work are refused up front with the key and line to change.
 TEST(Cli, AbsurdResolutionsAreInputErrors) {
   const std::string base =

@@ -10,8 +10,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tree/LeafManager.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,8 +17,10 @@
 
 #include "core/error.hpp"
 #include "core/percentile.hpp"
-#include "sim/embree.hpp"
+#include "sim/nearest_triangles.hpp"
 #include "sim/skin.hpp"
+#include "sim/triangle_sampling.hpp"
+#include "sim/trilinear.hpp"
 
 namespace beadtwin::sim {
 namespace {
@@ -39,10 +39,6 @@ constexpr double kMinSpacingVoxels = 1.0 / 16.0;
 
 using Vec3 = Eigen::Vector3d;
 
-openvdb::Vec3d to_vdb(const Vec3& p) {
-  return {p.x(), p.y(), p.z()};
-}
-
 // --- Inputs ---
 
 struct Geometry {
@@ -50,171 +46,6 @@ struct Geometry {
   double spacing_mm = 0.0;
   double band_mm = 0.0;
 };
-
-// A triangle is sampled on a grid in its own plane: rows of equal height no taller than the spacing,
-// parallel to its longest edge, each row cut into columns of equal width no wider than the spacing; a sample
-// is the centroid of a cell's part of the triangle, weighted by that part's area. So a sample stands for at
-// most spacing² of surface whatever the triangle's shape: a sliver narrower than the spacing (a long thin
-// CAD triangle) takes one row, about length / spacing samples. (The centroids of n² equal triangles,
-// n = longest edge / spacing, took 9.4 million samples of the LSAM mould's 26,000 triangles, 6.5 million of
-// them on slivers sampled 3 to 20 times as densely as their area needed; this takes 1.6 million.)
-// The rows are walked back and forth, so that each sample lies beside the one before it.
-struct Flat {
-  Vec3 origin, x_axis, y_axis;  // the longest edge's first corner; along it; towards the third corner
-  double length = 0.0, apex_x = 0.0, height = 0.0;  // the longest edge; the third corner is (apex_x, height)
-  double spacing = 0.0;
-  double rows = 0.0;  // ≥ 1, of height / rows each
-
-  // The triangle's x-extent at height y: [left(y), right(y)].
-  double left(double y) const { return height > 0 ? apex_x * (y / height) : 0.0; }
-  double right(double y) const { return height > 0 ? length + (apex_x - length) * (y / height) : length; }
-  double row_bottom(double j) const { return j == 0 ? 0.0 : height * (j / rows); }
-  double row_top(double j) const { return j + 1 == rows ? height : height * ((j + 1) / rows); }
-  // Row j's extent in x and its columns (≥ 1).
-  std::pair<double, double> row_extent(double j) const {
-    const double y0 = row_bottom(j), y1 = row_top(j);
-    return {std::min(left(y0), left(y1)), std::max(right(y0), right(y1))};
-  }
-  double columns(double j) const {
-    const auto [lo, hi] = row_extent(j);
-    return std::max(1.0, std::ceil((hi - lo) / spacing));
-  }
-};
-
-Flat flatten(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
-  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
-  const auto [p, q, r] = ab >= bc && ab >= ca ? std::array<const Vec3*, 3>{&a, &b, &c}
-                         : bc >= ca           ? std::array<const Vec3*, 3>{&b, &c, &a}
-                                              : std::array<const Vec3*, 3>{&c, &a, &b};
-  Flat f;
-  f.origin = *p;
-  f.spacing = spacing;
-  f.length = (*q - *p).norm();
-  f.x_axis = f.length > 0 ? Vec3((*q - *p) / f.length) : Vec3::UnitX();
-  const Vec3 to_apex = *r - *p;
-  f.apex_x = to_apex.dot(f.x_axis);
-  const Vec3 up = to_apex - f.apex_x * f.x_axis;
-  f.height = up.norm();
-  f.y_axis = f.height > 0 ? Vec3(up / f.height) : Vec3::Zero();
-  f.rows = std::max(1.0, std::ceil(f.height / spacing));
-  return f;
-}
-
-// One cell of a triangle's sampling grid: the part of the triangle in it, a convex polygon.
-struct Cell {
-  Vec3 point = Vec3::Zero();  // its centroid: the sample
-  double area = 0.0;
-  double radius = 0.0;  // the distance from the sample to its farthest corner
-  std::array<Vec3, 8> corner;
-  std::size_t corners = 0;
-
-  Cell() { corner.fill(Vec3::Zero()); }
-};
-
-// Calls `f(cell)` for every cell of (a, b, c) (the samples), in a fixed order.
-template <class F>
-void for_each_cell(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, F&& f) {
-  const Flat flat = flatten(a, b, c, spacing);
-  Cell cell;
-  const auto finish = [&] {
-    cell.radius = 0.0;
-    for (std::size_t k = 0; k < cell.corners; ++k)
-      cell.radius = std::max(cell.radius, (cell.corner[k] - cell.point).norm());
-    f(static_cast<const Cell&>(cell));
-  };
-  if (flat.rows == 1 &&
-      flat.columns(0) == 1) {  // one cell holds it whole (most of the print's own triangles)
-    cell.point = (a + b + c) / 3.0;
-    cell.area = 0.5 * flat.length * flat.height;
-    cell.corner[0] = a, cell.corner[1] = b, cell.corner[2] = c;
-    cell.corners = 3;
-    finish();
-    return;
-  }
-  for (double j = 0; j < flat.rows; ++j) {
-    const double y0 = flat.row_bottom(j), y1 = flat.row_top(j);
-    // The row's part of the triangle, a trapezoid (a triangle in the top row), relative to (lo, y0).
-    const auto [lo, hi] = flat.row_extent(j);
-    const std::array<std::array<double, 2>, 4> row{{{flat.left(y0) - lo, 0.0},
-                                                    {flat.right(y0) - lo, 0.0},
-                                                    {flat.right(y1) - lo, y1 - y0},
-                                                    {flat.left(y1) - lo, y1 - y0}}};
-    const double n = flat.columns(j), width = hi - lo;
-    const bool backwards = static_cast<long long>(j) % 2 == 1;
-    const auto to_3d = [&](double x, double y) {
-      return Vec3(flat.origin + (lo + x) * flat.x_axis + (y0 + y) * flat.y_axis);
-    };
-    for (double i = 0; i < n; ++i) {
-      const double column = backwards ? n - 1 - i : i;
-      const double x0 = column == 0 ? 0.0 : width * (column / n);
-      const double x1 = column + 1 == n ? width : width * ((column + 1) / n);
-      // The trapezoid clipped to x0 <= x <= x1 (Sutherland and Hodgman), then its area and centroid.
-      std::array<std::array<double, 2>, 8> cut{}, part{};
-      std::size_t cuts = 0, corners = 0;
-      for (std::size_t k = 0; k < row.size(); ++k) {
-        const auto& u = row[k];
-        const auto& v = row[(k + 1) % row.size()];
-        const bool u_in = u[0] >= x0, v_in = v[0] >= x0;
-        if (u_in) cut[cuts++] = u;
-        if (u_in != v_in) cut[cuts++] = {x0, u[1] + (v[1] - u[1]) * ((x0 - u[0]) / (v[0] - u[0]))};
-      }
-      for (std::size_t k = 0; k < cuts; ++k) {
-        const auto& u = cut[k];
-        const auto& v = cut[(k + 1) % cuts];
-        const bool u_in = u[0] <= x1, v_in = v[0] <= x1;
-        if (u_in) part[corners++] = u;
-        if (u_in != v_in) part[corners++] = {x1, u[1] + (v[1] - u[1]) * ((x1 - u[0]) / (v[0] - u[0]))};
-      }
-      double twice_area = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
-      for (std::size_t k = 0; k < corners; ++k) {
-        const auto& u = part[k];
-        const auto& v = part[(k + 1) % corners];
-        const double w = u[0] * v[1] - v[0] * u[1];
-        twice_area += w;
-        cx += (u[0] + v[0]) * w;
-        cy += (u[1] + v[1]) * w;
-        mx += u[0];
-        my += u[1];
-      }
-      double x = 0.0, y = 0.0;
-      if (twice_area > 0) {
-        x = cx / (3.0 * twice_area);
-        y = cy / (3.0 * twice_area);
-      } else if (corners > 0) {  // no area to weigh by (a triangle without area): the corners' mean
-        x = mx / static_cast<double>(corners);
-        y = my / static_cast<double>(corners);
-      }
-      cell.point = to_3d(x, y);
-      cell.area = std::max(0.0, 0.5 * twice_area);
-      cell.corners = corners;
-      for (std::size_t k = 0; k < corners; ++k) cell.corner[k] = to_3d(part[k][0], part[k][1]);
-      finish();
-    }
-  }
-}
-
-// Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
-template <class Sample>
-void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
-  for_each_cell(a, b, c, spacing, [&](const Cell& cell) { sample(cell.point, cell.area); });
-}
-
-// How many samples sample_points takes of (a, b, c), counting no further than `limit` (then more).
-std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::size_t limit) {
-  const Flat f = flatten(a, b, c, spacing);
-  if (f.rows > static_cast<double>(limit)) return limit + 1;
-  double total = 0.0;
-  for (double j = 0; j < f.rows; ++j) {
-    total += f.columns(j);
-    if (total > static_cast<double>(limit)) return limit + 1;
-  }
-  return static_cast<std::size_t>(total);
-}
-
-// Half-width of the CAD's distance grid, voxels: CadField::kNarrowVoxels, within the band.
-double narrow_voxels(double band_mm, double voxel_mm) {
-  return std::min(CadField::kNarrowVoxels, band_mm / voxel_mm);
-}
 
 // The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
 void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
@@ -274,7 +105,8 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
-  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * narrow_voxels(g.band_mm, g.voxel_mm));
+  const double band_voxels =
+      area / (g.voxel_mm * g.voxel_mm) * (2.0 * CadField::narrow_voxels(g.band_mm, g.voxel_mm));
   if (band_voxels > kMaxBandVolume)
     throw InputError(
         {}, "cad",
@@ -306,163 +138,6 @@ int plate_row(const openvdb::FloatGrid& fill) {
         fmt::format("nothing was deposited: no voxel of the deposit is at least {} full", kPrintedFill));
   return lowest;
 }
-
-// --- Distance grids ---
-
-// The CAD's signed distance on the deposit's voxels, `band_voxels` either side. Points go to index space in
-// double precision (the meshing's own world-space entry takes floats). Without OpenVDB's renormalization:
-// it smooths the values near the surface for meshes that overlap themselves, and moves them off the true
-// distance where a closed CAD turns a sharp corner (by 1.2 mm on 2 mm voxels at the LSAM mould's inside
-// corner between floor and wall); without it, each value is the exact distance from the voxel's centre to
-// the nearest triangle.
-openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::math::Transform& transform,
-                                          float band_voxels) {
-  std::vector<openvdb::Vec3d> points;
-  points.reserve(cad.vertices.size());
-  for (const Vec3& v : cad.vertices) points.push_back(transform.worldToIndex(to_vdb(v)));
-  std::vector<openvdb::Vec3I> triangles;
-  triangles.reserve(cad.triangles.size());
-  for (const auto& t : cad.triangles)
-    triangles.emplace_back(static_cast<openvdb::Index32>(t[0]), static_cast<openvdb::Index32>(t[1]),
-                           static_cast<openvdb::Index32>(t[2]));
-  const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3d, openvdb::Vec3I> mesh(points, triangles);
-  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, band_voxels, band_voxels,
-                                                               openvdb::tools::DISABLE_RENORMALIZATION);
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  return grid;
-}
-
-// The closest point of triangle (a, b, c) to p, and the feature it lies on: the corner (0, 1 or 2), an
-// edge or the face. By the Voronoi region of the triangle's corners, edges and face that p lies in (Ericson,
-// Real-Time Collision Detection, 2005, section 5.1.5).
-struct Closest {
-  Vec3 point;
-  int corner = -1;  // the corner it is, or -1
-};
-Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {a, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {b, 1};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return {a + d1 / (d1 - d3) * ab};
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {c, 2};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return {a + d2 / (d2 - d6) * ac};
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return {b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)};
-  const double scale = 1.0 / (va + vb + vc);
-  return {a + ab * (vb * scale) + ac * (vc * scale)};
-}
-
-// Triangles in an Embree scene, for the exact distance from a point to the nearest of them: Embree's point
-// query finds the candidates, closest_on_triangle measures each.
-class NearestTriangles {
- public:
-  NearestTriangles(std::span<const openvdb::Vec3s> points, std::span<const std::array<unsigned, 3>> triangles)
-      : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
-    points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         points.size());
-    double reach = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const openvdb::Vec3s& p = points[i];
-      points_[i] = {p.x(), p.y(), p.z()};
-      reach = std::max({reach, std::abs(double{p.x()}), std::abs(double{p.y()}), std::abs(double{p.z()})});
-    }
-    triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               triangles.size());
-    std::copy(triangles.begin(), triangles.end(), triangles_.begin());
-    geometry_.commit();
-    scene_.attach(geometry_);
-    scene_.commit();
-    // The query's point goes to Embree in single precision: its search sphere is this much wider, so that
-    // no triangle within the radius of the point itself is passed over.
-    slack_mm_ = 4.0 * std::numeric_limits<float>::epsilon() * (1.0 + reach);
-  }
-
-  std::size_t triangles() const { return triangles_.size(); }
-  std::array<Vec3, 3> triangle(std::size_t i) const {
-    const std::array<unsigned, 3>& t = triangles_[i];
-    std::array<Vec3, 3> out;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::array<float, 3>& v = points_[t[k]];
-      out[k] = Vec3(v[0], v[1], v[2]);
-    }
-    return out;
-  }
-
-  // The distance from p to the triangles, mm, if it is less than `radius` (else `radius`), and, for
-  // triangles that face out from a closed surface, whether p lies outside it (when it is nearer than
-  // `radius`): by the side of the nearest point's pseudonormal — the face's normal, the sum of the two
-  // faces' normals on an edge, their normals weighted by their angles at a corner — which tells inside from
-  // outside for a closed surface wherever the nearest point lies (Bærentzen and Aanæs, Signed distance
-  // computation using the angle weighted pseudonormal, IEEE TVCG 11(3), 2005). The faces that share the
-  // nearest point are the ones nearest within a rounding.
-  struct Distance {
-    double mm = 0.0;
-    bool found = false, outside = false;
-  };
-  Distance distance(const Vec3& p, double radius) const {
-    Nearest nearest{this, p, radius * radius};
-    RTCPointQuery query{};
-    query.x = static_cast<float>(p.x());
-    query.y = static_cast<float>(p.y());
-    query.z = static_cast<float>(p.z());
-    query.radius = static_cast<float>(radius + slack_mm_);
-    scene_.point_query(query, &visit, &nearest);
-    Distance out;
-    out.mm = std::sqrt(nearest.best_sq);
-    out.found = nearest.best_sq < radius * radius;
-    out.outside = (p - nearest.point).dot(nearest.normal) > 0;
-    return out;
-  }
-
- private:
-  struct Nearest {
-    const NearestTriangles* surface;
-    Vec3 p;
-    double best_sq;
-    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();  // the nearest point, its pseudonormal so far
-  };
-
-  static bool visit(RTCPointQueryFunctionArguments* args) {
-    auto& n = *static_cast<Nearest*>(args->userPtr);
-    const std::array<Vec3, 3> t = n.surface->triangle(args->primID);
-    const Closest c = closest_on_triangle(n.p, t[0], t[1], t[2]);
-    const double d_sq = (c.point - n.p).squaredNorm();
-    // A face that shares the nearest point measures it to within a rounding of the corners' floats.
-    const double tie = 1e-9 * (n.best_sq + n.surface->slack_mm_ * n.surface->slack_mm_);
-    if (d_sq > n.best_sq + tie) return false;
-    Vec3 normal = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
-    if (c.corner >= 0) {
-      const auto k = static_cast<std::size_t>(c.corner);
-      const Vec3 u = t[(k + 1) % 3] - t[k], v = t[(k + 2) % 3] - t[k];
-      normal *= std::atan2(u.cross(v).norm(), u.dot(v));
-    }
-    const bool shrinks = d_sq < n.best_sq - tie;
-    if (shrinks)
-      n.normal = normal;
-    else
-      n.normal += normal;
-    if (d_sq >= n.best_sq) return false;
-    n.best_sq = d_sq;
-    n.point = c.point;
-    if (!shrinks) return false;
-    args->query->radius = static_cast<float>(std::sqrt(d_sq) + n.surface->slack_mm_);
-    return true;
-  }
-
-  embree::Device device_;
-  embree::Geometry geometry_;
-  embree::Scene scene_;
-  std::span<std::array<float, 3>> points_;
-  std::span<std::array<unsigned, 3>> triangles_;
-  double slack_mm_ = 0.0;
-};
 
 // The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
 // surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
@@ -651,11 +326,6 @@ openvdb::FloatGrid::Ptr solid_print(const openvdb::FloatGrid& fill, int plate_k,
   return solid;
 }
 
-template <class Accessor>
-double sample(const Accessor& acc, const openvdb::math::Transform& transform, const Vec3& p) {
-  return openvdb::tools::BoxSampler::sample(acc, transform.worldToIndex(to_vdb(p)));
-}
-
 // --- Stock over the CAD surface ---
 
 struct CadTriangle {
@@ -698,8 +368,8 @@ bool faces_down(const CadTriangle& tri, const openvdb::FloatGrid& cad_distance, 
   if (std::abs(n.z()) < -kDownNormalZ) return false;
   const Vec3 centre = (tri.a + tri.b + tri.c) / 3.0;
   const auto acc = cad_distance.getConstUnsafeAccessor();
-  const double ahead = sample(acc, cad_distance.transform(), centre + 0.5 * voxel_mm * n);
-  const double behind = sample(acc, cad_distance.transform(), centre - 0.5 * voxel_mm * n);
+  const double ahead = trilinear(acc, cad_distance.transform(), centre + 0.5 * voxel_mm * n);
+  const double behind = trilinear(acc, cad_distance.transform(), centre - 0.5 * voxel_mm * n);
   if (ahead < behind) n = -n;  // the distance grows outward
   return n.z() <= kDownNormalZ;
 }
@@ -718,7 +388,7 @@ double stock_at(const Vec3& p, double reach, const NearestTriangles& print, cons
   NearestTriangles::Distance d = print.distance(p, reach);
   if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
   // Beyond the band, far from any surface, the fill tells inside from outside.
-  const bool inside = d.found ? !d.outside : sample(solid, transform, p) >= kPrintedFill;
+  const bool inside = d.found ? !d.outside : trilinear(solid, transform, p) >= kPrintedFill;
   return inside ? d.mm : -d.mm;
 }
 
@@ -741,7 +411,7 @@ void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, cons
   }
   Vec3 last(0, 0, 0);
   double reach = g.band_mm;  // from the last sample's distance; the band for the first
-  for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
+  for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const SampleCell& cell) {
     const Vec3& p = cell.point;
     if (k > tri.first_sample) reach = std::min(g.band_mm, (reach + (p - last).norm()) * (1.0 + 1e-9));
     Sample& s = out[k++];
@@ -778,7 +448,7 @@ void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vect
     struct Open {
       double bound;  // no point of the cell has less (sign · stock)
       double value;  // sign · stock at its sample
-      Cell cell;
+      SampleCell cell;
       bool plate;  // of a triangle that may stand on the plate
     };
     // The cell with the most extreme sample first (its bound breaks ties): the extreme is found early,
@@ -801,7 +471,7 @@ void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vect
         any = !samples[k].on_plate && bound(sign * samples[k].stock_mm, widest) < best - tolerance;
       if (!any) continue;
       std::size_t k = tri.first_sample;
-      for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
+      for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const SampleCell& cell) {
         const Sample& s = samples[k++];
         const double b = bound(sign * s.stock_mm, cell.radius);
         if (!s.on_plate && b < best - tolerance) open.push({b, sign * s.stock_mm, cell, tri.on_plate});
@@ -816,7 +486,7 @@ void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vect
       // The cell's polygon as a fan of triangles from its first corner, each sampled at the finer spacing.
       for (std::size_t c = 1; c + 1 < o.cell.corners; ++c)
         for_each_cell(
-            o.cell.corner[0], o.cell.corner[c], o.cell.corner[c + 1], spacing, [&](const Cell& part) {
+            o.cell.corner[0], o.cell.corner[c], o.cell.corner[c + 1], spacing, [&](const SampleCell& part) {
               if (part.area <= 0 || (o.plate && part.point.z() <= plate_top_mm)) return;
               const double reach = std::min(
                   g.band_mm, (std::abs(o.value) + (part.point - o.cell.point).norm()) * (1.0 + 1e-9));
@@ -980,40 +650,6 @@ void measure_outside(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& c
 }
 
 }  // namespace
-
-struct CadField::Triangles {
-  NearestTriangles nearest;
-};
-
-CadField::CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm)
-    : band_mm_(band_mm), voxel_mm_(transform.voxelSize()[0]) {
-  grid_ = cad_distance_grid(cad, transform, static_cast<float>(narrow_voxels(band_mm, voxel_mm_)));
-  std::vector<openvdb::Vec3s> points;
-  points.reserve(cad.vertices.size());
-  for (const Vec3& v : cad.vertices) points.emplace_back(openvdb::Vec3d(v.x(), v.y(), v.z()));
-  std::vector<std::array<unsigned, 3>> triangles;
-  triangles.reserve(cad.triangles.size());
-  for (const auto& t : cad.triangles)
-    triangles.push_back(
-        {static_cast<unsigned>(t[0]), static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2])});
-  triangles_ = std::make_unique<const Triangles>(Triangles{NearestTriangles(points, triangles)});
-}
-
-CadField::~CadField() = default;
-
-double CadField::at(const Eigen::Vector3d& point_mm) const {
-  return at(grid_->getConstUnsafeAccessor(), point_mm);
-}
-
-double CadField::at(const openvdb::FloatGrid::ConstUnsafeAccessor& grid_accessor,
-                    const Eigen::Vector3d& point_mm) const {
-  // Within a voxel of the surface, every corner of the trilinear sample lies within the grid's band
-  // (kNarrowVoxels = 2: a corner is at most √3/2 voxel further than the point).
-  const double near = sample(grid_accessor, grid_->transform(), point_mm);
-  if (std::abs(near) < voxel_mm_) return near;
-  const NearestTriangles::Distance d = triangles_->nearest.distance(point_mm, band_mm_);
-  return std::copysign(d.found ? d.mm : band_mm_, near);
-}
 
 CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadCompareOptions& options) {
   openvdb::initialize();

@@ -41,17 +41,10 @@
 #include <openvdb/openvdb.h>
 #include <Eigen/Core>
 
+#include "sim/cad_field.hpp"
 #include "sim/deposit.hpp"
 
 namespace beadtwin::sim {
-
-// The part's CAD in the machine frame, mm: a closed triangle mesh (its winding does not matter; inside and
-// outside come from the surface itself). Plain vertices and triangles, so the simulation needs nothing of
-// the slicer.
-struct CadSurface {
-  std::span<const Eigen::Vector3d> vertices;
-  std::span<const std::array<int, 3>> triangles;  // indices into vertices
-};
 
 struct CadCompareOptions {
   // Half-width of the CAD's narrow band and the reach of the stock, mm (> 0): stocks and deviations are
@@ -65,38 +58,6 @@ struct CadCompareOptions {
   // Leave out the CAD faces on the build plate and let the table stand in for material below the print
   // (see above); false measures the part as if it floated, bottom faces and all.
   bool exclude_plate = true;
-};
-
-// The CAD's signed distance, mm, negative inside, out to a band (the stock's reach) and ±band beyond it.
-// Two parts: a narrow-band distance grid on the deposit's voxels, kNarrowVoxels either side of the CAD
-// (OpenVDB's mesh-to-volume: exact distances at the voxel centres there, and inside and outside told by a
-// flood of the sign everywhere, whatever the triangles' winding), and the CAD's triangles in an Embree
-// scene. Within a voxel of the CAD's surface (by the grid) the distance is the grid's, trilinear between
-// voxel centres; further out it is the exact distance to the nearest triangle, with the grid's sign. (A grid
-// as wide as the band cost most of the comparison on a large part: on the LSAM mould 23 million voxels and
-// 6 s, where the narrow grid takes 1.4 s and the queries for the quarter of the skin's 12 million samples
-// that lie further out about 1 s of a core.) Safe to call from several threads at once.
-class CadField {
- public:
-  static constexpr double kNarrowVoxels = 2.0;
-  // `transform`: the deposit's (deposit_transform). The CAD as compare_with_cad takes it, already checked.
-  CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm);
-  ~CadField();
-  CadField(const CadField&) = delete;
-  CadField& operator=(const CadField&) = delete;
-
-  double at(const Eigen::Vector3d& point_mm) const;
-  // The same, reading the grid through `grid_accessor` (one per thread, from grid()).
-  double at(const openvdb::FloatGrid::ConstUnsafeAccessor& grid_accessor,
-            const Eigen::Vector3d& point_mm) const;
-  // The narrow band: exact within kNarrowVoxels of the CAD, ±kNarrowVoxels voxels beyond, signed everywhere.
-  const openvdb::FloatGrid& grid() const { return *grid_; }
-
- private:
-  struct Triangles;  // in Embree
-  openvdb::FloatGrid::Ptr grid_;
-  std::unique_ptr<const Triangles> triangles_;
-  double band_mm_ = 0.0, voxel_mm_ = 0.0;
 };
 
 struct CadComparison {

@@ -1,9 +1,7 @@
 #include "sim/cad_compare.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 #include <queue>
 #include <string>
@@ -18,14 +16,13 @@
 #include "core/error.hpp"
 #include "core/percentile.hpp"
 #include "sim/nearest_triangles.hpp"
-#include "sim/skin.hpp"
+#include "sim/print_surface.hpp"
 #include "sim/triangle_sampling.hpp"
 #include "sim/trilinear.hpp"
 
 namespace beadtwin::sim {
 namespace {
 
-constexpr double kPrintedFill = 0.5;  // the printed part: voxels at least half full (as the renderer draws)
 // A face is on the plate when its outward normal is within about 25° of straight down (cos 25° ≈ 0.9)...
 constexpr double kDownNormalZ = -0.9;
 // ...and it lies within this many voxels above the bottom of the lowest printed voxel.
@@ -126,204 +123,6 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
         fmt::format("the print's bounding box holds {:.3g} voxels of {} mm, more than the comparison "
                     "with the CAD takes ({:.3g}); use a larger voxel size",
                     box, g.voxel_mm, kMaxDenseVoxels));
-}
-
-// The lowest row of printed voxels (fill >= 0.5): the plate is at its bottom. Throws when none is printed.
-int plate_row(const openvdb::FloatGrid& fill) {
-  int lowest = std::numeric_limits<int>::max();
-  for (auto it = fill.cbeginValueOn(); it; ++it)
-    if (*it >= kPrintedFill) lowest = std::min(lowest, it.getCoord().z());
-  if (lowest == std::numeric_limits<int>::max())
-    throw InputError(
-        fmt::format("nothing was deposited: no voxel of the deposit is at least {} full", kPrintedFill));
-  return lowest;
-}
-
-// The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
-// surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
-// into larger polygons where the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of
-// identical voxel faces), its triangles facing out (so NearestTriangles::Distance::outside holds).
-// Triangles without area are left out: they have no side to tell inside from outside by.
-NearestTriangles print_surface(const openvdb::FloatGrid::Ptr& solid) {
-  constexpr double kAdaptivity = 0.01;
-  Deposit as_printed;
-  as_printed.fill = solid;
-  const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
-  const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
-  std::vector<std::array<unsigned, 3>> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const openvdb::Vec3I& t : mesh.triangles)
-    if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0) triangles.push_back({t[0], t[1], t[2]});
-  return NearestTriangles(p, triangles);
-}
-// Fills the voids the print closes in (fill fraction below 1/2, not connected to the outside through
-// face-neighbouring voxels below 1/2): they are porosity, reported as such by the deposit, not surface, so
-// their walls must not count as skin or bound a stock. `box` is the print's bounding box grown by a voxel on
-// every side that opens to the outside; with the plate, its bottom is the plate row, which the table closes.
-// A flood from the box's open sides over a dense bit per voxel, row by row along x (each row's bits in whole
-// 64-bit words): a row's free runs that hold a reached voxel are reached whole, and seed the same stretch
-// of the four rows beside them; the free voxels never reached are the closed voids. (A breadth-first flood
-// voxel by voxel took 0.7 s of the LSAM mould's comparison, on one thread; this takes a tenth of that.)
-void fill_closed_voids(openvdb::FloatGrid& solid, const openvdb::CoordBBox& box, bool open_bottom) {
-  const openvdb::Coord lo = box.min(), dim = box.dim();
-  const auto nx = static_cast<std::size_t>(dim.x()), ny = static_cast<std::size_t>(dim.y()),
-             nz = static_cast<std::size_t>(dim.z());
-  const std::size_t words = (nx + 63) / 64;  // per row
-  const std::size_t rows = ny * nz;          // row y + ny · z
-  std::vector<std::uint64_t> free(rows * words, 0), reached(rows * words, 0);
-  // Free: every voxel of the box but the solid ones (and the padding past nx, which stays 0).
-  for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t w = 0; w < words; ++w) {
-      const std::size_t bits = std::min<std::size_t>(64, nx - 64 * w);
-      free[r * words + w] = bits == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
-    }
-  for (auto it = solid.cbeginValueOn(); it; ++it)
-    if (*it >= kPrintedFill && box.isInside(it.getCoord())) {
-      const openvdb::Coord c = it.getCoord() - lo;
-      const auto x = static_cast<std::size_t>(c.x());
-      free[(static_cast<std::size_t>(c.y()) + ny * static_cast<std::size_t>(c.z())) * words + x / 64] &=
-          ~(std::uint64_t{1} << (x % 64));
-    }
-  // The bits [a, b) of a row's words.
-  const auto range_word = [](std::size_t w, std::size_t a, std::size_t b) {
-    const std::size_t lo_bit = std::max(a, 64 * w), hi_bit = std::min(b, 64 * w + 64);
-    if (lo_bit >= hi_bit) return std::uint64_t{0};
-    const std::size_t n = hi_bit - lo_bit;
-    return (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1) << (lo_bit - 64 * w);
-  };
-  std::vector<std::size_t> stack;
-  std::vector<char> queued(rows, 0);
-  // Reaches the free voxels [a, b) of row r not reached yet, and queues the row when there were any.
-  const auto seed = [&](std::size_t r, std::size_t a, std::size_t b) {
-    bool any = false;
-    for (std::size_t w = a / 64; w < words && 64 * w < b; ++w) {
-      const std::uint64_t fresh = free[r * words + w] & ~reached[r * words + w] & range_word(w, a, b);
-      if (fresh == 0) continue;
-      reached[r * words + w] |= fresh;
-      any = true;
-    }
-    if (any && !queued[r]) {
-      queued[r] = 1;
-      stack.push_back(r);
-    }
-  };
-  for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t y = 0; y < ny; ++y) {
-      const std::size_t r = y + ny * z;
-      if (y == 0 || y == ny - 1 || z == nz - 1 || (open_bottom && z == 0)) {
-        seed(r, 0, nx);
-      } else {
-        seed(r, 0, 1);
-        seed(r, nx - 1, nx);
-      }
-    }
-  while (!stack.empty()) {
-    const std::size_t r = stack.back();
-    stack.pop_back();
-    queued[r] = 0;
-    const std::size_t y = r % ny, z = r / ny;
-    // Each free run of the row with a reached voxel is reached whole and seeds its neighbours' rows.
-    std::size_t x = 0;
-    while (x < nx) {
-      // The next free voxel from x, then the end of its run.
-      const auto next = [&](std::size_t from, bool want_free) {
-        for (std::size_t w = from / 64; w < words; ++w) {
-          std::uint64_t bits = want_free ? free[r * words + w] : ~free[r * words + w];
-          if (w == from / 64) bits &= ~std::uint64_t{0} << (from % 64);
-          if (bits != 0) return std::min(nx, 64 * w + static_cast<std::size_t>(std::countr_zero(bits)));
-        }
-        return nx;
-      };
-      const std::size_t a = next(x, true);
-      if (a >= nx) break;
-      const std::size_t b = next(a, false);
-      x = b;
-      bool hit = false, whole = true;
-      for (std::size_t w = a / 64; w < words && 64 * w < b; ++w) {
-        const std::uint64_t run = range_word(w, a, b), got = reached[r * words + w] & run;
-        hit = hit || got != 0;
-        whole = whole && got == run;
-      }
-      if (!hit) continue;
-      if (!whole)
-        for (std::size_t w = a / 64; w < words && 64 * w < b; ++w)
-          reached[r * words + w] |= range_word(w, a, b);
-      if (y > 0) seed(r - 1, a, b);
-      if (y + 1 < ny) seed(r + 1, a, b);
-      if (z > 0) seed(r - ny, a, b);
-      if (z + 1 < nz) seed(r + ny, a, b);
-    }
-  }
-  auto acc = solid.getAccessor();
-  for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t w = 0; w < words; ++w) {
-      std::uint64_t closed = free[r * words + w] & ~reached[r * words + w];
-      while (closed != 0) {
-        const std::size_t x = 64 * w + static_cast<std::size_t>(std::countr_zero(closed));
-        closed &= closed - 1;
-        acc.setValue(lo.offsetBy(static_cast<int>(x), static_cast<int>(r % ny), static_cast<int>(r / ny)),
-                     1.0f);
-      }
-    }
-}
-
-// Fills the inside of the voids one voxel thin. A slit voxel is less than half full between two voxels at
-// least half full along some axis; it is filled when each of its six neighbours is at least half full or a
-// slit voxel itself: the inside of a slit or a pipe one voxel across, not its mouth, nor the tip of a groove
-// (one voxel deep, so its own mouth). Such a slit (a layer's interface under-filled along a wall, a gap
-// between two passes, a seam's gap running up a wall) is a flaw of the bond, in the porosity the deposit
-// reports; the voxels do not resolve its shape, so it is no surface to machine or to measure from. Its
-// mouth and the voids any thicker that open to the outside stay surface.
-void fill_slits(openvdb::FloatGrid& solid) {
-  const auto acc = solid.getConstAccessor();
-  const auto full = [&](const openvdb::Coord& ijk) { return acc.getValue(ijk) >= kPrintedFill; };
-  openvdb::MaskGrid slits(false);
-  auto slit = slits.getAccessor();
-  for (auto it = solid.cbeginValueOn(); it; ++it) {
-    if (*it < kPrintedFill) continue;
-    for (int axis = 0; axis < 3; ++axis) {
-      openvdb::Coord gap = it.getCoord(), beyond = gap;
-      gap[axis] += 1;
-      beyond[axis] += 2;
-      if (!full(gap) && full(beyond)) slit.setValueOn(gap);
-    }
-  }
-  std::vector<openvdb::Coord> inside;
-  for (auto it = slits.cbeginValueOn(); it; ++it) {
-    bool closed = true;
-    for (int axis = 0; axis < 3 && closed; ++axis)
-      for (const int step : {-1, 1}) {
-        openvdb::Coord next = it.getCoord();
-        next[axis] += step;
-        closed = closed && (full(next) || slit.isValueOn(next));
-      }
-    if (closed) inside.push_back(it.getCoord());
-  }
-  auto write = solid.getAccessor();
-  for (const openvdb::Coord& ijk : inside) write.setValue(ijk, 1.0f);
-}
-
-// The print as its surface is measured: its closed voids filled and, with the plate, the table standing in
-// for material — every voxel of its lowest printed row copied `depth` voxels down through the plate. The
-// bottom the plate formed is then no surface, so it cannot limit the stock of the faces that meet it (a side
-// face's stock would otherwise fall to nothing at its foot, however much material stands beside it); the
-// sides carry straight on down, as the first row shaped them.
-openvdb::FloatGrid::Ptr solid_print(const openvdb::FloatGrid& fill, int plate_k, bool on_plate, int depth) {
-  auto solid = fill.deepCopy();
-  solid->tree().voxelizeActiveTiles();  // the slits are looked for voxel by voxel
-  openvdb::CoordBBox box = fill.evalActiveVoxelBoundingBox();
-  box.expand(1);
-  if (on_plate) box.min().z() = plate_k;
-  fill_slits(*solid);
-  fill_closed_voids(*solid, box, !on_plate);
-  if (!on_plate) return solid;
-  std::vector<std::pair<openvdb::Coord, float>> row;
-  for (auto it = solid->cbeginValueOn(); it; ++it)
-    if (it.getCoord().z() == plate_k) row.emplace_back(it.getCoord(), *it);
-  auto acc = solid->getAccessor();
-  for (const auto& [ijk, value] : row)
-    for (int k = 1; k <= depth; ++k) acc.setValue(ijk.offsetBy(0, 0, -k), value);
-  return solid;
 }
 
 // --- Stock over the CAD surface ---

@@ -12,6 +12,7 @@
 #include "sim/print_surface.hpp"
 #include "sim/triangle_sampling.hpp"
 #include "slicer/mesh.hpp"
+#include "tests/sim/voxel_block.hpp"
 
 namespace beadtwin::sim {
 namespace {
@@ -68,13 +69,7 @@ TEST(CadStock, TheCadsSamplesAreListedTriangleByTriangle) {
 // the mean over the 1344 mm² that count (8 · 768 + 4 · 1557.33) / 1344 = 9.2063 mm (cad_compare_test.cpp
 // works it out).
 TEST(CadStock, TheStockOfABoxInsideASlab) {
-  openvdb::FloatGrid::Ptr fill = openvdb::FloatGrid::create(0.0f);
-  fill->setTransform(deposit_transform(1.0));
-  auto acc = fill->getAccessor();
-  for (int k = 0; k < 20; ++k)
-    for (int j = 0; j < 40; ++j)
-      for (int i = 0; i < 40; ++i) acc.setValue({i, j, k}, 1.0f);
-  const openvdb::FloatGrid::Ptr solid = solid_print(*fill, 0, true, 18);
+  const openvdb::FloatGrid::Ptr solid = solid_print(*testing::full_block({40, 40, 20}), 0, true, 18);
   const NearestTriangles print = print_surface(solid);
   const Cad cad({24, 24, 8}, {8, 8, 0});
   StockGeometry g;

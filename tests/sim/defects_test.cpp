@@ -13,6 +13,7 @@
 #include "core/units.hpp"
 #include "sim/deposit.hpp"
 #include "tests/sim/lsam_beads.hpp"
+#include "tests/sim/voxel_block.hpp"
 
 namespace beadtwin {
 namespace {
@@ -137,21 +138,11 @@ TEST(Defects, RollerCornersWithinAWindowAreOne) {
   EXPECT_NEAR(broken[0].size, 90.0, 1e-9);
 }
 
-// A block of full 1 mm voxels, x 0..20, y 0..10, z 0..6 mm.
-openvdb::FloatGrid::Ptr block() {
-  openvdb::FloatGrid::Ptr fill = openvdb::FloatGrid::create(0.0f);
-  fill->setTransform(sim::deposit_transform(1.0));
-  auto acc = fill->getAccessor();
-  for (int k = 0; k < 6; ++k)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 20; ++i) acc.setValue({i, j, k}, 1.0f);
-  return fill;
-}
-
-// A travel through the block at 4.2 mm runs 1.8 mm into it; one above it, or beside it, runs into nothing;
-// one passing 1 mm beside it does with a nozzle 3 mm across.
+// A block of full 1 mm voxels, x 0..20, y 0..10, z 0..6 mm. A travel through it at 4.2 mm runs 1.8 mm
+// into it; one above it, or beside it, runs into nothing; one passing 1 mm beside it does with a nozzle 3 mm
+// across.
 TEST(Defects, TravelCollisionIsTheDepthAboveTheTip) {
-  const openvdb::FloatGrid::Ptr fill = block();
+  const openvdb::FloatGrid::Ptr fill = testing::full_block({20, 10, 6});
   const auto depth = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to, double nozzle_mm) {
     return sim::travel_collision_mm(travel(from, to), *fill, 1.0, nozzle_mm);
   };

@@ -7,6 +7,7 @@
 #include "sim/cad_field.hpp"
 #include "sim/deposit.hpp"
 #include "slicer/mesh.hpp"
+#include "tests/sim/voxel_block.hpp"
 
 namespace beadtwin::sim {
 namespace {
@@ -16,12 +17,8 @@ namespace {
 // inside (share 0, the box's side faces running along the voxels' outer faces). So 550 of the 1000 full
 // voxels' material is outside. A voxel half full outside counts half.
 TEST(MaterialOutside, ABlockCutByTheCadsTop) {
-  openvdb::FloatGrid::Ptr fill = openvdb::FloatGrid::create(0.0f);
-  fill->setTransform(deposit_transform(1.0));
+  const openvdb::FloatGrid::Ptr fill = testing::full_block({10, 10, 10});
   auto acc = fill->getAccessor();
-  for (int k = 0; k < 10; ++k)
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 10; ++i) acc.setValue({i, j, k}, 1.0f);
   const slicer::TriangleMesh box = slicer::make_box({10, 10, 4.5});
   const openvdb::FloatGrid::Ptr distance =
       cad_distance_grid({box.vertices, box.triangles}, fill->transform(), 2.0f);

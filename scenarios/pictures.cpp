@@ -145,6 +145,56 @@ double picture_time_s(const Toolpath& tp, double time_s, int up_to_layer) {
   return std::isfinite(time_s) ? time_s : layer_end_s(tp, up_to_layer);
 }
 
+// Sets `f`'s scale from lo to hi (display units), or to the picture's own `range` (given in the colouring's
+// internal unit, `unit` of them to a display unit).
+void set_scale(Field& f, const std::optional<std::pair<double, double>>& range, double lo, double hi,
+               render::ColourMap map, double unit = 1.0) {
+  f.scale.lo = range ? range->first / unit : lo;
+  f.scale.hi = range ? range->second / unit : hi;
+  f.scale.map = std::move(map);
+}
+
+// Each piece of bead by its worst interface's fusion verdict: a category per verdict.
+Field fusion_field(const ThermalRun& th, const openvdb::FloatGrid& fill) {
+  using thermal::Verdict;
+  Field f;
+  f.heading = "Fusion";
+  f.title = "each piece of bead by its worst interface";
+  // The legend's order; a cell's value is its verdict's place in it.
+  static constexpr std::pair<Verdict, const char*> kVerdicts[] = {
+      {Verdict::kOk, "fuses"},
+      {Verdict::kTooHot, "too hot: landed on soft material"},
+      {Verdict::kTooCold, "too cold: does not heal"},
+      {Verdict::kNoInterface, "no interface (on the table)"}};
+  for (const auto& [v, label] : kVerdicts) f.categories.push_back({verdict_colour(v), label});
+  std::vector<double> by_cell;
+  by_cell.reserve(th.cells.size());
+  for (const Verdict v : th.cells)
+    by_cell.push_back(static_cast<double>(std::find_if(std::begin(kVerdicts), std::end(kVerdicts),
+                                                       [v](const auto& e) { return e.first == v; }) -
+                                          std::begin(kVerdicts)));
+  f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
+  return f;
+}
+
+// The local porosity (void fraction) within about half the first section's bead width of each voxel.
+Field porosity_field(const PictureInputs& in, const openvdb::FloatGrid& fill,
+                     const std::optional<std::pair<double, double>>& range) {
+  Field f;
+  f.heading = "Porosity";
+  f.title = "local porosity (void fraction)";
+  const openvdb::MaskGrid::Ptr none = openvdb::MaskGrid::create();
+  const double bead = in.variant->sections.empty() ? 4.0 * in.deposit->voxel_size_mm
+                                                   : in.variant->sections.front().bead_width_mm;
+  const int radius = std::max(1, static_cast<int>(std::lround(0.5 * bead / in.deposit->voxel_size_mm)));
+  const openvdb::FloatGrid::Ptr porosity =
+      sim::local_porosity(*in.deposit->fill, in.deposit->gaps ? *in.deposit->gaps : *none, radius);
+  f.voxels = values_of(fill, *porosity, 1.0);
+  set_scale(f, range, 0.0, 0.3, render::ColourMap::viridis());
+  f.note = fmt::format("void over envelope within {:.0f} mm", (2 * radius + 1) * in.deposit->voxel_size_mm);
+  return f;
+}
+
 // The field of `colouring` for the variant of `in`, over the material voxels of `fill` (the part as the
 // picture shows it). `time_s`: the moment of a temperature picture. `thermal`: the variant's thermal run,
 // null while it runs (then only colourings that do not need it).
@@ -155,35 +205,10 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
   BT_CHECK(thermal != nullptr || !needs_thermal(colouring));
   const Material& material = in.variant->material;
   Field f;
-  // The scale from lo to hi (display units), or the picture's own range (given in the colouring's internal
-  // unit, `unit` of them to a display unit).
-  const auto scale = [&](double lo, double hi, render::ColourMap map, double unit = 1.0) {
-    f.scale.lo = range ? range->first / unit : lo;
-    f.scale.hi = range ? range->second / unit : hi;
-    f.scale.map = std::move(map);
-  };
   switch (colouring) {
-    case Colouring::kFusion: {
-      const ThermalRun& th = *thermal;
-      using thermal::Verdict;
-      f.heading = "Fusion";
-      f.title = "each piece of bead by its worst interface";
-      // The legend's order; a cell's value is its verdict's place in it.
-      static constexpr std::pair<Verdict, const char*> kVerdicts[] = {
-          {Verdict::kOk, "fuses"},
-          {Verdict::kTooHot, "too hot: landed on soft material"},
-          {Verdict::kTooCold, "too cold: does not heal"},
-          {Verdict::kNoInterface, "no interface (on the table)"}};
-      for (const auto& [v, label] : kVerdicts) f.categories.push_back({verdict_colour(v), label});
-      std::vector<double> by_cell;
-      by_cell.reserve(th.cells.size());
-      for (const Verdict v : th.cells)
-        by_cell.push_back(static_cast<double>(std::find_if(std::begin(kVerdicts), std::end(kVerdicts),
-                                                           [v](const auto& e) { return e.first == v; }) -
-                                              std::begin(kVerdicts)));
-      f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
+    case Colouring::kFusion:
+      f = fusion_field(*thermal, fill);
       break;
-    }
     case Colouring::kSection: {
       f.heading = "Sections";
       f.title = "section";
@@ -201,7 +226,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       std::vector<double> by_layer(in.toolpath->layers.size());
       for (std::size_t i = 0; i < by_layer.size(); ++i) by_layer[i] = static_cast<double>(i);
       f.voxels = values_by_label(fill, *in.deposit->layer, by_layer);
-      scale(0.0, std::max(1, frame.layers - 1), render::ColourMap::viridis());
+      set_scale(f, range, 0.0, std::max(1, frame.layers - 1), render::ColourMap::viridis());
       break;
     }
     case Colouring::kTime: {
@@ -209,7 +234,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       f.heading = "Deposition time";
       f.title = fmt::format("deposition time ({})", unit.name);
       f.voxels = values_of(fill, *in.deposit->time, unit.seconds);
-      scale(0.0, frame.print_time_s / unit.seconds, render::ColourMap::viridis(), unit.seconds);
+      set_scale(f, range, 0.0, frame.print_time_s / unit.seconds, render::ColourMap::viridis(), unit.seconds);
       break;
     }
     case Colouring::kSubstrate: {
@@ -217,7 +242,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       f.heading = "Substrate temperature at deposition";
       f.title = "temperature of what the bead landed on (°C)";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_substrate_c(th.mesh, th.heat));
-      scale(frame.cold_c, frame.hot_c, render::ColourMap::inferno());
+      set_scale(f, range, frame.cold_c, frame.hot_c, render::ColourMap::inferno());
       f.note = fmt::format("support limit {:.0f} °C; grey: on the table", material.support_limit_c);
       break;
     }
@@ -226,7 +251,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       f.heading = "Degree of healing";
       f.title = "least degree of healing of each piece of bead";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_healing(th.mesh, th.heat));
-      scale(0.0, 1.0, render::ColourMap::viridis());
+      set_scale(f, range, 0.0, 1.0, render::ColourMap::viridis());
       f.note = fmt::format("needs {:.2f}; grey: no interface", material.required_healing);
       break;
     }
@@ -236,27 +261,15 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       f.title = "stock over the CAD (mm)";
       const std::shared_ptr<const sim::CadField> distance = in.cad->comparison.cad_distance;
       f.at_point = [distance](const Eigen::Vector3d& p) { return distance->at(p); };
-      scale(frame.stock_centre_mm - frame.stock_half_range_mm,
-            frame.stock_centre_mm + frame.stock_half_range_mm, render::ColourMap::diverging());
+      set_scale(f, range, frame.stock_centre_mm - frame.stock_half_range_mm,
+                frame.stock_centre_mm + frame.stock_half_range_mm, render::ColourMap::diverging());
       f.note =
           fmt::format("white: the requested {:.1f} mm; blue: less (undercut below 0)", frame.stock_centre_mm);
       break;
     }
-    case Colouring::kPorosity: {
-      f.heading = "Porosity";
-      f.title = "local porosity (void fraction)";
-      const openvdb::MaskGrid::Ptr none = openvdb::MaskGrid::create();
-      const double bead = in.variant->sections.empty() ? 4.0 * in.deposit->voxel_size_mm
-                                                       : in.variant->sections.front().bead_width_mm;
-      const int radius = std::max(1, static_cast<int>(std::lround(0.5 * bead / in.deposit->voxel_size_mm)));
-      const openvdb::FloatGrid::Ptr porosity =
-          sim::local_porosity(*in.deposit->fill, in.deposit->gaps ? *in.deposit->gaps : *none, radius);
-      f.voxels = values_of(fill, *porosity, 1.0);
-      scale(0.0, 0.3, render::ColourMap::viridis());
-      f.note =
-          fmt::format("void over envelope within {:.0f} mm", (2 * radius + 1) * in.deposit->voxel_size_mm);
+    case Colouring::kPorosity:
+      f = porosity_field(in, fill, range);
       break;
-    }
     case Colouring::kTemperature: {
       const ThermalRun& th = *thermal;
       f.heading = fmt::format("Temperature at {}", when(time_s));
@@ -265,7 +278,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       BT_CHECK(s != nullptr);
       const std::vector<double> by_cell(s->temp_c.begin(), s->temp_c.end());
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
-      scale(frame.cold_c, frame.hot_c, render::ColourMap::inferno());
+      set_scale(f, range, frame.cold_c, frame.hot_c, render::ColourMap::inferno());
       break;
     }
   }

@@ -1,35 +1,23 @@
 #include "sim/cad_compare.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <queue>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <openvdb/tools/Interpolation.h>
-#include <openvdb/tools/MeshToVolume.h>
-#include <openvdb/tree/LeafManager.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
 #include "core/error.hpp"
-#include "core/percentile.hpp"
-#include "sim/embree.hpp"
-#include "sim/skin.hpp"
+#include "sim/cad_stock.hpp"
+#include "sim/material_outside.hpp"
+#include "sim/print_surface.hpp"
+#include "sim/skin_deviation.hpp"
 
 namespace beadtwin::sim {
 namespace {
 
-constexpr double kPrintedFill = 0.5;  // the printed part: voxels at least half full (as the renderer draws)
-// A face is on the plate when its outward normal is within about 25° of straight down (cos 25° ≈ 0.9)...
-constexpr double kDownNormalZ = -0.9;
-// ...and it lies within this many voxels above the bottom of the lowest printed voxel.
-constexpr double kPlateVoxels = 1.0;
 constexpr double kMaxBandVoxels = 256.0;  // half-width of a band, voxels
 constexpr double kMaxBandVolume = 4e8;    // voxels the CAD's band may hold, both sides (about 3 GB at most)
 constexpr double kMaxSamples = 5e7;       // samples on the CAD surface
@@ -37,206 +25,24 @@ constexpr double kMaxDenseVoxels = 4e9;   // the print's bounding box, a bit eac
 constexpr double kMaxVoxelIndex = 1e9;    // voxel indices are 32-bit: keep well inside them
 constexpr double kMinSpacingVoxels = 1.0 / 16.0;
 
-using Vec3 = Eigen::Vector3d;
-
-openvdb::Vec3d to_vdb(const Vec3& p) {
-  return {p.x(), p.y(), p.z()};
-}
-
-// --- Inputs ---
-
-struct Geometry {
-  double voxel_mm = 0.0;
-  double spacing_mm = 0.0;
-  double band_mm = 0.0;
-};
-
-// A triangle is sampled on a grid in its own plane: rows of equal height no taller than the spacing,
-// parallel to its longest edge, each row cut into columns of equal width no wider than the spacing; a sample
-// is the centroid of a cell's part of the triangle, weighted by that part's area. So a sample stands for at
-// most spacing² of surface whatever the triangle's shape: a sliver narrower than the spacing (a long thin
-// CAD triangle) takes one row, about length / spacing samples. (The centroids of n² equal triangles,
-// n = longest edge / spacing, took 9.4 million samples of the LSAM mould's 26,000 triangles, 6.5 million of
-// them on slivers sampled 3 to 20 times as densely as their area needed; this takes 1.6 million.)
-// The rows are walked back and forth, so that each sample lies beside the one before it.
-struct Flat {
-  Vec3 origin, x_axis, y_axis;  // the longest edge's first corner; along it; towards the third corner
-  double length = 0.0, apex_x = 0.0, height = 0.0;  // the longest edge; the third corner is (apex_x, height)
-  double spacing = 0.0;
-  double rows = 0.0;  // ≥ 1, of height / rows each
-
-  // The triangle's x-extent at height y: [left(y), right(y)].
-  double left(double y) const { return height > 0 ? apex_x * (y / height) : 0.0; }
-  double right(double y) const { return height > 0 ? length + (apex_x - length) * (y / height) : length; }
-  double row_bottom(double j) const { return j == 0 ? 0.0 : height * (j / rows); }
-  double row_top(double j) const { return j + 1 == rows ? height : height * ((j + 1) / rows); }
-  // Row j's extent in x and its columns (≥ 1).
-  std::pair<double, double> row_extent(double j) const {
-    const double y0 = row_bottom(j), y1 = row_top(j);
-    return {std::min(left(y0), left(y1)), std::max(right(y0), right(y1))};
-  }
-  double columns(double j) const {
-    const auto [lo, hi] = row_extent(j);
-    return std::max(1.0, std::ceil((hi - lo) / spacing));
-  }
-};
-
-Flat flatten(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
-  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
-  const auto [p, q, r] = ab >= bc && ab >= ca ? std::array<const Vec3*, 3>{&a, &b, &c}
-                         : bc >= ca           ? std::array<const Vec3*, 3>{&b, &c, &a}
-                                              : std::array<const Vec3*, 3>{&c, &a, &b};
-  Flat f;
-  f.origin = *p;
-  f.spacing = spacing;
-  f.length = (*q - *p).norm();
-  f.x_axis = f.length > 0 ? Vec3((*q - *p) / f.length) : Vec3::UnitX();
-  const Vec3 to_apex = *r - *p;
-  f.apex_x = to_apex.dot(f.x_axis);
-  const Vec3 up = to_apex - f.apex_x * f.x_axis;
-  f.height = up.norm();
-  f.y_axis = f.height > 0 ? Vec3(up / f.height) : Vec3::Zero();
-  f.rows = std::max(1.0, std::ceil(f.height / spacing));
-  return f;
-}
-
-// One cell of a triangle's sampling grid: the part of the triangle in it, a convex polygon.
-struct Cell {
-  Vec3 point = Vec3::Zero();  // its centroid: the sample
-  double area = 0.0;
-  double radius = 0.0;  // the distance from the sample to its farthest corner
-  std::array<Vec3, 8> corner;
-  std::size_t corners = 0;
-
-  Cell() { corner.fill(Vec3::Zero()); }
-};
-
-// Calls `f(cell)` for every cell of (a, b, c) (the samples), in a fixed order.
-template <class F>
-void for_each_cell(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, F&& f) {
-  const Flat flat = flatten(a, b, c, spacing);
-  Cell cell;
-  const auto finish = [&] {
-    cell.radius = 0.0;
-    for (std::size_t k = 0; k < cell.corners; ++k)
-      cell.radius = std::max(cell.radius, (cell.corner[k] - cell.point).norm());
-    f(static_cast<const Cell&>(cell));
-  };
-  if (flat.rows == 1 &&
-      flat.columns(0) == 1) {  // one cell holds it whole (most of the print's own triangles)
-    cell.point = (a + b + c) / 3.0;
-    cell.area = 0.5 * flat.length * flat.height;
-    cell.corner[0] = a, cell.corner[1] = b, cell.corner[2] = c;
-    cell.corners = 3;
-    finish();
-    return;
-  }
-  for (double j = 0; j < flat.rows; ++j) {
-    const double y0 = flat.row_bottom(j), y1 = flat.row_top(j);
-    // The row's part of the triangle, a trapezoid (a triangle in the top row), relative to (lo, y0).
-    const auto [lo, hi] = flat.row_extent(j);
-    const std::array<std::array<double, 2>, 4> row{{{flat.left(y0) - lo, 0.0},
-                                                    {flat.right(y0) - lo, 0.0},
-                                                    {flat.right(y1) - lo, y1 - y0},
-                                                    {flat.left(y1) - lo, y1 - y0}}};
-    const double n = flat.columns(j), width = hi - lo;
-    const bool backwards = static_cast<long long>(j) % 2 == 1;
-    const auto to_3d = [&](double x, double y) {
-      return Vec3(flat.origin + (lo + x) * flat.x_axis + (y0 + y) * flat.y_axis);
-    };
-    for (double i = 0; i < n; ++i) {
-      const double column = backwards ? n - 1 - i : i;
-      const double x0 = column == 0 ? 0.0 : width * (column / n);
-      const double x1 = column + 1 == n ? width : width * ((column + 1) / n);
-      // The trapezoid clipped to x0 <= x <= x1 (Sutherland and Hodgman), then its area and centroid.
-      std::array<std::array<double, 2>, 8> cut{}, part{};
-      std::size_t cuts = 0, corners = 0;
-      for (std::size_t k = 0; k < row.size(); ++k) {
-        const auto& u = row[k];
-        const auto& v = row[(k + 1) % row.size()];
-        const bool u_in = u[0] >= x0, v_in = v[0] >= x0;
-        if (u_in) cut[cuts++] = u;
-        if (u_in != v_in) cut[cuts++] = {x0, u[1] + (v[1] - u[1]) * ((x0 - u[0]) / (v[0] - u[0]))};
-      }
-      for (std::size_t k = 0; k < cuts; ++k) {
-        const auto& u = cut[k];
-        const auto& v = cut[(k + 1) % cuts];
-        const bool u_in = u[0] <= x1, v_in = v[0] <= x1;
-        if (u_in) part[corners++] = u;
-        if (u_in != v_in) part[corners++] = {x1, u[1] + (v[1] - u[1]) * ((x1 - u[0]) / (v[0] - u[0]))};
-      }
-      double twice_area = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
-      for (std::size_t k = 0; k < corners; ++k) {
-        const auto& u = part[k];
-        const auto& v = part[(k + 1) % corners];
-        const double w = u[0] * v[1] - v[0] * u[1];
-        twice_area += w;
-        cx += (u[0] + v[0]) * w;
-        cy += (u[1] + v[1]) * w;
-        mx += u[0];
-        my += u[1];
-      }
-      double x = 0.0, y = 0.0;
-      if (twice_area > 0) {
-        x = cx / (3.0 * twice_area);
-        y = cy / (3.0 * twice_area);
-      } else if (corners > 0) {  // no area to weigh by (a triangle without area): the corners' mean
-        x = mx / static_cast<double>(corners);
-        y = my / static_cast<double>(corners);
-      }
-      cell.point = to_3d(x, y);
-      cell.area = std::max(0.0, 0.5 * twice_area);
-      cell.corners = corners;
-      for (std::size_t k = 0; k < corners; ++k) cell.corner[k] = to_3d(part[k][0], part[k][1]);
-      finish();
-    }
-  }
-}
-
-// Calls `sample(point, area)` for every sample of (a, b, c), in a fixed order.
-template <class Sample>
-void sample_points(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, Sample&& sample) {
-  for_each_cell(a, b, c, spacing, [&](const Cell& cell) { sample(cell.point, cell.area); });
-}
-
-// How many samples sample_points takes of (a, b, c), counting no further than `limit` (then more).
-std::size_t count_samples(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::size_t limit) {
-  const Flat f = flatten(a, b, c, spacing);
-  if (f.rows > static_cast<double>(limit)) return limit + 1;
-  double total = 0.0;
-  for (double j = 0; j < f.rows; ++j) {
-    total += f.columns(j);
-    if (total > static_cast<double>(limit)) return limit + 1;
-  }
-  return static_cast<std::size_t>(total);
-}
-
-// Half-width of the CAD's distance grid, voxels: CadField::kNarrowVoxels, within the band.
-double narrow_voxels(double band_mm, double voxel_mm) {
-  return std::min(CadField::kNarrowVoxels, band_mm / voxel_mm);
-}
-
-// The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
-void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
-  std::string problems;
-  const auto add = [&](const std::string& problem) { problems += (problems.empty() ? "" : "; ") + problem; };
-
-  g.voxel_mm = voxel_mm;
-  if (!(g.voxel_mm > 0 && std::isfinite(g.voxel_mm)))
-    throw InputError({}, "voxel_size",
-                     fmt::format("the deposit's voxel size must be positive, got {}", g.voxel_mm));
-  g.band_mm = o.band_mm;
-  g.spacing_mm = o.sample_spacing_mm > 0 ? o.sample_spacing_mm : g.voxel_mm;
-  if (!(o.band_mm >= 2 * g.voxel_mm && o.band_mm <= kMaxBandVoxels * g.voxel_mm))
+// The options' problems on voxels of `voxel_mm`, added to `add`.
+template <class Add>
+void check_options(double voxel_mm, const CadCompareOptions& o, const Add& add) {
+  if (!(o.band_mm >= 2 * voxel_mm && o.band_mm <= kMaxBandVoxels * voxel_mm))
     add(fmt::format("band_mm must be 2 to {} voxels ({:.6g} to {:.6g} mm), got {}", kMaxBandVoxels,
-                    2 * g.voxel_mm, kMaxBandVoxels * g.voxel_mm, o.band_mm));
+                    2 * voxel_mm, kMaxBandVoxels * voxel_mm, o.band_mm));
   if (!std::isfinite(o.requested_stock_mm))
     add(fmt::format("requested_stock_mm must be finite, got {}", o.requested_stock_mm));
   if (!(o.sample_spacing_mm == 0 ||
-        (o.sample_spacing_mm >= kMinSpacingVoxels * g.voxel_mm && std::isfinite(o.sample_spacing_mm))))
+        (o.sample_spacing_mm >= kMinSpacingVoxels * voxel_mm && std::isfinite(o.sample_spacing_mm))))
     add(fmt::format("sample_spacing_mm must be 0 (the voxel size) or at least 1/16 voxel ({:.6g} mm), got {}",
-                    kMinSpacingVoxels * g.voxel_mm, o.sample_spacing_mm));
+                    kMinSpacingVoxels * voxel_mm, o.sample_spacing_mm));
+}
 
+// The CAD's problems (no triangles, vertices not finite or out of the voxel index range, indices out of
+// range) on voxels of `voxel_mm`, added to `add`.
+template <class Add>
+void check_cad(double voxel_mm, const CadSurface& cad, const Add& add) {
   if (cad.triangles.empty()) add("the CAD has no triangles");
   std::size_t bad_vertices = 0, first_bad = 0;
   double extent = 0.0;
@@ -250,9 +56,9 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
   if (bad_vertices > 0)
     add(fmt::format("the CAD has {} vertices that are not finite (the first is vertex {})", bad_vertices,
                     first_bad));
-  if (extent / g.voxel_mm > kMaxVoxelIndex)
+  if (extent / voxel_mm > kMaxVoxelIndex)
     add(fmt::format("the CAD reaches {:.6g} mm from the origin, beyond the voxel index range at {} mm voxels",
-                    extent, g.voxel_mm));
+                    extent, voxel_mm));
   const auto n = static_cast<long long>(cad.vertices.size());
   for (std::size_t t = 0; t < cad.triangles.size(); ++t) {
     const auto& tri = cad.triangles[t];
@@ -262,19 +68,21 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
       break;
     }
   }
-  if (!problems.empty()) throw InputError({}, "cad", problems);
+}
 
-  // Budget, now that every number is known good.
+// Throws InputError when the CAD (checked) has no area, or its distance grid would not fit in memory.
+void check_cad_budget(const CadSurface& cad, const StockGeometry& g) {
   double area = 0.0;
   for (const auto& tri : cad.triangles) {
-    const Vec3& a = cad.vertices[static_cast<std::size_t>(tri[0])];
-    const Vec3& b = cad.vertices[static_cast<std::size_t>(tri[1])];
-    const Vec3& c = cad.vertices[static_cast<std::size_t>(tri[2])];
+    const Eigen::Vector3d& a = cad.vertices[static_cast<std::size_t>(tri[0])];
+    const Eigen::Vector3d& b = cad.vertices[static_cast<std::size_t>(tri[1])];
+    const Eigen::Vector3d& c = cad.vertices[static_cast<std::size_t>(tri[2])];
     area += 0.5 * (b - a).cross(c - a).norm();
   }
   if (!(area > 0))
     throw InputError({}, "cad", "the CAD's triangles have no area: there is no surface to measure");
-  const double band_voxels = area / (g.voxel_mm * g.voxel_mm) * (2.0 * narrow_voxels(g.band_mm, g.voxel_mm));
+  const double band_voxels =
+      area / (g.voxel_mm * g.voxel_mm) * (2.0 * CadField::narrow_voxels(g.band_mm, g.voxel_mm));
   if (band_voxels > kMaxBandVolume)
     throw InputError(
         {}, "cad",
@@ -283,10 +91,28 @@ void validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOption
                     area, g.voxel_mm, band_voxels, kMaxBandVolume));
 }
 
-void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o, Geometry& g) {
+// The checks of the CAD and the options on voxels of `voxel_mm`, and the geometry they give.
+StockGeometry validate_cad(double voxel_mm, const CadSurface& cad, const CadCompareOptions& o) {
+  StockGeometry g;
+  g.voxel_mm = voxel_mm;
+  if (!(g.voxel_mm > 0 && std::isfinite(g.voxel_mm)))
+    throw InputError({}, "voxel_size",
+                     fmt::format("the deposit's voxel size must be positive, got {}", g.voxel_mm));
+  g.band_mm = o.band_mm;
+  g.spacing_mm = o.sample_spacing_mm > 0 ? o.sample_spacing_mm : g.voxel_mm;
+  std::string problems;
+  const auto add = [&](const std::string& problem) { problems += (problems.empty() ? "" : "; ") + problem; };
+  check_options(g.voxel_mm, o, add);
+  check_cad(g.voxel_mm, cad, add);
+  if (!problems.empty()) throw InputError({}, "cad", problems);
+  check_cad_budget(cad, g);  // now that every number is known good
+  return g;
+}
+
+StockGeometry validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOptions& o) {
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0)
     throw InputError("nothing was deposited: there is no printed part to compare with the CAD");
-  validate_cad(deposit.fill->voxelSize()[0], cad, o, g);
+  const StockGeometry g = validate_cad(deposit.fill->voxelSize()[0], cad, o);
   const double box = static_cast<double>(deposit.fill->evalActiveVoxelBoundingBox().expandBy(1).volume());
   if (box > kMaxDenseVoxels)
     throw InputError(
@@ -294,731 +120,41 @@ void validate(const Deposit& deposit, const CadSurface& cad, const CadCompareOpt
         fmt::format("the print's bounding box holds {:.3g} voxels of {} mm, more than the comparison "
                     "with the CAD takes ({:.3g}); use a larger voxel size",
                     box, g.voxel_mm, kMaxDenseVoxels));
+  return g;
 }
 
-// The lowest row of printed voxels (fill >= 0.5): the plate is at its bottom. Throws when none is printed.
-int plate_row(const openvdb::FloatGrid& fill) {
-  int lowest = std::numeric_limits<int>::max();
-  for (auto it = fill.cbeginValueOn(); it; ++it)
-    if (*it >= kPrintedFill) lowest = std::min(lowest, it.getCoord().z());
-  if (lowest == std::numeric_limits<int>::max())
-    throw InputError(
-        fmt::format("nothing was deposited: no voxel of the deposit is at least {} full", kPrintedFill));
-  return lowest;
+void copy_stock(const StockStats& s, CadComparison& out) {
+  out.min_stock_mm = s.least_mm;
+  out.max_stock_mm = s.most_mm;
+  out.mean_stock_mm = s.mean_mm;
+  out.p05_stock_mm = s.p05_mm;
+  out.median_stock_mm = s.median_mm;
+  out.p95_stock_mm = s.p95_mm;
+  out.min_stock_clamped = s.least_clamped;
+  out.max_stock_clamped = s.most_clamped;
+  out.undercut_fraction = s.undercut_fraction;
+  out.below_requested_stock_fraction = s.below_requested_fraction;
+  out.cad_area_mm2 = s.area_mm2;
+  out.plate_area_mm2 = s.plate_area_mm2;
+  out.cad_samples = s.samples;
 }
 
-// --- Distance grids ---
-
-// The CAD's signed distance on the deposit's voxels, `band_voxels` either side. Points go to index space in
-// double precision (the meshing's own world-space entry takes floats). Without OpenVDB's renormalization:
-// it smooths the values near the surface for meshes that overlap themselves, and moves them off the true
-// distance where a closed CAD turns a sharp corner (by 1.2 mm on 2 mm voxels at the LSAM mould's inside
-// corner between floor and wall); without it, each value is the exact distance from the voxel's centre to
-// the nearest triangle.
-openvdb::FloatGrid::Ptr cad_distance_grid(const CadSurface& cad, const openvdb::math::Transform& transform,
-                                          float band_voxels) {
-  std::vector<openvdb::Vec3d> points;
-  points.reserve(cad.vertices.size());
-  for (const Vec3& v : cad.vertices) points.push_back(transform.worldToIndex(to_vdb(v)));
-  std::vector<openvdb::Vec3I> triangles;
-  triangles.reserve(cad.triangles.size());
-  for (const auto& t : cad.triangles)
-    triangles.emplace_back(static_cast<openvdb::Index32>(t[0]), static_cast<openvdb::Index32>(t[1]),
-                           static_cast<openvdb::Index32>(t[2]));
-  const openvdb::tools::QuadAndTriangleDataAdapter<openvdb::Vec3d, openvdb::Vec3I> mesh(points, triangles);
-  auto grid = openvdb::tools::meshToVolume<openvdb::FloatGrid>(mesh, transform, band_voxels, band_voxels,
-                                                               openvdb::tools::DISABLE_RENORMALIZATION);
-  grid->setGridClass(openvdb::GRID_LEVEL_SET);
-  return grid;
-}
-
-// The closest point of triangle (a, b, c) to p, and the feature it lies on: the corner (0, 1 or 2), an
-// edge or the face. By the Voronoi region of the triangle's corners, edges and face that p lies in (Ericson,
-// Real-Time Collision Detection, 2005, section 5.1.5).
-struct Closest {
-  Vec3 point;
-  int corner = -1;  // the corner it is, or -1
-};
-Closest closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {a, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {b, 1};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return {a + d1 / (d1 - d3) * ab};
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {c, 2};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return {a + d2 / (d2 - d6) * ac};
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return {b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)};
-  const double scale = 1.0 / (va + vb + vc);
-  return {a + ab * (vb * scale) + ac * (vc * scale)};
-}
-
-// Triangles in an Embree scene, for the exact distance from a point to the nearest of them: Embree's point
-// query finds the candidates, closest_on_triangle measures each.
-class NearestTriangles {
- public:
-  NearestTriangles(std::span<const openvdb::Vec3s> points, std::span<const std::array<unsigned, 3>> triangles)
-      : geometry_(device_, RTC_GEOMETRY_TYPE_TRIANGLE), scene_(device_) {
-    points_ = geometry_.new_buffer<std::array<float, 3>>(RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                         points.size());
-    double reach = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      const openvdb::Vec3s& p = points[i];
-      points_[i] = {p.x(), p.y(), p.z()};
-      reach = std::max({reach, std::abs(double{p.x()}), std::abs(double{p.y()}), std::abs(double{p.z()})});
-    }
-    triangles_ = geometry_.new_buffer<std::array<unsigned, 3>>(RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               triangles.size());
-    std::copy(triangles.begin(), triangles.end(), triangles_.begin());
-    geometry_.commit();
-    scene_.attach(geometry_);
-    scene_.commit();
-    // The query's point goes to Embree in single precision: its search sphere is this much wider, so that
-    // no triangle within the radius of the point itself is passed over.
-    slack_mm_ = 4.0 * std::numeric_limits<float>::epsilon() * (1.0 + reach);
-  }
-
-  std::size_t triangles() const { return triangles_.size(); }
-  std::array<Vec3, 3> triangle(std::size_t i) const {
-    const std::array<unsigned, 3>& t = triangles_[i];
-    std::array<Vec3, 3> out;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::array<float, 3>& v = points_[t[k]];
-      out[k] = Vec3(v[0], v[1], v[2]);
-    }
-    return out;
-  }
-
-  // The distance from p to the triangles, mm, if it is less than `radius` (else `radius`), and, for
-  // triangles that face out from a closed surface, whether p lies outside it (when it is nearer than
-  // `radius`): by the side of the nearest point's pseudonormal — the face's normal, the sum of the two
-  // faces' normals on an edge, their normals weighted by their angles at a corner — which tells inside from
-  // outside for a closed surface wherever the nearest point lies (Bærentzen and Aanæs, Signed distance
-  // computation using the angle weighted pseudonormal, IEEE TVCG 11(3), 2005). The faces that share the
-  // nearest point are the ones nearest within a rounding.
-  struct Distance {
-    double mm = 0.0;
-    bool found = false, outside = false;
-  };
-  Distance distance(const Vec3& p, double radius) const {
-    Nearest nearest{this, p, radius * radius};
-    RTCPointQuery query{};
-    query.x = static_cast<float>(p.x());
-    query.y = static_cast<float>(p.y());
-    query.z = static_cast<float>(p.z());
-    query.radius = static_cast<float>(radius + slack_mm_);
-    scene_.point_query(query, &visit, &nearest);
-    Distance out;
-    out.mm = std::sqrt(nearest.best_sq);
-    out.found = nearest.best_sq < radius * radius;
-    out.outside = (p - nearest.point).dot(nearest.normal) > 0;
-    return out;
-  }
-
- private:
-  struct Nearest {
-    const NearestTriangles* surface;
-    Vec3 p;
-    double best_sq;
-    Vec3 point = Vec3::Zero(), normal = Vec3::Zero();  // the nearest point, its pseudonormal so far
-  };
-
-  static bool visit(RTCPointQueryFunctionArguments* args) {
-    auto& n = *static_cast<Nearest*>(args->userPtr);
-    const std::array<Vec3, 3> t = n.surface->triangle(args->primID);
-    const Closest c = closest_on_triangle(n.p, t[0], t[1], t[2]);
-    const double d_sq = (c.point - n.p).squaredNorm();
-    // A face that shares the nearest point measures it to within a rounding of the corners' floats.
-    const double tie = 1e-9 * (n.best_sq + n.surface->slack_mm_ * n.surface->slack_mm_);
-    if (d_sq > n.best_sq + tie) return false;
-    Vec3 normal = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
-    if (c.corner >= 0) {
-      const auto k = static_cast<std::size_t>(c.corner);
-      const Vec3 u = t[(k + 1) % 3] - t[k], v = t[(k + 2) % 3] - t[k];
-      normal *= std::atan2(u.cross(v).norm(), u.dot(v));
-    }
-    const bool shrinks = d_sq < n.best_sq - tie;
-    if (shrinks)
-      n.normal = normal;
-    else
-      n.normal += normal;
-    if (d_sq >= n.best_sq) return false;
-    n.best_sq = d_sq;
-    n.point = c.point;
-    if (!shrinks) return false;
-    args->query->radius = static_cast<float>(std::sqrt(d_sq) + n.surface->slack_mm_);
-    return true;
-  }
-
-  embree::Device device_;
-  embree::Geometry geometry_;
-  embree::Scene scene_;
-  std::span<std::array<float, 3>> points_;
-  std::span<std::array<unsigned, 3>> triangles_;
-  double slack_mm_ = 0.0;
-};
-
-// The print's surface, for the distance from a point to it: the fill fraction's isosurface at 0.5 — the
-// surface the renderer draws — meshed as the skin is (extract_skin, every shell kept; flat stretches merged
-// into larger polygons where the normals agree within about 1 %, adaptivity 0.01: a bead's flank is a row of
-// identical voxel faces), its triangles facing out (so NearestTriangles::Distance::outside holds).
-// Triangles without area are left out: they have no side to tell inside from outside by.
-NearestTriangles print_surface(const openvdb::FloatGrid::Ptr& solid) {
-  constexpr double kAdaptivity = 0.01;
-  Deposit as_printed;
-  as_printed.fill = solid;
-  const SkinMesh mesh = extract_skin(as_printed, kAdaptivity, /*outer_only=*/false);
-  const std::vector<openvdb::Vec3s>& p = mesh.points_mm;
-  std::vector<std::array<unsigned, 3>> triangles;
-  triangles.reserve(mesh.triangles.size());
-  for (const openvdb::Vec3I& t : mesh.triangles)
-    if ((p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]).lengthSqr() > 0) triangles.push_back({t[0], t[1], t[2]});
-  return NearestTriangles(p, triangles);
-}
-// Fills the voids the print closes in (fill fraction below 1/2, not connected to the outside through
-// face-neighbouring voxels below 1/2): they are porosity, reported as such by the deposit, not surface, so
-// their walls must not count as skin or bound a stock. `box` is the print's bounding box grown by a voxel on
-// every side that opens to the outside; with the plate, its bottom is the plate row, which the table closes.
-// A flood from the box's open sides over a dense bit per voxel, row by row along x (each row's bits in whole
-// 64-bit words): a row's free runs that hold a reached voxel are reached whole, and seed the same stretch
-// of the four rows beside them; the free voxels never reached are the closed voids. (A breadth-first flood
-// voxel by voxel took 0.7 s of the LSAM mould's comparison, on one thread; this takes a tenth of that.)
-void fill_closed_voids(openvdb::FloatGrid& solid, const openvdb::CoordBBox& box, bool open_bottom) {
-  const openvdb::Coord lo = box.min(), dim = box.dim();
-  const auto nx = static_cast<std::size_t>(dim.x()), ny = static_cast<std::size_t>(dim.y()),
-             nz = static_cast<std::size_t>(dim.z());
-  const std::size_t words = (nx + 63) / 64;  // per row
-  const std::size_t rows = ny * nz;          // row y + ny · z
-  std::vector<std::uint64_t> free(rows * words, 0), reached(rows * words, 0);
-  // Free: every voxel of the box but the solid ones (and the padding past nx, which stays 0).
-  for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t w = 0; w < words; ++w) {
-      const std::size_t bits = std::min<std::size_t>(64, nx - 64 * w);
-      free[r * words + w] = bits == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
-    }
-  for (auto it = solid.cbeginValueOn(); it; ++it)
-    if (*it >= kPrintedFill && box.isInside(it.getCoord())) {
-      const openvdb::Coord c = it.getCoord() - lo;
-      const auto x = static_cast<std::size_t>(c.x());
-      free[(static_cast<std::size_t>(c.y()) + ny * static_cast<std::size_t>(c.z())) * words + x / 64] &=
-          ~(std::uint64_t{1} << (x % 64));
-    }
-  // The bits [a, b) of a row's words.
-  const auto range_word = [](std::size_t w, std::size_t a, std::size_t b) {
-    const std::size_t lo_bit = std::max(a, 64 * w), hi_bit = std::min(b, 64 * w + 64);
-    if (lo_bit >= hi_bit) return std::uint64_t{0};
-    const std::size_t n = hi_bit - lo_bit;
-    return (n == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n) - 1) << (lo_bit - 64 * w);
-  };
-  std::vector<std::size_t> stack;
-  std::vector<char> queued(rows, 0);
-  // Reaches the free voxels [a, b) of row r not reached yet, and queues the row when there were any.
-  const auto seed = [&](std::size_t r, std::size_t a, std::size_t b) {
-    bool any = false;
-    for (std::size_t w = a / 64; w < words && 64 * w < b; ++w) {
-      const std::uint64_t fresh = free[r * words + w] & ~reached[r * words + w] & range_word(w, a, b);
-      if (fresh == 0) continue;
-      reached[r * words + w] |= fresh;
-      any = true;
-    }
-    if (any && !queued[r]) {
-      queued[r] = 1;
-      stack.push_back(r);
-    }
-  };
-  for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t y = 0; y < ny; ++y) {
-      const std::size_t r = y + ny * z;
-      if (y == 0 || y == ny - 1 || z == nz - 1 || (open_bottom && z == 0)) {
-        seed(r, 0, nx);
-      } else {
-        seed(r, 0, 1);
-        seed(r, nx - 1, nx);
-      }
-    }
-  while (!stack.empty()) {
-    const std::size_t r = stack.back();
-    stack.pop_back();
-    queued[r] = 0;
-    const std::size_t y = r % ny, z = r / ny;
-    // Each free run of the row with a reached voxel is reached whole and seeds its neighbours' rows.
-    std::size_t x = 0;
-    while (x < nx) {
-      // The next free voxel from x, then the end of its run.
-      const auto next = [&](std::size_t from, bool want_free) {
-        for (std::size_t w = from / 64; w < words; ++w) {
-          std::uint64_t bits = want_free ? free[r * words + w] : ~free[r * words + w];
-          if (w == from / 64) bits &= ~std::uint64_t{0} << (from % 64);
-          if (bits != 0) return std::min(nx, 64 * w + static_cast<std::size_t>(std::countr_zero(bits)));
-        }
-        return nx;
-      };
-      const std::size_t a = next(x, true);
-      if (a >= nx) break;
-      const std::size_t b = next(a, false);
-      x = b;
-      bool hit = false, whole = true;
-      for (std::size_t w = a / 64; w < words && 64 * w < b; ++w) {
-        const std::uint64_t run = range_word(w, a, b), got = reached[r * words + w] & run;
-        hit = hit || got != 0;
-        whole = whole && got == run;
-      }
-      if (!hit) continue;
-      if (!whole)
-        for (std::size_t w = a / 64; w < words && 64 * w < b; ++w)
-          reached[r * words + w] |= range_word(w, a, b);
-      if (y > 0) seed(r - 1, a, b);
-      if (y + 1 < ny) seed(r + 1, a, b);
-      if (z > 0) seed(r - ny, a, b);
-      if (z + 1 < nz) seed(r + ny, a, b);
-    }
-  }
-  auto acc = solid.getAccessor();
-  for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t w = 0; w < words; ++w) {
-      std::uint64_t closed = free[r * words + w] & ~reached[r * words + w];
-      while (closed != 0) {
-        const std::size_t x = 64 * w + static_cast<std::size_t>(std::countr_zero(closed));
-        closed &= closed - 1;
-        acc.setValue(lo.offsetBy(static_cast<int>(x), static_cast<int>(r % ny), static_cast<int>(r / ny)),
-                     1.0f);
-      }
-    }
-}
-
-// Fills the inside of the voids one voxel thin. A slit voxel is less than half full between two voxels at
-// least half full along some axis; it is filled when each of its six neighbours is at least half full or a
-// slit voxel itself: the inside of a slit or a pipe one voxel across, not its mouth, nor the tip of a groove
-// (one voxel deep, so its own mouth). Such a slit (a layer's interface under-filled along a wall, a gap
-// between two passes, a seam's gap running up a wall) is a flaw of the bond, in the porosity the deposit
-// reports; the voxels do not resolve its shape, so it is no surface to machine or to measure from. Its
-// mouth and the voids any thicker that open to the outside stay surface.
-void fill_slits(openvdb::FloatGrid& solid) {
-  const auto acc = solid.getConstAccessor();
-  const auto full = [&](const openvdb::Coord& ijk) { return acc.getValue(ijk) >= kPrintedFill; };
-  openvdb::MaskGrid slits(false);
-  auto slit = slits.getAccessor();
-  for (auto it = solid.cbeginValueOn(); it; ++it) {
-    if (*it < kPrintedFill) continue;
-    for (int axis = 0; axis < 3; ++axis) {
-      openvdb::Coord gap = it.getCoord(), beyond = gap;
-      gap[axis] += 1;
-      beyond[axis] += 2;
-      if (!full(gap) && full(beyond)) slit.setValueOn(gap);
-    }
-  }
-  std::vector<openvdb::Coord> inside;
-  for (auto it = slits.cbeginValueOn(); it; ++it) {
-    bool closed = true;
-    for (int axis = 0; axis < 3 && closed; ++axis)
-      for (const int step : {-1, 1}) {
-        openvdb::Coord next = it.getCoord();
-        next[axis] += step;
-        closed = closed && (full(next) || slit.isValueOn(next));
-      }
-    if (closed) inside.push_back(it.getCoord());
-  }
-  auto write = solid.getAccessor();
-  for (const openvdb::Coord& ijk : inside) write.setValue(ijk, 1.0f);
-}
-
-// The print as its surface is measured: its closed voids filled and, with the plate, the table standing in
-// for material — every voxel of its lowest printed row copied `depth` voxels down through the plate. The
-// bottom the plate formed is then no surface, so it cannot limit the stock of the faces that meet it (a side
-// face's stock would otherwise fall to nothing at its foot, however much material stands beside it); the
-// sides carry straight on down, as the first row shaped them.
-openvdb::FloatGrid::Ptr solid_print(const openvdb::FloatGrid& fill, int plate_k, bool on_plate, int depth) {
-  auto solid = fill.deepCopy();
-  solid->tree().voxelizeActiveTiles();  // the slits are looked for voxel by voxel
-  openvdb::CoordBBox box = fill.evalActiveVoxelBoundingBox();
-  box.expand(1);
-  if (on_plate) box.min().z() = plate_k;
-  fill_slits(*solid);
-  fill_closed_voids(*solid, box, !on_plate);
-  if (!on_plate) return solid;
-  std::vector<std::pair<openvdb::Coord, float>> row;
-  for (auto it = solid->cbeginValueOn(); it; ++it)
-    if (it.getCoord().z() == plate_k) row.emplace_back(it.getCoord(), *it);
-  auto acc = solid->getAccessor();
-  for (const auto& [ijk, value] : row)
-    for (int k = 1; k <= depth; ++k) acc.setValue(ijk.offsetBy(0, 0, -k), value);
-  return solid;
-}
-
-template <class Accessor>
-double sample(const Accessor& acc, const openvdb::math::Transform& transform, const Vec3& p) {
-  return openvdb::tools::BoxSampler::sample(acc, transform.worldToIndex(to_vdb(p)));
-}
-
-// --- Stock over the CAD surface ---
-
-struct CadTriangle {
-  Vec3 a, b, c;
-  std::size_t first_sample = 0;
-  std::size_t samples = 1;  // sample_points' samples of it
-  bool on_plate = false;    // faces down and may touch the plate: its samples near the plate are left out
-};
-
-// The CAD's triangles with area, each with its samples' place in the list of all samples. Throws InputError
-// when they would take more than kMaxSamples samples.
-std::vector<CadTriangle> cad_triangles(const CadSurface& cad, double spacing_mm) {
-  const auto limit = static_cast<std::size_t>(kMaxSamples);
-  std::vector<CadTriangle> out;
-  out.reserve(cad.triangles.size());
-  std::size_t samples = 0;
-  for (const auto& t : cad.triangles) {
-    CadTriangle tri{cad.vertices[static_cast<std::size_t>(t[0])],
-                    cad.vertices[static_cast<std::size_t>(t[1])],
-                    cad.vertices[static_cast<std::size_t>(t[2])]};
-    if ((tri.b - tri.a).cross(tri.c - tri.a).norm() <= 0) continue;  // degenerate: no area to sample
-    tri.first_sample = samples;
-    tri.samples = count_samples(tri.a, tri.b, tri.c, spacing_mm, limit - samples);
-    samples += tri.samples;
-    if (samples > limit)
-      throw InputError(
-          {}, "cad",
-          fmt::format("sampling the CAD every {} mm takes more than {:.3g} samples: use a larger "
-                      "spacing",
-                      spacing_mm, kMaxSamples));
-    out.push_back(tri);
-  }
-  return out;
-}
-
-// Whether `tri` faces down: its outward side (from the CAD's distance, since the winding may be either
-// way) has a normal within about 25° of -z.
-bool faces_down(const CadTriangle& tri, const openvdb::FloatGrid& cad_distance, double voxel_mm) {
-  Vec3 n = (tri.b - tri.a).cross(tri.c - tri.a).normalized();
-  if (std::abs(n.z()) < -kDownNormalZ) return false;
-  const Vec3 centre = (tri.a + tri.b + tri.c) / 3.0;
-  const auto acc = cad_distance.getConstUnsafeAccessor();
-  const double ahead = sample(acc, cad_distance.transform(), centre + 0.5 * voxel_mm * n);
-  const double behind = sample(acc, cad_distance.transform(), centre - 0.5 * voxel_mm * n);
-  if (ahead < behind) n = -n;  // the distance grows outward
-  return n.z() <= kDownNormalZ;
-}
-
-struct Sample {
-  double stock_mm = 0.0;
-  double area_mm2 = 0.0;
-  bool on_plate = false;
-};
-
-// The stock at p: its distance to the print's surface, up to the band, positive inside the print and
-// negative outside (NearestTriangles::distance), looked for no further than `reach` (then the band).
-template <class Accessor>
-double stock_at(const Vec3& p, double reach, const NearestTriangles& print, const Accessor& solid,
-                const openvdb::math::Transform& transform, const Geometry& g) {
-  NearestTriangles::Distance d = print.distance(p, reach);
-  if (!d.found && reach < g.band_mm) d = print.distance(p, g.band_mm);  // rounding's safety net
-  // Beyond the band, far from any surface, the fill tells inside from outside.
-  const bool inside = d.found ? !d.outside : sample(solid, transform, p) >= kPrintedFill;
-  return inside ? d.mm : -d.mm;
-}
-
-// The samples of one triangle (for_each_cell), each weighted by the area it stands for, with its stock
-// (stock_at). The nearest triangle is looked for no further than the last sample's distance and the step
-// from it (the distance to a surface changes no faster than the point moves): the searches stay small.
-template <class Accessor>
-void sample_triangle(const CadTriangle& tri, const NearestTriangles& print, const Accessor& solid,
-                     const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
-                     std::vector<Sample>& out) {
-  std::size_t k = tri.first_sample;
-  if (tri.on_plate && std::max({tri.a.z(), tri.b.z(), tri.c.z()}) <= plate_top_mm) {
-    // Wholly on the plate: its samples count towards the plate's area only, and have no stock to measure.
-    sample_points(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Vec3&, double area) {
-      Sample& s = out[k++];
-      s.area_mm2 = area;
-      s.on_plate = true;
-    });
-    return;
-  }
-  Vec3 last(0, 0, 0);
-  double reach = g.band_mm;  // from the last sample's distance; the band for the first
-  for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
-    const Vec3& p = cell.point;
-    if (k > tri.first_sample) reach = std::min(g.band_mm, (reach + (p - last).norm()) * (1.0 + 1e-9));
-    Sample& s = out[k++];
-    s.stock_mm = stock_at(p, reach, print, solid, transform, g);
-    last = p;
-    reach = std::abs(s.stock_mm);
-    s.area_mm2 = cell.area;
-    s.on_plate = tri.on_plate && p.z() <= plate_top_mm;
-  });
-}
-
-// The least and the most stock over the CAD's surface (off the plate), to within kExtremeVoxels of a voxel:
-// the samples' extremes sharpened by branch and bound. The stock changes no faster than the point moves
-// (a distance), so no point of a cell has less stock than its sample's less the cell's radius: a cell whose
-// bound is below the least found so far (or, for the most, above it) is cut into cells a quarter of its
-// radius across and measured again, the least sample first, until no bound is beyond the extreme found by
-// more than the tolerance. On the LSAM mould 804 and 335 of its 1.3 million cells are opened, 10,700 and
-// 34,800 points measured (on one thread, 0.05 s): its least stock is −7.49 mm, where its samples' least
-// was −7.07 mm (and that of the 7.2 million samples taken before the cells, −7.22 mm); its most 5.19 mm
-// against 5.11 mm. The default scenario's least −5.35 mm against −4.64 mm, at a corner of the CAD.
-constexpr double kExtremeVoxels = 0.01;
-// Measurements the refinement of one extreme may take: beyond them (a flat extreme over a large area, the
-// bound closing slowly) the deepest value found is kept, which the samples' is never beyond.
-constexpr std::size_t kMaxRefinements = 50'000;
-
-template <class Accessor>
-void sharpen_extremes(const std::vector<CadTriangle>& triangles, const std::vector<Sample>& samples,
-                      const NearestTriangles& print, const Accessor& solid,
-                      const openvdb::math::Transform& transform, const Geometry& g, double plate_top_mm,
-                      double& least, double& most) {
-  const double tolerance = kExtremeVoxels * g.voxel_mm;
-  for (const int sign : {1, -1}) {  // the least stock (of stock), then the most (the least of −stock)
-    double best = sign > 0 ? least : -most;
-    struct Open {
-      double bound;  // no point of the cell has less (sign · stock)
-      double value;  // sign · stock at its sample
-      Cell cell;
-      bool plate;  // of a triangle that may stand on the plate
-    };
-    // The cell with the most extreme sample first (its bound breaks ties): the extreme is found early,
-    // and with it every cell whose bound does not pass it is dropped unopened. (The lowest bound first
-    // opened the widest cells first, however ordinary their samples.)
-    const auto later = [](const Open& x, const Open& y) {
-      return x.value != y.value ? x.value > y.value : x.bound > y.bound;
-    };
-    std::priority_queue<Open, std::vector<Open>, decltype(later)> open(later);
-    // No point of a cell is beyond its sample by more than its radius, nor beyond the band.
-    const auto bound = [&](double value, double radius) { return std::max(value - radius, -g.band_mm); };
-    // The samples whose cells may hide a more extreme stock, their cells regenerated triangle by triangle:
-    // only the triangles with a sample that could, were its cell as wide as any (its sides are no longer
-    // than the spacing, so no corner is further than √2 spacings from its sample).
-    const double widest = std::sqrt(2.0) * g.spacing_mm * (1.0 + 1e-9);
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      const CadTriangle& tri = triangles[t];
-      bool any = false;
-      for (std::size_t k = tri.first_sample; k < tri.first_sample + tri.samples && !any; ++k)
-        any = !samples[k].on_plate && bound(sign * samples[k].stock_mm, widest) < best - tolerance;
-      if (!any) continue;
-      std::size_t k = tri.first_sample;
-      for_each_cell(tri.a, tri.b, tri.c, g.spacing_mm, [&](const Cell& cell) {
-        const Sample& s = samples[k++];
-        const double b = bound(sign * s.stock_mm, cell.radius);
-        if (!s.on_plate && b < best - tolerance) open.push({b, sign * s.stock_mm, cell, tri.on_plate});
-      });
-    }
-    std::size_t measured = 0;
-    while (!open.empty() && measured < kMaxRefinements) {
-      const Open o = open.top();
-      open.pop();
-      if (o.bound >= best - tolerance) continue;  // nothing beyond the extreme found so far
-      const double spacing = 0.25 * o.cell.radius;
-      // The cell's polygon as a fan of triangles from its first corner, each sampled at the finer spacing.
-      for (std::size_t c = 1; c + 1 < o.cell.corners; ++c)
-        for_each_cell(
-            o.cell.corner[0], o.cell.corner[c], o.cell.corner[c + 1], spacing, [&](const Cell& part) {
-              if (part.area <= 0 || (o.plate && part.point.z() <= plate_top_mm)) return;
-              const double reach = std::min(
-                  g.band_mm, (std::abs(o.value) + (part.point - o.cell.point).norm()) * (1.0 + 1e-9));
-              const double value = sign * stock_at(part.point, reach, print, solid, transform, g);
-              ++measured;
-              best = std::min(best, value);
-              const double b = bound(value, part.radius);
-              if (b < best - tolerance) open.push({b, value, part, o.plate});
-            });
-    }
-    (sign > 0 ? least : most) = sign * best;
-  }
-}
-
-// Marks the triangles that may stand on the plate (faces down, within kPlateVoxels of it).
-void mark_plate(std::vector<CadTriangle>& triangles, const openvdb::FloatGrid& cad_grid, const Geometry& g,
-                double plate_z_mm) {
-  for (CadTriangle& t : triangles) {
-    const double lowest = std::min({t.a.z(), t.b.z(), t.c.z()});
-    t.on_plate = lowest <= plate_z_mm + kPlateVoxels * g.voxel_mm && faces_down(t, cad_grid, g.voxel_mm);
-  }
-}
-
-void measure_stock(const std::vector<CadTriangle>& triangles, const NearestTriangles& print,
-                   const openvdb::FloatGrid& solid, const Geometry& g, const CadCompareOptions& o,
-                   CadComparison& out) {
-  const std::size_t total = triangles.empty() ? 0 : triangles.back().first_sample + triangles.back().samples;
-  std::vector<Sample> samples(total);
-  const double plate_top = out.plate_z_mm + kPlateVoxels * g.voxel_mm;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size()),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto acc = solid.getConstUnsafeAccessor();
-                      for (std::size_t i = range.begin(); i < range.end(); ++i)
-                        sample_triangle(triangles[i], print, acc, solid.transform(), g, plate_top, samples);
-                    });
-
-  // Reduced in sample order, on one thread: the same sums for any number of threads.
-  // The percentiles by selection (weighted_percentile): sorting the LSAM mould's 7.2 million samples took
-  // 1.6 s of a core.
-  std::vector<Weighted> kept;
-  kept.reserve(samples.size());
-  double area = 0.0, sum = 0.0, under = 0.0, below = 0.0;
-  double least = std::numeric_limits<double>::infinity(), most = -least;
-  for (const Sample& s : samples) {
-    if (s.on_plate) {
-      out.plate_area_mm2 += s.area_mm2;
-      continue;
-    }
-    kept.push_back({s.stock_mm, s.area_mm2});
-    area += s.area_mm2;
-    sum += s.area_mm2 * s.stock_mm;
-    least = std::min(least, s.stock_mm);
-    most = std::max(most, s.stock_mm);
-    if (s.stock_mm < 0) under += s.area_mm2;
-    if (s.stock_mm < o.requested_stock_mm) below += s.area_mm2;
-  }
-  if (kept.empty())
-    throw InputError({}, "cad",
-                     "every face of the CAD lies on the build plate: there is no surface to measure");
-  {
-    const auto acc = solid.getConstUnsafeAccessor();
-    sharpen_extremes(triangles, samples, print, acc, solid.transform(), g, plate_top, least, most);
-  }
-  samples = {};
-  out.cad_samples = kept.size();
-  out.cad_area_mm2 = area;
-  out.min_stock_mm = least;
-  out.max_stock_mm = most;
-  out.mean_stock_mm = sum / area;
-  out.p05_stock_mm = weighted_percentile(kept, area, 0.05);
-  out.median_stock_mm = weighted_percentile(kept, area, 0.50);
-  out.p95_stock_mm = weighted_percentile(kept, area, 0.95);
-  out.undercut_fraction = under / area;
-  out.below_requested_stock_fraction = below / area;
-  // No surface within the band: the truth is further out.
-  out.min_stock_clamped = out.min_stock_mm <= -g.band_mm;
-  out.max_stock_clamped = out.max_stock_mm >= g.band_mm;
-}
-
-// --- Deviation of the printed skin ---
-
-struct SkinSums {
-  double weight = 0.0, sum = 0.0, sum_sq = 0.0;
-  double min = std::numeric_limits<double>::infinity(), max = -std::numeric_limits<double>::infinity();
-  std::size_t count = 0;
-};
-
-// The print's surface sampled as the CAD's is (sample_points, at the voxel spacing), each sample weighted by
-// the area it stands for. In fixed blocks of triangles, added up in block order: the same sums for any
-// number of threads.
-void measure_skin(const NearestTriangles& print, const CadField& cad, const Geometry& g,
-                  const CadCompareOptions& o, CadComparison& out) {
-  constexpr std::size_t kBlock = 4096;
-  std::vector<SkinSums> per_block((print.triangles() + kBlock - 1) / kBlock);
-  const double lowest_z = o.exclude_plate ? out.plate_z_mm : -std::numeric_limits<double>::infinity();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, per_block.size()),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto ca = cad.grid().getConstUnsafeAccessor();
-                      for (std::size_t b = range.begin(); b < range.end(); ++b) {
-                        SkinSums& sums = per_block[b];
-                        for (std::size_t i = b * kBlock; i < std::min(print.triangles(), (b + 1) * kBlock);
-                             ++i) {
-                          const std::array<Vec3, 3> t = print.triangle(i);
-                          sample_points(t[0], t[1], t[2], g.voxel_mm, [&](const Vec3& p, double area) {
-                            if (p.z() < lowest_z) return;  // the table's stand-in below the plate, not print
-                            const double deviation = cad.at(ca, p);
-                            sums.weight += area;
-                            sums.sum += area * deviation;
-                            sums.sum_sq += area * deviation * deviation;
-                            sums.min = std::min(sums.min, deviation);
-                            sums.max = std::max(sums.max, deviation);
-                            ++sums.count;
-                          });
-                        }
-                      }
-                    });
-  SkinSums total;
-  for (const SkinSums& s : per_block) {
-    total.weight += s.weight;
-    total.sum += s.sum;
-    total.sum_sq += s.sum_sq;
-    total.min = std::min(total.min, s.min);
-    total.max = std::max(total.max, s.max);
-    total.count += s.count;
-  }
-  out.skin_samples = total.count;
-  out.skin_area_mm2 = total.weight;
-  if (total.count == 0) return;
-  out.deviation_mean_mm = total.sum / total.weight;
-  out.deviation_rms_mm = std::sqrt(total.sum_sq / total.weight);
-  out.deviation_min_mm = total.min;
-  out.deviation_max_mm = total.max;
-  out.deviation_min_clamped = out.deviation_min_mm <= -g.band_mm;
-  out.deviation_max_clamped = out.deviation_max_mm >= g.band_mm;
-}
-
-// --- Material outside the CAD ---
-
-// Each voxel's material times the share of the voxel outside the CAD, 1/2 + d/s clamped to 0..1 (exact for
-// a plane parallel to a voxel face through the voxel, and unbiased for any plane on average).
-void measure_outside(const openvdb::FloatGrid& fill, const openvdb::FloatGrid& cad_grid, const Geometry& g,
-                     CadComparison& out) {
-  openvdb::tree::LeafManager<const openvdb::FloatTree> leaves(fill.tree());
-  std::vector<std::array<double, 2>> per_leaf(leaves.leafCount(), {0.0, 0.0});  // material, outside
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaves.leafCount()),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      const auto ca = cad_grid.getConstUnsafeAccessor();
-                      for (std::size_t l = range.begin(); l < range.end(); ++l)
-                        for (auto it = leaves.leaf(l).cbeginValueOn(); it; ++it) {
-                          const double share =
-                              std::clamp(0.5 + ca.getValue(it.getCoord()) / g.voxel_mm, 0.0, 1.0);
-                          per_leaf[l][0] += *it;
-                          per_leaf[l][1] += *it * share;
-                        }
-                    });
-  double material = 0.0, outside = 0.0;
-  for (const auto& [m, o] : per_leaf) material += m, outside += o;
-  const double voxel_volume = g.voxel_mm * g.voxel_mm * g.voxel_mm;
-  out.outside_volume_mm3 = outside * voxel_volume;
-  out.machining_waste_fraction = material > 0 ? outside / material : 0.0;
+void copy_deviation(const SkinDeviation& d, CadComparison& out) {
+  out.deviation_mean_mm = d.mean_mm;
+  out.deviation_rms_mm = d.rms_mm;
+  out.deviation_min_mm = d.min_mm;
+  out.deviation_max_mm = d.max_mm;
+  out.deviation_min_clamped = d.min_clamped;
+  out.deviation_max_clamped = d.max_clamped;
+  out.skin_area_mm2 = d.area_mm2;
+  out.skin_samples = d.samples;
 }
 
 }  // namespace
 
-struct CadField::Triangles {
-  NearestTriangles nearest;
-};
-
-CadField::CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm)
-    : band_mm_(band_mm), voxel_mm_(transform.voxelSize()[0]) {
-  grid_ = cad_distance_grid(cad, transform, static_cast<float>(narrow_voxels(band_mm, voxel_mm_)));
-  std::vector<openvdb::Vec3s> points;
-  points.reserve(cad.vertices.size());
-  for (const Vec3& v : cad.vertices) points.emplace_back(openvdb::Vec3d(v.x(), v.y(), v.z()));
-  std::vector<std::array<unsigned, 3>> triangles;
-  triangles.reserve(cad.triangles.size());
-  for (const auto& t : cad.triangles)
-    triangles.push_back(
-        {static_cast<unsigned>(t[0]), static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2])});
-  triangles_ = std::make_unique<const Triangles>(Triangles{NearestTriangles(points, triangles)});
-}
-
-CadField::~CadField() = default;
-
-double CadField::at(const Eigen::Vector3d& point_mm) const {
-  return at(grid_->getConstUnsafeAccessor(), point_mm);
-}
-
-double CadField::at(const openvdb::FloatGrid::ConstUnsafeAccessor& grid_accessor,
-                    const Eigen::Vector3d& point_mm) const {
-  // Within a voxel of the surface, every corner of the trilinear sample lies within the grid's band
-  // (kNarrowVoxels = 2: a corner is at most √3/2 voxel further than the point).
-  const double near = sample(grid_accessor, grid_->transform(), point_mm);
-  if (std::abs(near) < voxel_mm_) return near;
-  const NearestTriangles::Distance d = triangles_->nearest.distance(point_mm, band_mm_);
-  return std::copysign(d.found ? d.mm : band_mm_, near);
-}
-
 CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadCompareOptions& options) {
   openvdb::initialize();
-  Geometry g;
-  validate_cad(voxel_size_mm, cad, options, g);
+  const StockGeometry g = validate_cad(voxel_size_mm, cad, options);
   CadDistance out;
   out.voxel_mm = g.voxel_mm;
   out.band_mm = g.band_mm;
@@ -1029,9 +165,9 @@ CadDistance cad_distance(const CadSurface& cad, double voxel_size_mm, const CadC
 CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
                                const CadCompareOptions& options, const CadDistance* made_ahead) {
   openvdb::initialize();
-  Geometry g;
-  validate(deposit, cad, options, g);
-  std::vector<CadTriangle> triangles = cad_triangles(cad, g.spacing_mm);
+  const StockGeometry g = validate(deposit, cad, options);
+  std::vector<SampledTriangle> triangles =
+      cad_triangles(cad, g.spacing_mm, static_cast<std::size_t>(kMaxSamples));
   CadComparison out;
   out.band_mm = g.band_mm;
   const int plate_k = plate_row(*deposit.fill);
@@ -1042,14 +178,17 @@ CadComparison compare_with_cad(const Deposit& deposit, const CadSurface& cad,
                      made_ahead->field->grid().transform() == deposit.fill->transform();
   const std::shared_ptr<const CadField> field =
       ahead ? made_ahead->field : std::make_shared<const CadField>(cad, deposit.fill->transform(), g.band_mm);
-  if (options.exclude_plate) mark_plate(triangles, field->grid(), g, out.plate_z_mm);
+  if (options.exclude_plate) mark_plate(triangles, field->grid(), g.voxel_mm, out.plate_z_mm);
   // The extension's bottom is out of reach.
   const int depth = static_cast<int>(std::ceil(g.band_mm / g.voxel_mm)) + 2;
   const openvdb::FloatGrid::Ptr solid = solid_print(*deposit.fill, plate_k, options.exclude_plate, depth);
   const NearestTriangles print = print_surface(solid);
-  measure_stock(triangles, print, *solid, g, options, out);
-  measure_skin(print, *field, g, options, out);
-  measure_outside(*deposit.fill, field->grid(), g, out);
+  copy_stock(measure_stock(triangles, print, *solid, g, options.requested_stock_mm, out.plate_z_mm), out);
+  const double lowest_z = options.exclude_plate ? out.plate_z_mm : -std::numeric_limits<double>::infinity();
+  copy_deviation(measure_skin_deviation(print, *field, g.voxel_mm, g.band_mm, lowest_z), out);
+  const MaterialOutside outside = measure_material_outside(*deposit.fill, field->grid(), g.voxel_mm);
+  out.outside_volume_mm3 = outside.volume_mm3;
+  out.machining_waste_fraction = outside.fraction;
   out.cad_distance = field;
   return out;
 }

@@ -1,57 +1,40 @@
 // The printed part against its CAD (docs/physics.md, the part against its CAD): how much stock the print
 // leaves for machining, where it falls short of the CAD (undercut), how far its skin strays from the CAD
-// and how much material machining takes off.
-//
-// The CAD becomes a signed distance (CadField, negative inside, mm): a narrow-band grid on the deposit's
-// voxels near its surface, its exact distance to the nearest triangle further out.
-// The print becomes a surface: the deposit's fill-fraction isosurface at 0.5 (the part as printed, the
-// surface the renderer draws) meshed, after filling the voids the print closes in and the inside of the
-// slits one voxel thin (both porosity, which the deposit reports; their walls are no surface to machine or
-// to measure from). Voids that open to the outside, such as a channel left between passes that reaches the
-// top, stay surface, as do the mouths of slits and the tips of grooves. Then:
-//  - stock at a point of the CAD surface is its exact distance to the print's surface (the nearest of its
-//    triangles, found with Embree's point query), positive where the point lies inside the print (its fill
-//    fraction, trilinear between voxel centres, at least 1/2), negative outside: the radius of the ball of
-//    material around the point (positive: material to machine off in every direction) or how far the point
-//    lies outside the print (undercut: the print falls short of the CAD there). It is the nearest-distance
-//    allowance a machinist means: at a convex corner it is the distance to the print's nearest surface, not
-//    along any one normal. The CAD surface is sampled deterministically, each triangle on a grid in its
-//    own plane (rows along its longest edge and columns, both no wider than the sample spacing), a sample
-//    at the centroid of each cell's part of the triangle, weighted by that part's area.
-//  - deviation of the printed skin is the CAD's signed distance at points of the print's surface (positive:
-//    the skin lies outside the CAD, negative: inside it), the surface's triangles sampled as the CAD's are
-//    (at the voxel spacing), each point weighted by the area it stands for.
-//  - material outside the CAD is what machining removes: each voxel's material times the share of the voxel
-//    outside the CAD.
+// and how much material machining takes off. This is the stage's entry; each step is its own algorithm:
+//  - the CAD becomes a signed distance (sim/cad_field.hpp, negative inside, mm): a narrow-band grid on the
+//    deposit's voxels near its surface, its exact distance to the nearest triangle further out
+//    (sim/nearest_triangles.hpp);
+//  - the print becomes a surface (sim/print_surface.hpp): the deposit's fill-fraction isosurface at 0.5 (the
+//    part as printed, the surface the renderer draws) meshed, after filling the inside of the slits one
+//    voxel thin (sim/slits.hpp) and the voids the print closes in (sim/closed_voids.hpp): both porosity,
+//    which the deposit reports; their walls are no surface to machine or to measure from. Voids that open
+//    to the outside, such as a channel left between passes that reaches the top, stay surface, as do the
+//    mouths of slits and the tips of grooves;
+//  - the stock over the CAD surface (sim/cad_stock.hpp): at points sampled on the CAD's triangles
+//    (sim/triangle_sampling.hpp), the exact distance to the print's surface, positive inside the print; its
+//    least and most found between the samples (sim/stock_extremes.hpp);
+//  - the deviation of the printed skin (sim/skin_deviation.hpp): the CAD's signed distance at points sampled
+//    on the print's surface;
+//  - the material outside the CAD (sim/material_outside.hpp): what machining removes.
 // The build plate: the table, not the print, forms the faces that stand on it (a box's bottom). Such CAD
-// faces are left out — a face is on the plate where it faces down (its outward normal within about 25° of
-// straight down) and lies within one voxel above the bottom of the lowest printed voxel — and the print's
-// bottom is no surface to measure from: the table stands in for material below it, so the stock of a side
-// face does not fall to nothing at its foot. Top faces count: stock on top is a real machining allowance.
+// faces are left out (sim/cad_stock.hpp) and the print's bottom is no surface to measure from: the table
+// stands in for material below it (sim/print_surface.hpp). Top faces count: stock on top is a real
+// machining allowance.
 //
 // Stocks are measured up to the band (CadCompareOptions::band_mm) either way; a point with no print surface
 // within it is reported at the band ("at least"), with a flag; so is a deviation: a point of the skin with
 // no CAD surface within the band.
 #pragma once
 
-#include <array>
+#include <cstddef>
 #include <memory>
-#include <span>
 
 #include <openvdb/openvdb.h>
-#include <Eigen/Core>
 
+#include "sim/cad_field.hpp"
 #include "sim/deposit.hpp"
 
 namespace beadtwin::sim {
-
-// The part's CAD in the machine frame, mm: a closed triangle mesh (its winding does not matter; inside and
-// outside come from the surface itself). Plain vertices and triangles, so the simulation needs nothing of
-// the slicer.
-struct CadSurface {
-  std::span<const Eigen::Vector3d> vertices;
-  std::span<const std::array<int, 3>> triangles;  // indices into vertices
-};
 
 struct CadCompareOptions {
   // Half-width of the CAD's narrow band and the reach of the stock, mm (> 0): stocks and deviations are
@@ -65,38 +48,6 @@ struct CadCompareOptions {
   // Leave out the CAD faces on the build plate and let the table stand in for material below the print
   // (see above); false measures the part as if it floated, bottom faces and all.
   bool exclude_plate = true;
-};
-
-// The CAD's signed distance, mm, negative inside, out to a band (the stock's reach) and ±band beyond it.
-// Two parts: a narrow-band distance grid on the deposit's voxels, kNarrowVoxels either side of the CAD
-// (OpenVDB's mesh-to-volume: exact distances at the voxel centres there, and inside and outside told by a
-// flood of the sign everywhere, whatever the triangles' winding), and the CAD's triangles in an Embree
-// scene. Within a voxel of the CAD's surface (by the grid) the distance is the grid's, trilinear between
-// voxel centres; further out it is the exact distance to the nearest triangle, with the grid's sign. (A grid
-// as wide as the band cost most of the comparison on a large part: on the LSAM mould 23 million voxels and
-// 6 s, where the narrow grid takes 1.4 s and the queries for the quarter of the skin's 12 million samples
-// that lie further out about 1 s of a core.) Safe to call from several threads at once.
-class CadField {
- public:
-  static constexpr double kNarrowVoxels = 2.0;
-  // `transform`: the deposit's (deposit_transform). The CAD as compare_with_cad takes it, already checked.
-  CadField(const CadSurface& cad, const openvdb::math::Transform& transform, double band_mm);
-  ~CadField();
-  CadField(const CadField&) = delete;
-  CadField& operator=(const CadField&) = delete;
-
-  double at(const Eigen::Vector3d& point_mm) const;
-  // The same, reading the grid through `grid_accessor` (one per thread, from grid()).
-  double at(const openvdb::FloatGrid::ConstUnsafeAccessor& grid_accessor,
-            const Eigen::Vector3d& point_mm) const;
-  // The narrow band: exact within kNarrowVoxels of the CAD, ±kNarrowVoxels voxels beyond, signed everywhere.
-  const openvdb::FloatGrid& grid() const { return *grid_; }
-
- private:
-  struct Triangles;  // in Embree
-  openvdb::FloatGrid::Ptr grid_;
-  std::unique_ptr<const Triangles> triangles_;
-  double band_mm_ = 0.0, voxel_mm_ = 0.0;
 };
 
 struct CadComparison {

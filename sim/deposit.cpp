@@ -1,10 +1,8 @@
 #include "sim/deposit.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,7 +11,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.hpp"
-#include "core/geometry.hpp"
 #include "core/memory.hpp"
 #include "core/units.hpp"
 #include "sim/bead_sweep.hpp"
@@ -234,33 +231,6 @@ Shaped shape_piece(PlannedSweep& p, const Move& move, Substrate& sub, const Depo
   return out;
 }
 
-// Defects found while laying, with runs of consecutive pieces merged into one.
-class DefectLog {
- public:
-  void note(DefectKind kind, std::size_t piece, const PlannedSweep& p, const Move& move,
-            const Eigen::Vector3d& where, double size, bool add_up) {
-    auto& last = last_piece_[static_cast<std::size_t>(kind)];
-    auto& index = last_defect_[static_cast<std::size_t>(kind)];
-    if (last && *last + 1 == piece && defects_[index].layer == move.layer) {
-      Defect& d = defects_[index];
-      d.size = add_up ? d.size + size : std::max(d.size, size);
-    } else {
-      index = defects_.size();
-      defects_.push_back({kind, where, move.layer, p.move, move.source_line, size, {}});
-    }
-    last = piece;
-  }
-  void add(Defect d) { defects_.push_back(std::move(d)); }
-  // The last defect added grows to `size` when that is larger.
-  void grow_last(double size) { defects_.back().size = std::max(defects_.back().size, size); }
-  std::vector<Defect> take() { return std::move(defects_); }
-
- private:
-  std::vector<Defect> defects_;
-  std::array<std::optional<std::size_t>, 8> last_piece_{};
-  std::array<std::size_t, 8> last_defect_{};
-};
-
 struct LayContext {
   const Toolpath& toolpath;
   const DepositOptions& options;
@@ -324,36 +294,6 @@ void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<Coverag
   c.ploughed_voxels = ploughed + c.writer.last_ploughed_voxels();
 }
 
-// The first voxel index above a roller at `top_mm`: voxels whose centres lie at or above it.
-int roller_index(double top_mm, double voxel_size_mm) {
-  return static_cast<int>(std::ceil(top_mm / voxel_size_mm - 0.5));
-}
-
-// A travel move that runs into material standing above the nozzle's tip: how deep, mm (0 when clear).
-double travel_collision_mm(const Move& move, const openvdb::FloatGrid& fill, double voxel_size_mm,
-                           double nozzle_diameter_mm) {
-  const double s = voxel_size_mm;
-  const double length = move.length_mm();
-  const int steps = std::max(1, static_cast<int>(std::ceil(length / s)));
-  auto acc = fill.getConstAccessor();
-  const double r = 0.5 * nozzle_diameter_mm;
-  const std::array<Eigen::Vector2d, 5> offsets = {Eigen::Vector2d(0, 0), {r, 0}, {-r, 0}, {0, r}, {0, -r}};
-  double deepest = 0.0;
-  for (int t = 0; t <= steps; ++t) {
-    const Eigen::Vector3d p = move.start + (move.end - move.start) * (static_cast<double>(t) / steps);
-    const int k_tip = roller_index(p.z() + 0.5 * s, s);  // a voxel clearly above the tip
-    for (const Eigen::Vector2d& o : offsets) {
-      if (r <= 0.0 && o != Eigen::Vector2d::Zero()) break;
-      const openvdb::Coord ij = voxel_containing({p.x() + o.x(), p.y() + o.y(), p.z()}, s);
-      // Up to a few voxels: material within reach of the tip, not a whole tall part above a travel below it.
-      for (int k = k_tip; k < k_tip + 4; ++k)
-        if (acc.getValue(openvdb::Coord(ij.x(), ij.y(), k)) >= 0.5f)
-          deepest = std::max(deepest, (k + 1) * s - p.z());
-    }
-  }
-  return deepest;
-}
-
 // Travel moves before `move` (back to the previous depositing move) that hit the part.
 void check_travels(std::size_t from, std::size_t to, LayContext& c) {
   for (std::size_t i = from; i < to; ++i) {
@@ -407,7 +347,8 @@ void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t
       check_travels(next_move, p.move, c);
       next_move = std::max(next_move, p.move + 1);
       const bool rolled = !keeps_round(move, c.options);
-      const int roller_k = rolled ? roller_index(p.nominal_top_mm, vs) : std::numeric_limits<int>::max();
+      const int roller_k =
+          rolled ? voxel_row_at_or_above(p.nominal_top_mm, vs) : std::numeric_limits<int>::max();
       Shaped& sh = shaped[i - begin];
       lay_bead(p, move, cells[i - batch_begin], sh, roller_k, c);
       const double ploughed = c.ploughed_voxels * vs * vs * vs;
@@ -421,10 +362,10 @@ void lay_layer(std::vector<PlannedSweep>& sweeps, std::size_t begin, std::size_t
         if (sh.unsupported) l.unsupported_length_mm += plan_length;
       }
       if (ploughed > kPloughShare * p.volume_mm3)
-        c.defects.note(DefectKind::kPlough, i, p, move, where, ploughed, true);
-      if (sh.unsupported) c.defects.note(DefectKind::kUnsupported, i, p, move, where, plan_length, true);
+        c.defects.note(DefectKind::kPlough, i, p.move, move, where, ploughed, true);
+      if (sh.unsupported) c.defects.note(DefectKind::kUnsupported, i, p.move, move, where, plan_length, true);
       if (sh.over_top_mm > kCollisionDepth * p.nominal_height_mm)
-        c.defects.note(DefectKind::kCollision, i, p, move, where, sh.over_top_mm, false);
+        c.defects.note(DefectKind::kCollision, i, p.move, move, where, sh.over_top_mm, false);
     }
     batch_begin = batch_end;
   }
@@ -516,66 +457,6 @@ double settle_voxel_size(const Toolpath& toolpath, const DepositOptions& options
   return size;
 }
 
-// Corners the roller cannot follow (issue 6, item 4). A steered roller turns about the nozzle as the path
-// turns; its inner edge stands still on a turn of radius half its width, and would have to run backwards
-// on a tighter one, so it skids and lifts. The path's radius at a joint is judged over a window of half the
-// roller's width centred on it: a turn of more than one radian within it is a radius under half the width.
-void roller_corners(const Toolpath& toolpath, double roller_width_mm, DefectLog& log) {
-  const double window = 0.5 * roller_width_mm;
-  struct Joint {
-    double s = 0.0, turn = 0.0;
-    std::size_t move = 0;
-  };
-  std::vector<Joint> chain;
-  const auto flush = [&] {
-    bool open = false;  // a run of flagged joints is being built
-    double last_s = -std::numeric_limits<double>::infinity();
-    for (const Joint& j : chain) {
-      double total = 0.0;
-      for (const Joint& o : chain)
-        if (std::abs(o.s - j.s) <= 0.5 * window) total += std::abs(o.turn);
-      if (total <= 1.0) continue;
-      const Move& m = toolpath.moves[j.move];
-      const double degrees = total * 180.0 / kPi;
-      if (open && j.s - last_s <= window) {
-        log.grow_last(degrees);
-      } else {
-        log.add({DefectKind::kRollerCorner, m.start, m.layer, j.move, m.source_line, degrees, {}});
-        open = true;
-      }
-      last_s = j.s;
-    }
-    chain.clear();
-  };
-  constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-  double s = 0.0;
-  std::size_t previous = kNone;
-  for (std::size_t i = 0; i < toolpath.moves.size(); ++i) {
-    const Move& m = toolpath.moves[i];
-    const Eigen::Vector2d d = (m.end - m.start).head<2>();
-    if (m.kind != MoveKind::kPrint || !m.roller_down || !m.deposits() || d.norm() <= 1e-9) {
-      if (m.length_mm() > 0.0 || m.kind == MoveKind::kPrint) {
-        flush();
-        previous = kNone;
-      }
-      continue;
-    }
-    if (previous != kNone) {
-      const Move& p = toolpath.moves[previous];
-      const Eigen::Vector2d u = (p.end - p.start).head<2>().normalized(), v = d.normalized();
-      if ((p.end - m.start).norm() <= 1e-3) {
-        chain.push_back({s, turn_rad(u, v), i});
-      } else {
-        flush();
-        s = 0.0;
-      }
-    }
-    s += d.norm();
-    previous = i;
-  }
-  flush();
-}
-
 // Per-layer figures once everything is laid.
 void summarise_layers(const Toolpath& toolpath, const std::vector<PlannedSweep>& sweeps, Deposit& out) {
   std::vector<double> length(out.layers.size(), 0.0);
@@ -595,29 +476,6 @@ void summarise_layers(const Toolpath& toolpath, const std::vector<PlannedSweep>&
     out.plough_volume_mm3 += l.plough_volume_mm3;
     out.unsupported_length_mm += l.unsupported_length_mm;
   }
-}
-
-std::string describe(const Defect& d) {
-  switch (d.kind) {
-    case DefectKind::kVoid:
-      return fmt::format("void of {:.3g} mm³ {}", d.size, d.detail);
-    case DefectKind::kPlough:
-      return fmt::format("the roller ploughs {:.3g} mm³ of material above its gap", d.size);
-    case DefectKind::kUnsupported:
-      return fmt::format("{:.3g} mm of bead laid over nothing (no material within a layer below)", d.size);
-    case DefectKind::kRollerCorner:
-      return fmt::format(
-          "the roller stays down through a turn of {:.0f}° within half its width: tighter than it "
-          "can follow (lift it, or round the corner)",
-          d.size);
-    case DefectKind::kCollision:
-      return d.detail == "travel"
-                 ? fmt::format("a travel move runs {:.3g} mm into the part", d.size)
-                 : fmt::format(
-                       "the nozzle and roller run into material standing {:.3g} mm above the bead's top",
-                       d.size);
-  }
-  return {};
 }
 
 int widest_bead_voxels(const std::vector<PlannedSweep>& sweeps, double voxel_size_mm) {
@@ -644,6 +502,10 @@ openvdb::Coord voxel_containing(const Eigen::Vector3d& point_mm, double voxel_si
 
 Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm) {
   return Eigen::Vector3d(ijk.x() + 0.5, ijk.y() + 0.5, ijk.z() + 0.5) * voxel_size_mm;
+}
+
+int voxel_row_at_or_above(double z_mm, double voxel_size_mm) {
+  return static_cast<int>(std::ceil(z_mm / voxel_size_mm - 0.5));
 }
 
 double deposit_voxel_size_mm(const Toolpath& toolpath, const DepositOptions& options) {
@@ -716,22 +578,6 @@ std::string_view to_string(Flattening flattening) {
       return "roller";
     case Flattening::kTamper:
       return "tamper";
-  }
-  return "?";
-}
-
-std::string_view to_string(DefectKind kind) {
-  switch (kind) {
-    case DefectKind::kVoid:
-      return "void";
-    case DefectKind::kPlough:
-      return "plough";
-    case DefectKind::kUnsupported:
-      return "unsupported";
-    case DefectKind::kRollerCorner:
-      return "roller_corner";
-    case DefectKind::kCollision:
-      return "collision";
   }
   return "?";
 }

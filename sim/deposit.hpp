@@ -1,4 +1,4 @@
-// Voxel deposition (docs/physics.md, bead cross-section and deposition), first cut.
+// Voxel deposition (docs/physics.md, bead cross-section and deposition).
 //
 // Every print move sweeps its flattened bead cross-section — a rectangle with semicircular sides, height h
 // = the move's layer height, width w from A = Q/v = h (w - h) + π h²/4 — into sparse OpenVDB grids in the
@@ -8,17 +8,18 @@
 //
 // How the pieces fit (one file pair each): sim/bead_section (the profile of a bead or a puddle),
 // sim/sweep_plan (moves to sweeps: which moves continue one bead, how the ends are cut), sim/bead_sweep
-// (the swept solid and its supersampled voxel coverage), sim/fill_writer (conservation: scaling, overflow
-// pushed to free neighbours), sim/porosity (void inside the envelope). This file is the stage.
+// (the swept solid and its supersampled voxel coverage), sim/substrate (what lies under a bead),
+// sim/fill_writer (conservation: scaling, overflow pushed to free neighbours), sim/porosity (void inside the
+// envelope), sim/voids (the voids located), sim/defects (what is wrong, where, and the checks of the roller's
+// corners and the travel moves). This file is the stage.
 //
 // Conventions the consumers (thermal, render, reports) rely on:
 //  - Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along x (likewise y, z), in mm, machine frame. The grids'
 //    transform is deposit_transform(voxel_size_mm): it maps index (i,j,k) to the voxel's centre
 //    ((i+½)·s, (j+½)·s, (k+½)·s), as OpenVDB expects (a value sits at the centre of its voxel), so
 //    grid->transform().worldToIndexCellCentered(p) and voxel_containing(p, s) name the same voxel.
-//  - fill, time, layer and move share one active topology: a voxel is active iff it holds material (fill >
-//  0).
-//    Inactive voxels read the backgrounds: fill 0, time 0, layer -1, move -1.
+//  - fill, time, layer and move share one active topology: a voxel is active iff it holds material
+//    (fill > 0). Inactive voxels read the backgrounds: fill 0, time 0, layer -1, move -1.
 //  - Every move with volume_mm3 > 0 deposits, whatever its kind; a move without plan length (a dwell that
 //    extrudes) leaves a puddle at its end point (sim/sweep_plan.hpp).
 #pragma once
@@ -34,6 +35,7 @@
 #include <Eigen/Core>
 
 #include "core/toolpath.hpp"
+#include "sim/defects.hpp"
 
 namespace beadtwin::sim {
 
@@ -79,27 +81,6 @@ struct DepositOptions {
   // Called on the calling thread as the layers are laid, with the fraction of the beads laid so far (0..1);
   // empty: no reports.
   std::function<void(double fraction)> progress;
-};
-
-// Something wrong with the deposit, where it is and what caused it (issue 6, item 4). Runs of consecutive
-// pieces with the same problem are one defect.
-enum class DefectKind : std::uint8_t {
-  kVoid,          // an enclosed void between beads (size: its volume, mm³)
-  kPlough,        // material pushed above the roller's gap (size: the volume, mm³)
-  kUnsupported,   // a bead laid over nothing within a layer height (size: the span's length, mm)
-  kRollerCorner,  // the roller engaged through a corner tighter than it can follow (size: the turn, degrees)
-  kCollision,     // the nozzle or roller runs into material standing above it (size: how deep, mm)
-};
-std::string_view to_string(DefectKind kind);
-
-struct Defect {
-  DefectKind kind = DefectKind::kVoid;
-  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  // where it starts (a void: its centre)
-  int layer = -1;
-  std::size_t move = 0;  // index into Toolpath::moves of the move that caused it (a void: a bead next to it)
-  int source_line = 0;   // the program line of that move; 0 for planned toolpaths
-  double size = 0.0;     // see DefectKind
-  std::string detail;    // one line for a person
 };
 
 // Per toolpath layer: the material it was commanded and what the deposit made of it.
@@ -163,6 +144,9 @@ openvdb::math::Transform::Ptr deposit_transform(double voxel_size_mm);
 openvdb::Coord voxel_containing(const Eigen::Vector3d& point_mm, double voxel_size_mm);
 // The centre of voxel `ijk`, mm.
 Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm);
+// The lowest voxel index k whose voxels' centres lie at or above `z_mm` (the first row above a roller at
+// that height).
+int voxel_row_at_or_above(double z_mm, double voxel_size_mm);
 
 // The fill of the part as it stood when toolpath layer `last_layer` was done: the voxels whose material
 // came from layers 0..last_layer (the layer grid names the last layer to fill a voxel, so a voxel a later

@@ -1,5 +1,5 @@
 // Embree 3, wrapped once (STYLE.md rule 9): RAII handles for a device, a scene and a geometry. The renderer
-// traces rays with it; the comparison with the CAD asks it for nearest points (sim/cad_compare.hpp).
+// traces rays with it; the comparison with the CAD asks it for nearest points (sim/nearest_triangles.hpp).
 //
 // The Device installs an error callback when it is created. Embree calls it on the thread whose call
 // failed; the callback records the error and the wrapper function that made the call throws it, as an

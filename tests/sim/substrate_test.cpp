@@ -216,61 +216,6 @@ TEST(Defects, UnsupportedSpanIsReportedWithItsLength) {
   EXPECT_NEAR(d.unsupported_length_mm, 150.0, 1e-6);
 }
 
-// A square with the roller down through its corners: a 90° turn at a point is tighter than any roller
-// follows. The same square with corners rounded to 40 mm (in 10° steps) is fine for a 50 mm roller, whose
-// inner edge stands still on a 25 mm radius.
-TEST(Defects, RollerCornersTighterThanItFollows) {
-  const auto square = [](double radius) {
-    std::vector<Move> moves;
-    std::vector<Eigen::Vector3d> points;
-    const double half = 200.0;
-    const Eigen::Vector2d centres[4] = {{half - radius, -half + radius},
-                                        {half - radius, half - radius},
-                                        {-half + radius, half - radius},
-                                        {-half + radius, -half + radius}};
-    for (int c = 0; c < 4; ++c)
-      for (int k = 0; k <= 9; ++k) {
-        const double a = (c * 90.0 - 90.0 + k * 10.0) * kPi / 180.0;
-        points.emplace_back(centres[c].x() + radius * std::cos(a), centres[c].y() + radius * std::sin(a), kH);
-      }
-    points.push_back(points.front());
-    for (std::size_t i = 0; i + 1 < points.size(); ++i)
-      if ((points[i + 1] - points[i]).norm() > 1e-9) moves.push_back(bead(points[i], points[i + 1], 0));
-    return timed(moves);
-  };
-  sim::DepositOptions o;
-  o.flattening = sim::Flattening::kRoller;
-  o.roller_width_mm = 50.0;
-  o.voxel_size_mm = 2.54;
-  const sim::Deposit sharp = sim::deposit(square(0.0), o);
-  EXPECT_EQ(count(sharp, sim::DefectKind::kRollerCorner), 3u);  // the fourth corner is the loop's seam
-  for (const sim::Defect& x : sharp.defects) {
-    if (x.kind == sim::DefectKind::kRollerCorner) {
-      EXPECT_NEAR(x.size, 90.0, 1e-6);
-    }
-  }
-  EXPECT_EQ(count(sim::deposit(square(40.0), o), sim::DefectKind::kRollerCorner), 0u);
-  // Lifted through the corner (the planner's corner pull-back), no defect.
-  Toolpath lifted = square(0.0);
-  for (Move& m : lifted.moves) m.roller_down = false;
-  EXPECT_EQ(count(sim::deposit(lifted, o), sim::DefectKind::kRollerCorner), 0u);
-}
-
-// A travel move at the first layer's height back through the second layer's bead hits it.
-TEST(Defects, TravelThroughThePartIsACollision) {
-  std::vector<Move> moves = {bead({0, 0, kH}, {100, 0, kH}, 0), travel({100, 0, kH}, {100, 0, 2 * kH}, 1),
-                             bead({100, 0, 2 * kH}, {0, 0, 2 * kH}, 1),
-                             travel({0, 0, 2 * kH}, {50, -50, kH}, 1),
-                             travel({50, -50, kH}, {50, 50, kH}, 1)};
-  const sim::Deposit d = sim::deposit(timed(moves));
-  ASSERT_EQ(count(d, sim::DefectKind::kCollision), 1u);
-  const auto it = std::find_if(d.defects.begin(), d.defects.end(),
-                               [](const sim::Defect& x) { return x.kind == sim::DefectKind::kCollision; });
-  EXPECT_EQ(it->move, 4u);
-  EXPECT_GT(it->size, 0.5 * kH);
-  EXPECT_NE(it->detail.find("travel"), std::string::npos);
-}
-
 // A bead laid at the first layer's height beside a stack, in the stack's fourth layer (after its third):
 // the nozzle and the roller run into the stack. A 3 in roller meets both layers standing above the bead's
 // top (the second and third; the fourth is laid with it); without its diameter only the layer just above

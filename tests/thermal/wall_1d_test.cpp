@@ -1,5 +1,5 @@
 // Tests of the 1-D stacked-layer thermal model against analytic solutions (STYLE.md rule 12).
-#include "thermal/thermal.hpp"
+#include "thermal/wall_1d.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -20,11 +20,11 @@ constexpr double kGasConstant = 8.314462618;
 
 // A straight LSAM wall: `count` layers of `width_mm` x `length_mm`, one every `period_s`, each deposited
 // over its whole period (the next layer starts when it ends).
-std::vector<LayerInput> straight_wall(int count, double period_s, double height_mm = 4.064,
-                                      double width_mm = 20.0, double length_mm = 1000.0) {
-  std::vector<LayerInput> layers;
+std::vector<Wall1dLayer> straight_wall(int count, double period_s, double height_mm = 4.064,
+                                       double width_mm = 20.0, double length_mm = 1000.0) {
+  std::vector<Wall1dLayer> layers;
   for (int i = 0; i < count; ++i) {
-    LayerInput layer;
+    Wall1dLayer layer;
     layer.height_mm = height_mm;
     layer.z_top_mm = height_mm * (i + 1);
     layer.start_s = i * period_s;
@@ -43,14 +43,14 @@ std::string sci(double value) {
 }
 
 // Heat capacity ρ c_p V of one layer, J/K.
-double layer_capacity_J_K(const Material& m, const LayerInput& layer) {
+double layer_capacity_J_K(const Material& m, const Wall1dLayer& layer) {
   return m.density_kg_m3 * m.specific_heat_J_kgK * layer.area_mm2 * 1e-6 * layer.height_mm * 1e-3;
 }
 
 // Newton's law of cooling of a lumped body (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer,
 // 6th ed., §5.2 eq. 5.6): T(t) = T∞ + (T0 − T∞) exp(−t/τ), τ = ρ c_p V / (h A_s), valid when the Biot
 // number is small. Returns the largest deviation of the sampled history of layer 0 from it, over (T0 − T∞).
-double max_deviation_from_lumped_cooling(const ThermalResult& result, double t0, double temp0_c,
+double max_deviation_from_lumped_cooling(const Wall1dResult& result, double t0, double temp0_c,
                                          double ambient_c, double tau_s) {
   double worst = 0.0;
   for (std::size_t k = 0; k < result.sample_times_s.size(); ++k) {
@@ -61,27 +61,27 @@ double max_deviation_from_lumped_cooling(const ThermalResult& result, double t0,
   return worst / (temp0_c - ambient_c);
 }
 
-TEST(ThermalTest, SingleLayerCoolsExponentially) {
+TEST(Wall1dTest, SingleLayerCoolsExponentially) {
   // One LSAM bead 21 mm x 5 mm x 1 m on an insulated table, convection only: a lumped body whose free
   // surface is its sides and its top.
   Material material;
   material.emissivity = 0.0;
   Environment env;
   env.bed_insulated = true;
-  LayerInput layer{.z_top_mm = 5,
-                   .height_mm = 5,
-                   .start_s = 0,
-                   .end_s = 30,
-                   .area_mm2 = 21.0 * 1000.0,
-                   .perimeter_mm = 2.0 * (21.0 + 1000.0)};
+  Wall1dLayer layer{.z_top_mm = 5,
+                    .height_mm = 5,
+                    .start_s = 0,
+                    .end_s = 30,
+                    .area_mm2 = 21.0 * 1000.0,
+                    .perimeter_mm = 2.0 * (21.0 + 1000.0)};
   const double side_m2 = layer.perimeter_mm * 1e-3 * layer.height_mm * 1e-3;
   const double top_m2 = layer.area_mm2 * 1e-6;
   const double tau_s = layer_capacity_J_K(material, layer) / (env.convection_W_m2K * (side_m2 + top_m2));
 
-  Options options;
+  Wall1dOptions options;
   options.nodes_per_layer = 1;  // one control volume: exactly the lumped body
   options.cooldown_s = 3000;
-  const ThermalResult result = solve_thermal(std::span(&layer, 1), material, env, options);
+  const Wall1dResult result = solve_wall_1d(std::span(&layer, 1), material, env, options);
   ASSERT_EQ(result.layer_temp_c.size(), 1u);
   ASSERT_GT(result.sample_times_s.back(), 2.0 * tau_s);  // the history covers several time constants
   const double error =
@@ -93,7 +93,7 @@ TEST(ThermalTest, SingleLayerCoolsExponentially) {
   EXPECT_DOUBLE_EQ(result.layers[0].substrate_mean_c, env.ambient_c);  // insulated table: ambient
 }
 
-TEST(ThermalTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
+TEST(Wall1dTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
   // Same bead split into 4 nodes; with a huge conductivity (Biot number ~1e-5) the nodes stay together
   // and the layer must again follow the lumped solution, now with the top loss on the top node only.
   Material material;
@@ -101,18 +101,18 @@ TEST(ThermalTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
   material.conductivity_through_W_mK = 1e4;
   Environment env;
   env.bed_insulated = true;
-  LayerInput layer{.z_top_mm = 5,
-                   .height_mm = 5,
-                   .start_s = 0,
-                   .end_s = 0,
-                   .area_mm2 = 21.0 * 1000.0,
-                   .perimeter_mm = 2.0 * (21.0 + 1000.0)};
+  Wall1dLayer layer{.z_top_mm = 5,
+                    .height_mm = 5,
+                    .start_s = 0,
+                    .end_s = 0,
+                    .area_mm2 = 21.0 * 1000.0,
+                    .perimeter_mm = 2.0 * (21.0 + 1000.0)};
   const double area_m2 = layer.perimeter_mm * 1e-3 * layer.height_mm * 1e-3 + layer.area_mm2 * 1e-6;
   const double tau_s = layer_capacity_J_K(material, layer) / (env.convection_W_m2K * area_m2);
-  Options options;
+  Wall1dOptions options;
   options.nodes_per_layer = 4;
   options.cooldown_s = 3000;
-  const ThermalResult result = solve_thermal(std::span(&layer, 1), material, env, options);
+  const Wall1dResult result = solve_wall_1d(std::span(&layer, 1), material, env, options);
   const double error =
       max_deviation_from_lumped_cooling(result, 0.0, material.deposition_temp_c, env.ambient_c, tau_s);
   RecordProperty("max_error_fraction", sci(error));
@@ -120,18 +120,18 @@ TEST(ThermalTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
   EXPECT_LT(error, 1e-4);
 }
 
-TEST(ThermalTest, EnergyIsConservedWithRadiationAndAHeatedBed) {
+TEST(Wall1dTest, EnergyIsConservedWithRadiationAndAHeatedBed) {
   const Material material;  // ε = 0.85
   const Environment env;    // table held at 65 °C, 100 W/m²K contact
-  const std::vector<LayerInput> layers = straight_wall(20, 60.0);
-  const ThermalResult result = solve_thermal(layers, material, env);
+  const std::vector<Wall1dLayer> layers = straight_wall(20, 60.0);
+  const Wall1dResult result = solve_wall_1d(layers, material, env);
   RecordProperty("energy_balance_rel_error", sci(result.energy_balance_rel_error));
   EXPECT_LT(result.energy_balance_rel_error, 1e-3);
   EXPECT_LT(result.energy_balance_rel_error, 1e-9);  // BDF keeps linear invariants up to the Newton tolerance
 
   // Energy brought in: every layer born at the deposition temperature, relative to ambient.
   double in_J = 0.0;
-  for (const LayerInput& layer : layers)
+  for (const Wall1dLayer& layer : layers)
     in_J += layer_capacity_J_K(material, layer) * (material.deposition_temp_c - env.ambient_c);
   EXPECT_NEAR(result.energy_in_J, in_J, 1e-9 * in_J);
   // Energy stored, recomputed from the last sample of the history (float precision).
@@ -143,9 +143,9 @@ TEST(ThermalTest, EnergyIsConservedWithRadiationAndAHeatedBed) {
   EXPECT_GT(result.energy_lost_J, 0.5 * in_J);  // 30 min of printing and 10 of cooldown lose most of it
 }
 
-TEST(ThermalTest, HistoryIsNaNBeforeALayerExists) {
-  const std::vector<LayerInput> layers = straight_wall(3, 40.0);
-  const ThermalResult result = solve_thermal(layers, Material{}, Environment{});
+TEST(Wall1dTest, HistoryIsNaNBeforeALayerExists) {
+  const std::vector<Wall1dLayer> layers = straight_wall(3, 40.0);
+  const Wall1dResult result = solve_wall_1d(layers, Material{}, Environment{});
   ASSERT_EQ(result.layer_temp_c.size(), 3u);
   EXPECT_DOUBLE_EQ(result.sample_times_s.front(), 0.0);
   EXPECT_DOUBLE_EQ(result.sample_times_s.back(), 120.0 + 600.0);
@@ -159,20 +159,7 @@ TEST(ThermalTest, HistoryIsNaNBeforeALayerExists) {
   EXPECT_GT(result.steps, 0);
 }
 
-TEST(ThermalTest, ReptationTimeFollowsArrhenius) {
-  const Material m;  // t_ref 1 s at 200 °C, E_a 150 kJ/mol, no healing below 110 °C
-  EXPECT_DOUBLE_EQ(reptation_time_s(m, m.healing_ref_temp_c), m.reptation_time_ref_s);
-  // By hand: 150000 / 8.314462618 · (1/423.15 − 1/473.15) = 4.5054055; exp(4.5054055) = 90.50504 s.
-  EXPECT_NEAR(reptation_time_s(m, 150.0), 90.50504, 1e-4);
-  // At the threshold itself: 150000 / 8.314462618 · (1/383.15 − 1/473.15) = 8.9563676 → 7757.129 s.
-  EXPECT_NEAR(reptation_time_s(m, 110.0), 7757.129, 1e-2);
-  EXPECT_TRUE(std::isinf(reptation_time_s(m, 109.9)));
-  Material shifted = m;
-  shifted.reptation_time_ref_s = 3.0;
-  EXPECT_NEAR(reptation_time_s(shifted, 150.0), 3.0 * 90.50504, 3e-4);
-}
-
-TEST(ThermalTest, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
+TEST(Wall1dTest, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
   // A printer in an oven: deposition, ambient and table all at 150 °C. No heat flows anywhere, so the
   // interface stays at exactly 150 °C and Yang & Pitchumani's integral reduces to D_h = (t / t_w)^(1/4)
   // (the isothermal reptation result of de Gennes / Wool & O'Connor), t counted from the layer's birth.
@@ -181,11 +168,11 @@ TEST(ThermalTest, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
   material.support_limit_c = 200.0;  // so that the verdict is about healing only
   Environment env;
   env.ambient_c = env.bed_temp_c = 150.0;
-  std::vector<LayerInput> layers = straight_wall(2, 20.0);
+  std::vector<Wall1dLayer> layers = straight_wall(2, 20.0);
   layers[1].end_s = 30.0;  // layer 1 born at 20 s, simulation ends at 30 + 20 s
-  Options options;
+  Wall1dOptions options;
   options.cooldown_s = 20.0;
-  const ThermalResult result = solve_thermal(layers, material, env, options);
+  const Wall1dResult result = solve_wall_1d(layers, material, env, options);
   const double expected = std::pow((50.0 - 20.0) / 90.50504, 0.25);  // 0.7588
   EXPECT_NEAR(result.layers[1].healing, expected, 1e-6);
   EXPECT_EQ(result.layers[1].verdict, Verdict::kTooCold);  // below the required 0.9
@@ -200,10 +187,10 @@ TEST(ThermalTest, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
 
   // The same oven below the healing threshold: no healing at all.
   material.deposition_temp_c = env.ambient_c = env.bed_temp_c = 100.0;
-  EXPECT_EQ(solve_thermal(layers, material, env, options).layers[1].healing, 0.0);
+  EXPECT_EQ(solve_wall_1d(layers, material, env, options).layers[1].healing, 0.0);
 }
 
-TEST(ThermalTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
+TEST(Wall1dTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
   // Two equal layers with a huge conductivity cool together as one lumped body (Newton cooling, see
   // above): T(t) = T∞ + (T0 − T∞) exp(−t/τ) with τ = 2 ρ c_p V / (h (2 A_side + A_top)), the lower layer's
   // top being covered. The healing integral ∫ dt / t_w(T(t)) up to the time T reaches the 110 °C threshold
@@ -214,11 +201,11 @@ TEST(ThermalTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
   material.reptation_time_ref_s = 300.0;  // keeps D_h below 1 so that the comparison means something
   Environment env;
   env.bed_insulated = true;
-  std::vector<LayerInput> layers = straight_wall(2, 1e-3, 5.0, 21.0, 1000.0);
-  Options options;
+  std::vector<Wall1dLayer> layers = straight_wall(2, 1e-3, 5.0, 21.0, 1000.0);
+  Wall1dOptions options;
   options.nodes_per_layer = 1;
   options.cooldown_s = 5000.0;
-  const ThermalResult result = solve_thermal(layers, material, env, options);
+  const Wall1dResult result = solve_wall_1d(layers, material, env, options);
 
   const double side_m2 = layers[0].perimeter_mm * 1e-3 * layers[0].height_mm * 1e-3;
   const double top_m2 = layers[0].area_mm2 * 1e-6;
@@ -243,17 +230,17 @@ TEST(ThermalTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
   EXPECT_NEAR(result.layers[1].healing, expected, 1e-4 * expected);
 }
 
-TEST(ThermalTest, HealingIsConvergedAtTheDefaultTolerances) {
+TEST(Wall1dTest, HealingIsConvergedAtTheDefaultTolerances) {
   // Slow layers: every interface crosses the healing threshold while cooling, the hardest case for the
   // integrator (the healing rate jumps there). Tightening the tolerances must not change D_h beyond what
   // the temperature error explains: d ln(1/t_w)/dT = E_a/(R T²) ≈ 0.1 /K near 130 °C, so a 1e-3 K error in
   // the interface temperature is 2.5e-5 in D_h/D_h.
-  const std::vector<LayerInput> layers = straight_wall(12, 300.0);
-  const ThermalResult coarse = solve_thermal(layers, Material{}, Environment{});
-  Options fine;
+  const std::vector<Wall1dLayer> layers = straight_wall(12, 300.0);
+  const Wall1dResult coarse = solve_wall_1d(layers, Material{}, Environment{});
+  Wall1dOptions fine;
   fine.rel_tol = 1e-9;
   fine.abs_tol_k = 1e-7;
-  const ThermalResult reference = solve_thermal(layers, Material{}, Environment{}, fine);
+  const Wall1dResult reference = solve_wall_1d(layers, Material{}, Environment{}, fine);
   for (std::size_t i = 1; i < layers.size(); ++i) {
     EXPECT_GT(reference.layers[i].healing, 0.1);
     EXPECT_LT(reference.layers[i].healing, 0.95);
@@ -263,14 +250,14 @@ TEST(ThermalTest, HealingIsConvergedAtTheDefaultTolerances) {
   }
 }
 
-TEST(ThermalTest, LongerLayerTimesGiveColderSubstrates) {
+TEST(Wall1dTest, LongerLayerTimesGiveColderSubstrates) {
   const Material material;
   const Environment env;
   double previous_mean = std::numeric_limits<double>::infinity();
   double previous_start = std::numeric_limits<double>::infinity();
   for (double period_s : {10.0, 20.0, 40.0, 80.0, 160.0, 320.0, 640.0}) {
-    const ThermalResult result = solve_thermal(straight_wall(10, period_s), material, env);
-    const LayerResult& top = result.layers.back();
+    const Wall1dResult result = solve_wall_1d(straight_wall(10, period_s), material, env);
+    const Wall1dLayerResult& top = result.layers.back();
     EXPECT_LT(top.substrate_mean_c, previous_mean) << period_s << " s";
     EXPECT_LT(top.substrate_at_start_c, previous_start) << period_s << " s";
     EXPECT_LE(top.substrate_min_c, top.substrate_mean_c);
@@ -282,11 +269,11 @@ TEST(ThermalTest, LongerLayerTimesGiveColderSubstrates) {
   }
 }
 
-TEST(ThermalTest, ShortLayersAreTooHotAndLongOnesTooCold) {
+TEST(Wall1dTest, ShortLayersAreTooHotAndLongOnesTooCold) {
   const Material material;  // core/material.hpp defaults
   const Environment env;
-  const ThermalResult fast = solve_thermal(straight_wall(10, 5.0), material, env);
-  const ThermalResult slow = solve_thermal(straight_wall(10, 1000.0), material, env);
+  const Wall1dResult fast = solve_wall_1d(straight_wall(10, 5.0), material, env);
+  const Wall1dResult slow = solve_wall_1d(straight_wall(10, 1000.0), material, env);
   EXPECT_EQ(fast.layers[0].verdict, Verdict::kNoInterface);
   EXPECT_EQ(slow.layers[0].verdict, Verdict::kNoInterface);
   EXPECT_DOUBLE_EQ(slow.layers[0].substrate_max_c, env.bed_temp_c);
@@ -298,12 +285,12 @@ TEST(ThermalTest, ShortLayersAreTooHotAndLongOnesTooCold) {
   }
 }
 
-TEST(ThermalTest, A150LayerComptonWallSolvesInUnderTwoSeconds) {
+TEST(Wall1dTest, A150LayerComptonWallSolvesInUnderTwoSeconds) {
   // Compton et al. 2017 set-up (docs/physics.md, cooling): 150 layers of 4.064 mm, 20 mm wall (1 m long
   // here), 40 s per layer, 100 min of printing plus 10 min of cooldown.
-  const std::vector<LayerInput> layers = straight_wall(150, 40.0);
+  const std::vector<Wall1dLayer> layers = straight_wall(150, 40.0);
   const auto t0 = std::chrono::steady_clock::now();
-  const ThermalResult result = solve_thermal(layers, Material{}, Environment{});
+  const Wall1dResult result = solve_wall_1d(layers, Material{}, Environment{});
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RecordProperty("solve_seconds", sci(seconds));
   RecordProperty("cvode_steps", std::to_string(result.steps));
@@ -312,18 +299,18 @@ TEST(ThermalTest, A150LayerComptonWallSolvesInUnderTwoSeconds) {
   ASSERT_EQ(result.layers.size(), 150u);
 }
 
-TEST(ThermalTest, BadInputIsAnInputErrorNamingTheField) {
+TEST(Wall1dTest, BadInputIsAnInputErrorNamingTheField) {
   const Material material;
   const Environment env;
-  auto key_of = [&](std::vector<LayerInput> layers, const Material& m = Material{}) -> std::string {
+  auto key_of = [&](std::vector<Wall1dLayer> layers, const Material& m = Material{}) -> std::string {
     try {
-      solve_thermal(layers, m, env);
+      solve_wall_1d(layers, m, env);
     } catch (const InputError& e) {
       return e.key();
     }
     return "no error";
   };
-  std::vector<LayerInput> layers = straight_wall(4, 40.0);
+  std::vector<Wall1dLayer> layers = straight_wall(4, 40.0);
   EXPECT_EQ(key_of(layers), "no error");
 
   auto bad = layers;
@@ -364,7 +351,7 @@ TEST(ThermalTest, BadInputIsAnInputErrorNamingTheField) {
   m = material;
   m.specific_heat_J_kgK = -1.0;
   try {
-    solve_thermal(bad, m, env);
+    solve_wall_1d(bad, m, env);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -373,19 +360,12 @@ TEST(ThermalTest, BadInputIsAnInputErrorNamingTheField) {
     EXPECT_NE(what.find("material.specific_heat_J_kgK"), std::string::npos) << what;
   }
 
-  Options options;
+  Wall1dOptions options;
   options.nodes_per_layer = 0;
-  EXPECT_THROW(solve_thermal(layers, material, env, options), InputError);
+  EXPECT_THROW(solve_wall_1d(layers, material, env, options), InputError);
   Environment cold = env;
   cold.ambient_c = -300.0;
-  EXPECT_THROW(solve_thermal(layers, material, cold), InputError);
-}
-
-TEST(ThermalTest, VerdictNames) {
-  EXPECT_EQ(to_string(Verdict::kOk), "ok");
-  EXPECT_EQ(to_string(Verdict::kTooHot), "too_hot");
-  EXPECT_EQ(to_string(Verdict::kTooCold), "too_cold");
-  EXPECT_EQ(to_string(Verdict::kNoInterface), "no_interface");
+  EXPECT_THROW(solve_wall_1d(layers, material, cold), InputError);
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
-// Thermal history and interlayer fusion of a printed wall (docs/physics.md, cooling and fusion window), first
-// cut.
+// The 1-D reference model of a printed wall's thermal history and interlayer fusion (docs/physics.md,
+// cooling and fusion window): the model the 3-D thermal stage (thermal/thermal.hpp) is checked against where
+// the two make the same assumptions (tests/scenarios/compton_wall_test.cpp).
 //
 // The part is modelled as a 1-D stack of layers in the spirit of Compton et al. 2017 (Additive Manufacturing
 // 17:77-86): each layer is `nodes_per_layer` control volumes through its thickness, with its footprint area
 // and the length of its exposed side edges. Heat is conducted through the stack (k through the layer
 // thickness), lost by convection and radiation from the sides and from the exposed part of each layer's
-// top, and exchanged with the table under layer 0. Layers appear by element birth: in this first cut a
-// whole layer is born at once, at its start time and at the deposition temperature, so the time a bead
-// really waits before being covered is represented by the layer-to-layer period, not bead by bead.
+// top, and exchanged with the table under layer 0. Layers appear by element birth: a whole layer is born at
+// once, at its start time and at the deposition temperature, so the time a bead really waits before being
+// covered is represented by the layer-to-layer period, not bead by bead.
 //
 // Integrated with SUNDIALS CVODE (BDF, banded direct solver), restarted at every birth. The healing of every
 // interface follows the non-isothermal reptation model of Yang & Pitchumani 2002 (docs/physics.md, fusion
@@ -23,7 +24,7 @@
 
 namespace beadtwin::thermal {
 
-struct LayerInput {
+struct Wall1dLayer {
   double z_top_mm = 0, height_mm = 0;
   double start_s = 0,
          end_s = 0;         // when the layer's deposition starts and ends; start times strictly increase
@@ -31,7 +32,7 @@ struct LayerInput {
   double perimeter_mm = 0;  // length of the layer's exposed side edges (outer + inner contours), >= 0
 };
 
-struct Options {
+struct Wall1dOptions {
   double rel_tol = 1e-6;         // CVODE relative tolerance
   double abs_tol_k = 1e-4;       // CVODE absolute tolerance on temperatures, K
   int nodes_per_layer = 2;       // nodes through each layer's thickness, >= 1
@@ -39,7 +40,7 @@ struct Options {
   double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
 };
 
-struct LayerResult {
+struct Wall1dLayerResult {
   // Temperature of the layer below (its top node) while this layer is laid, over [start_s, end_s]: minimum,
   // time average and maximum, °C. Because the whole layer is born at start_s, this includes the reheating
   // of the substrate by the new layer, which grows as the top node gets closer to the interface (more
@@ -55,8 +56,8 @@ struct LayerResult {
   Verdict verdict = Verdict::kNoInterface;
 };
 
-struct ThermalResult {
-  std::vector<LayerResult> layers;
+struct Wall1dResult {
+  std::vector<Wall1dLayerResult> layers;
   std::vector<double> sample_times_s;  // from the first layer's start to the end, every interval
   // [layer][sample] mean temperature of the layer, °C; NaN before the layer exists.
   std::vector<std::vector<float>> layer_temp_c;
@@ -71,7 +72,7 @@ struct ThermalResult {
 // Solves the thermal history of the layer stack. `layers` in deposition order (layer 0 on the table).
 // Throws InputError naming the layer index or the field when an input cannot be used (all problems found
 // are listed), InternalError when the integrator fails.
-ThermalResult solve_thermal(std::span<const LayerInput> layers, const Material& material,
-                            const Environment& env, const Options& options = {});
+Wall1dResult solve_wall_1d(std::span<const Wall1dLayer> layers, const Material& material,
+                           const Environment& env, const Wall1dOptions& options = {});
 
 }  // namespace beadtwin::thermal

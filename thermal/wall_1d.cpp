@@ -1,4 +1,4 @@
-#include "thermal/thermal.hpp"
+#include "thermal/wall_1d.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "thermal/cvode.hpp"
-#include "thermal/wall_model.hpp"
+#include "thermal/wall_1d_model.hpp"
 
 namespace beadtwin::thermal {
 
@@ -65,10 +65,10 @@ class Problems {
   std::string message_;
 };
 
-void validate_layers(std::span<const LayerInput> layers, Problems& problems) {
+void validate_layers(std::span<const Wall1dLayer> layers, Problems& problems) {
   if (layers.empty()) problems.add("layers", "must hold at least one layer");
   for (std::size_t i = 0; i < layers.size(); ++i) {
-    const LayerInput& layer = layers[i];
+    const Wall1dLayer& layer = layers[i];
     const std::string key = fmt::format("layers[{}]", i);
     problems.positive(key + ".height_mm", layer.height_mm);
     problems.positive(key + ".area_mm2", layer.area_mm2);
@@ -106,7 +106,7 @@ void validate_environment(const Environment& env, Problems& problems) {
   problems.non_negative("environment.bed_contact_W_m2K", env.bed_contact_W_m2K);
 }
 
-void validate_options(const Options& o, Problems& problems) {
+void validate_options(const Wall1dOptions& o, Problems& problems) {
   problems.positive("options.rel_tol", o.rel_tol);
   problems.positive("options.abs_tol_k", o.abs_tol_k);
   if (o.nodes_per_layer < 1)
@@ -115,9 +115,9 @@ void validate_options(const Options& o, Problems& problems) {
   problems.positive("options.sample_interval_s", o.sample_interval_s);
 }
 
-double end_time_s(std::span<const LayerInput> layers, const Options& options) {
+double end_time_s(std::span<const Wall1dLayer> layers, const Wall1dOptions& options) {
   double last = layers.back().start_s;
-  for (const LayerInput& layer : layers) last = std::max(last, layer.end_s);
+  for (const Wall1dLayer& layer : layers) last = std::max(last, layer.end_s);
   return last + options.cooldown_s;
 }
 
@@ -161,7 +161,7 @@ struct SubstrateWindow {
 // substrate temperature during each layer's deposition.
 class Recorder {
  public:
-  Recorder(const WallModel& model, std::span<const LayerInput> layers, std::vector<double> times)
+  Recorder(const Wall1dModel& model, std::span<const Wall1dLayer> layers, std::vector<double> times)
       : model_(model), layers_(layers), times_(std::move(times)), windows_(layers.size()) {
     temps_.assign(layers.size(), std::vector<float>(times_.size(), std::numeric_limits<float>::quiet_NaN()));
   }
@@ -202,8 +202,8 @@ class Recorder {
       temps_[i][sample] = static_cast<float>(model_.layer_mean_temp_c(i, y));
   }
 
-  const WallModel& model_;
-  std::span<const LayerInput> layers_;
+  const Wall1dModel& model_;
+  std::span<const Wall1dLayer> layers_;
   std::vector<double> times_;
   std::size_t next_ = 0;
   std::vector<std::vector<float>> temps_;
@@ -213,7 +213,7 @@ class Recorder {
 // Too hot is judged on the substrate just before the new layer touches it: that is what has to carry the
 // layer and the roller. The reheating by the new layer afterwards is what fuses them, not a defect (and its
 // peak depends on the node spacing, since the whole layer is born at once).
-Verdict judge(const LayerResult& r, const Material& material) {
+Verdict judge(const Wall1dLayerResult& r, const Material& material) {
   return judge_interface(r.substrate_at_start_c, true, r.healing, material);
 }
 
@@ -223,7 +223,7 @@ namespace {
 
 // Integrates from the first birth to t_end, stepping from birth to birth: each birth is a discontinuity,
 // so the integrator stops exactly at it, the layer is added and the integration restarts.
-void integrate(std::span<const LayerInput> layers, double t_end, WallModel& model, Cvode& cvode,
+void integrate(std::span<const Wall1dLayer> layers, double t_end, Wall1dModel& model, Cvode& cvode,
                Recorder& recorder) {
   std::vector<double> y;
   for (std::size_t k = 0; k < layers.size(); ++k) {
@@ -247,10 +247,11 @@ void integrate(std::span<const LayerInput> layers, double t_end, WallModel& mode
   }
 }
 
-LayerResult layer_result(std::size_t layer, std::span<const LayerInput> layers, const WallModel& model,
-                         const Recorder& recorder, std::span<const double> y_end, const Material& material,
-                         const Environment& env) {
-  LayerResult r;
+Wall1dLayerResult layer_result(std::size_t layer, std::span<const Wall1dLayer> layers,
+                               const Wall1dModel& model, const Recorder& recorder,
+                               std::span<const double> y_end, const Material& material,
+                               const Environment& env) {
+  Wall1dLayerResult r;
   if (layer == 0) {
     const double table_c = env.bed_insulated ? env.ambient_c : env.bed_temp_c;
     r.substrate_min_c = r.substrate_mean_c = r.substrate_max_c = r.substrate_at_start_c = table_c;
@@ -268,7 +269,7 @@ LayerResult layer_result(std::size_t layer, std::span<const LayerInput> layers, 
   return r;
 }
 
-void fill_energy(const WallModel& model, std::span<const double> y_end, ThermalResult& result) {
+void fill_energy(const Wall1dModel& model, std::span<const double> y_end, Wall1dResult& result) {
   result.energy_in_J = model.energy_in_J();
   result.energy_lost_J = model.energy_lost_J(y_end);
   result.energy_stored_J = model.energy_stored_J(y_end);
@@ -280,8 +281,8 @@ void fill_energy(const WallModel& model, std::span<const double> y_end, ThermalR
 
 }  // namespace
 
-ThermalResult solve_thermal(std::span<const LayerInput> layers, const Material& material,
-                            const Environment& env, const Options& options) {
+Wall1dResult solve_wall_1d(std::span<const Wall1dLayer> layers, const Material& material,
+                           const Environment& env, const Wall1dOptions& options) {
   Problems problems;
   validate_layers(layers, problems);
   validate_material(material, problems);
@@ -296,7 +297,7 @@ ThermalResult solve_thermal(std::span<const LayerInput> layers, const Material& 
                      fmt::format("sample interval {} s keeps too many values over {} s and {} layers",
                                  options.sample_interval_s, t_end - t0, layers.size()));
 
-  WallModel model(layers, material, env, options.nodes_per_layer);
+  Wall1dModel model(layers, material, env, options.nodes_per_layer);
   model.set_tolerances(options.rel_tol, options.abs_tol_k, kHealingAbsTol);
   Recorder recorder(model, layers, sample_times(t0, t_end, options.sample_interval_s));
   std::vector<double> y0 = model.initial_state();
@@ -308,7 +309,7 @@ ThermalResult solve_thermal(std::span<const LayerInput> layers, const Material& 
   integrate(layers, t_end, model, cvode, recorder);
 
   const std::span<const double> y_end = cvode.state();
-  ThermalResult result;
+  Wall1dResult result;
   result.end_time_s = t_end;
   result.steps = cvode.steps();
   result.layers.reserve(layers.size());

@@ -1,0 +1,18 @@
+#include "thermal/thermal.hpp"
+
+namespace beadtwin::thermal {
+
+ThermalResult solve_thermal(const ThermalInput& input) {
+  const Toolpath& tp = input.toolpath;
+  ThermalResult out;
+  out.mesh = build_thermal_mesh(tp, input.deposit, input.mesh);
+  out.heat = solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), input.material, input.environment,
+                        input.heat);
+  std::vector<double> durations;
+  for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
+  out.layers = summarise_layers(out.mesh, out.heat, durations, input.material, input.environment.ambient_c);
+  out.cells = cell_verdicts(out.mesh, out.heat);
+  return out;
+}
+
+}  // namespace beadtwin::thermal

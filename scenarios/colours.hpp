@@ -4,7 +4,7 @@
 #include <string>
 
 #include "render/image.hpp"
-#include "thermal/thermal.hpp"
+#include "thermal/fusion.hpp"
 
 namespace beadtwin::scenarios {
 

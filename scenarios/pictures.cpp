@@ -155,7 +155,7 @@ void set_scale(Field& f, const std::optional<std::pair<double, double>>& range, 
 }
 
 // Each piece of bead by its worst interface's fusion verdict: a category per verdict.
-Field fusion_field(const ThermalRun& th, const openvdb::FloatGrid& fill) {
+Field fusion_field(const thermal::ThermalResult& th, const openvdb::FloatGrid& fill) {
   using thermal::Verdict;
   Field f;
   f.heading = "Fusion";
@@ -198,7 +198,7 @@ Field porosity_field(const PictureInputs& in, const openvdb::FloatGrid& fill,
 // The field of `colouring` for the variant of `in`, over the material voxels of `fill` (the part as the
 // picture shows it). `time_s`: the moment of a temperature picture. `thermal`: the variant's thermal run,
 // null while it runs (then only colourings that do not need it).
-Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun* thermal,
+Field make_field(Colouring colouring, const PictureInputs& in, const thermal::ThermalResult* thermal,
                  const openvdb::FloatGrid& fill, double time_s,
                  const std::optional<std::pair<double, double>>& range) {
   const PictureFrame& frame = *in.frame;
@@ -238,7 +238,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       break;
     }
     case Colouring::kSubstrate: {
-      const ThermalRun& th = *thermal;
+      const thermal::ThermalResult& th = *thermal;
       f.heading = "Substrate temperature at deposition";
       f.title = "temperature of what the bead landed on (°C)";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_substrate_c(th.mesh, th.heat));
@@ -247,7 +247,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       break;
     }
     case Colouring::kHealing: {
-      const ThermalRun& th = *thermal;
+      const thermal::ThermalResult& th = *thermal;
       f.heading = "Degree of healing";
       f.title = "least degree of healing of each piece of bead";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_healing(th.mesh, th.heat));
@@ -271,7 +271,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const ThermalRun*
       f = porosity_field(in, fill, range);
       break;
     case Colouring::kTemperature: {
-      const ThermalRun& th = *thermal;
+      const thermal::ThermalResult& th = *thermal;
       f.heading = fmt::format("Temperature at {}", when(time_s));
       f.title = "temperature (°C)";
       const thermal::TemperatureSnapshot* s = snapshot_at(th.heat, time_s);
@@ -557,7 +557,7 @@ struct PictureWriter::State {
     return fmt::format("{} — variant {}", in.scenario->name, variant().name);
   }
 
-  void draw_image(std::size_t k, const ThermalRun* thermal) {
+  void draw_image(std::size_t k, const thermal::ThermalResult* thermal) {
     const Variant& v = variant();
     const ImageSpec& im = v.render.images[k];
     const Shown& shown = shape_of(im);
@@ -572,7 +572,7 @@ struct PictureWriter::State {
     write_picture(picture, dir, im.name, v.render.exr, v.name, drawn[k]);
   }
 
-  void draw_progress(const ThermalRun* thermal) {
+  void draw_progress(const thermal::ThermalResult* thermal) {
     const Variant& v = variant();
     const Toolpath& tp = toolpath();
     const ProgressSpec& p = *v.render.progress;
@@ -632,7 +632,7 @@ void PictureWriter::without_thermal() {
   if (v.render.progress && !needs_thermal(v.render.progress->colour)) s.draw_progress(nullptr);
 }
 
-PictureFiles PictureWriter::finish(const ThermalRun& thermal) {
+PictureFiles PictureWriter::finish(const thermal::ThermalResult& thermal) {
   State& s = *state_;
   if (!s.early_done) without_thermal();
   const Variant& v = s.variant();

@@ -22,6 +22,7 @@
 #include "scenarios/scenario.hpp"
 #include "scenarios/variant_run.hpp"
 #include "sim/deposit.hpp"
+#include "thermal/thermal.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -85,7 +86,7 @@ class PictureWriter {
   PictureWriter& operator=(const PictureWriter&) = delete;
 
   void without_thermal();
-  PictureFiles finish(const ThermalRun& thermal);
+  PictureFiles finish(const thermal::ThermalResult& thermal);
   // What the pictures had to say (left-out pictures), in the order of the render block.
   const std::vector<std::string>& notes() const;
 

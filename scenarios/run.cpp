@@ -28,10 +28,8 @@
 #include "sim/skin.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
-#include "thermal/heat.hpp"
-#include "thermal/mesh.hpp"
 #include "thermal/snapshot_files.hpp"
-#include "thermal/summary.hpp"
+#include "thermal/thermal.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -89,10 +87,10 @@ thermal::MeshOptions thermal_mesh_options(const Variant& v) {
   return o;
 }
 
-ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
-                       std::function<void(double)> progress, thermal::Communicator* ranks) {
-  ThermalRun out;
-  out.mesh = thermal::build_thermal_mesh(tp, deposit, thermal_mesh_options(v));
+// What the thermal stage needs of the variant: its thermal settings, material and environment; the
+// scenario's snapshots first (written as files), then the moments the pictures colour by temperature.
+thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const sim::Deposit& deposit,
+                                    std::function<void(double)> progress, thermal::Communicator* ranks) {
   thermal::HeatOptions ho;
   ho.rel_tol = v.thermal.rel_tol;
   ho.abs_tol_k = v.thermal.abs_tol_k;
@@ -100,20 +98,17 @@ ThermalRun run_thermal(const Variant& v, const Toolpath& tp, const sim::Deposit&
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;
-  // The scenario's snapshots first (written as files), then the moments the pictures colour by temperature.
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
   for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);
   ho.progress = std::move(progress);
   ho.communicator = ranks;
-  out.heat = thermal::solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), v.material,
-                                 v.machine.environment, ho);
-  std::vector<double> durations;
-  for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
-  out.layers =
-      thermal::summarise_layers(out.mesh, out.heat, durations, v.material, v.machine.environment.ambient_c);
-  out.cells = thermal::cell_verdicts(out.mesh, out.heat);
-  return out;
+  return {.toolpath = tp,
+          .deposit = deposit,
+          .material = v.material,
+          .environment = v.machine.environment,
+          .mesh = thermal_mesh_options(v),
+          .heat = std::move(ho)};
 }
 
 // Bytes a thermal cell takes while the heat is solved: its links, the integrator's vectors, its history.
@@ -323,7 +318,8 @@ Stats3 stats_of(const std::vector<double>& values) {
   return s;
 }
 
-Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d, const ThermalRun& th) {
+Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
+                const thermal::ThermalResult& th) {
   Metrics m;
   m.layers = static_cast<int>(tp.layers.size());
   m.print_time_s = tp.total_time_s();
@@ -382,7 +378,8 @@ FusionRow fusion_row(const thermal::FusionSummary& f) {
   return row;
 }
 
-std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const sim::Deposit& d) {
+std::vector<LayerRow> layer_rows(const Toolpath& tp, const thermal::ThermalResult& th,
+                                 const sim::Deposit& d) {
   std::vector<LayerRow> rows;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
@@ -411,7 +408,8 @@ std::vector<LayerRow> layer_rows(const Toolpath& tp, const ThermalRun& th, const
   return rows;
 }
 
-std::vector<SectionRow> section_rows(const Toolpath& tp, const ThermalRun& th, const Material& material) {
+std::vector<SectionRow> section_rows(const Toolpath& tp, const thermal::ThermalResult& th,
+                                     const Material& material) {
   std::vector<int> section_of_cell;
   section_of_cell.reserve(th.mesh.cells.size());
   for (const thermal::ThermalCell& c : th.mesh.cells) section_of_cell.push_back(tp.moves[c.move].section);
@@ -675,8 +673,10 @@ VariantResult run_variant(const Scenario& sc, const Variant& v, const Sliced& sl
     write_files();
     pictures_without_thermal();
   });
-  const ThermalRun th = stages.run(
-      "thermal", [&] { return run_thermal(v, tp, deposit, progress_of("thermal"), options.thermal_ranks); });
+  const thermal::ThermalResult th = stages.run("thermal", [&] {
+    return thermal::solve_thermal(
+        thermal_input(v, tp, deposit, progress_of("thermal"), options.thermal_ranks));
+  });
   if (room_beside) write_files();
   beside_thermal.get();
   if (!beside.pictures) pictures_without_thermal();
@@ -960,7 +960,7 @@ bool share_thermal(const Scenario& sc, const RunOptions& options) {
       deposit = {};
       deposit = deposit_variant(*chosen[i], toolpaths[i], {}, agreed);
     }
-    (void)run_thermal(*chosen[i], toolpaths[i], deposit, {}, options.thermal_ranks);
+    (void)thermal::solve_thermal(thermal_input(*chosen[i], toolpaths[i], deposit, {}, options.thermal_ranks));
   }
   return true;
 }

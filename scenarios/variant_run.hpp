@@ -8,19 +8,8 @@
 
 #include "scenarios/scenario.hpp"
 #include "sim/cad_compare.hpp"
-#include "thermal/heat.hpp"
-#include "thermal/mesh.hpp"
-#include "thermal/summary.hpp"
 
 namespace beadtwin::scenarios {
-
-// The thermal model of a variant's deposit and what its interfaces add up to.
-struct ThermalRun {
-  thermal::ThermalMesh mesh;
-  thermal::HeatResult heat;
-  std::vector<thermal::FusionSummary> layers;  // parallel to Toolpath::layers
-  std::vector<thermal::Verdict> cells;         // per thermal cell, for the fusion map
-};
 
 // What the sections ask of the part against its CAD: the stock to leave (the least over the sections that
 // slice the part; infinite when none does), the widest bead, and the deviation map's half range, a layer

@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
+#include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -149,6 +152,235 @@ const std::array<openvdb::Coord, 6> kFaces = {openvdb::Coord(1, 0, 0), openvdb::
                                               openvdb::Coord(0, 1, 0), openvdb::Coord(0, -1, 0),
                                               openvdb::Coord(0, 0, 1), openvdb::Coord(0, 0, -1)};
 
+// Step 1 of the mesh: every material voxel placed in its cell, and the cells' sums, in the order the cells
+// are met (the fill's voxel order). Each voxel's cell is kept, by its number met, for the cell grid (step 3).
+struct MetCells {
+  std::vector<CellSums> sums;
+  std::vector<CellKey> keys;
+  std::vector<std::uint32_t> voxel_cell;  // per voxel of the fill, in its order
+};
+
+MetCells meet_cells(const Toolpath& toolpath, const sim::Deposit& deposit, const Chains& chains,
+                    const MeshOptions& options) {
+  const double vs = deposit.voxel_size_mm;
+  const openvdb::FloatTree& fill = deposit.fill->tree();
+  const openvdb::Int32Tree& moves = deposit.move->tree();
+  const openvdb::FloatTree& times = deposit.time->tree();
+  MetCells met;
+  std::unordered_map<CellKey, std::uint32_t> number;
+  met.voxel_cell.reserve(static_cast<std::size_t>(fill.activeVoxelCount()));
+  openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
+  openvdb::tree::ValueAccessor<const openvdb::FloatTree> time_at(times);
+  CellKey last_key = 0;
+  std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
+  // Leaf by leaf; the move and time of a voxel from its leaves' buffers where the grids have the leaf (they
+  // share the fill's topology), else through the accessors.
+  for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
+    const auto* move_leaf = moves.probeConstLeaf(leaf->origin());
+    const auto* time_leaf = times.probeConstLeaf(leaf->origin());
+    for (auto it = leaf->cbeginValueOn(); it; ++it) {
+      const openvdb::Coord ijk = it.getCoord();
+      const openvdb::Index n = it.pos();
+      const int move = move_leaf ? move_leaf->getValue(n) : move_at.getValue(ijk);
+      BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
+      const Eigen::Vector3d centre = sim::voxel_center_mm(ijk, vs);
+      const Placement pl = place(toolpath, chains, options, static_cast<std::size_t>(move), centre);
+      if (last == std::numeric_limits<std::uint32_t>::max() ||
+          pl.key != last_key) {  // neighbours mostly share
+        const auto [entry, added] = number.try_emplace(pl.key, static_cast<std::uint32_t>(met.sums.size()));
+        if (added) {
+          met.sums.emplace_back();
+          met.keys.push_back(pl.key);
+        }
+        last = entry->second;
+        last_key = pl.key;
+      }
+      met.voxel_cell.push_back(last);
+      CellSums& c = met.sums[last];
+      const double f = *it;
+      c.fill += f;
+      c.moment += f * centre;
+      c.time += f * (time_leaf ? time_leaf->getValue(n) : time_at.getValue(ijk));
+      c.cos2 += f * pl.cos2;
+      c.sin2 += f * pl.sin2;
+      if (!c.any || static_cast<std::size_t>(move) < c.move) c.move = static_cast<std::size_t>(move);
+      c.any = true;
+    }
+  }
+  return met;
+}
+
+// Step 2: the cells from their sums, by birth time (ties: by key) into mesh.cells. Returns each cell's key by
+// index, and fills `index_of_met` with each cell's index by its number met.
+std::vector<CellKey> order_cells(const Toolpath& toolpath, const MetCells& met, double voxel_volume_mm3,
+                                 std::vector<ThermalCell>& cells, std::vector<std::int32_t>& index_of_met) {
+  struct Met {
+    CellKey key;
+    ThermalCell cell;
+    std::uint32_t number;  // in the order met
+  };
+  std::vector<Met> by_birth;
+  by_birth.reserve(met.sums.size());
+  for (std::size_t m = 0; m < met.sums.size(); ++m) {
+    const CellSums& c = met.sums[m];
+    ThermalCell cell;
+    cell.volume_mm3 = c.fill * voxel_volume_mm3;
+    cell.centroid_mm = c.fill > 0.0 ? Eigen::Vector3d(c.moment / c.fill) : Eigen::Vector3d::Zero();
+    cell.birth_s = c.fill > 0.0 ? c.time / c.fill : 0.0;
+    const double angle = 0.5 * std::atan2(c.sin2, c.cos2);
+    cell.along = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    cell.move = c.move;
+    cell.layer = toolpath.moves[c.move].layer;
+    by_birth.push_back({met.keys[m], cell, static_cast<std::uint32_t>(m)});
+  }
+  std::sort(by_birth.begin(), by_birth.end(), [](const Met& x, const Met& y) {
+    return x.cell.birth_s != y.cell.birth_s ? x.cell.birth_s < y.cell.birth_s : x.key < y.key;
+  });
+  std::vector<CellKey> keys;  // by index (birth order)
+  index_of_met.assign(by_birth.size(), 0);
+  keys.reserve(by_birth.size());
+  cells.reserve(by_birth.size());
+  for (std::size_t i = 0; i < by_birth.size(); ++i) {
+    index_of_met[by_birth[i].number] = static_cast<std::int32_t>(i);
+    keys.push_back(by_birth[i].key);
+    cells.push_back(by_birth[i].cell);
+  }
+  return keys;
+}
+
+// Step 3: the cell of every material voxel, as a grid with the fill's topology.
+openvdb::Int32Grid::Ptr make_cell_grid(const sim::Deposit& deposit, std::span<const std::uint32_t> voxel_cell,
+                                       std::span<const std::int32_t> index_of_met) {
+  openvdb::Int32Grid::Ptr grid = openvdb::Int32Grid::create(
+      std::make_shared<openvdb::Int32Tree>(deposit.fill->tree(), -1, openvdb::TopologyCopy()));
+  grid->setTransform(deposit.fill->transform().copy());
+  grid->setName("cell");
+  std::size_t j = 0;
+  for (auto it = grid->tree().beginValueOn(); it; ++it) {
+    BT_CHECK(j < voxel_cell.size());
+    it.setValue(index_of_met[voxel_cell[j++]]);
+  }
+  BT_CHECK_OP(j, ==, voxel_cell.size());
+  return grid;
+}
+
+struct Contact {
+  Eigen::Vector3d vector = Eigen::Vector3d::Zero();
+  double faces = 0.0;
+};
+// By the lower-numbered cell of each pair: the higher one and their contact. A cell touches a dozen others or
+// so, so a short list searched in order beats a hash map over all the pairs.
+using ContactLists = std::vector<std::vector<std::pair<std::uint32_t, Contact>>>;
+
+// Step 4: the voxels' faces. Adds each cell's open and table area to mesh.cells, sets mesh.table_z_mm, and
+// returns the contacts between cells.
+ContactLists sum_faces(const sim::Deposit& deposit, ThermalMesh& mesh) {
+  const double vs = deposit.voxel_size_mm;
+  const double face_area = vs * vs;
+  const openvdb::FloatTree& fill = deposit.fill->tree();
+  const int table_k = deposit.fill->evalActiveVoxelBoundingBox().min().z();
+  mesh.table_z_mm = table_k * vs;
+  ContactLists contacts(mesh.cells.size());
+  openvdb::tree::ValueAccessor<const openvdb::FloatTree> fill_at(fill);
+  openvdb::tree::ValueAccessor<const openvdb::Int32Tree> cell_at(mesh.cell_grid->tree());
+  std::optional<openvdb::tree::ValueAccessor<const openvdb::MaskTree>> gap_at;
+  if (deposit.gaps) gap_at.emplace(deposit.gaps->tree());
+  // Leaf by leaf, in the order of the fill's voxels: a neighbour in the same leaf is read from the leaves'
+  // buffers, one across its border through the accessors.
+  static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3 &&
+                openvdb::Int32Tree::LeafNodeType::LOG2DIM == 3);
+  // The step of a voxel's offset in its leaf towards each face (kFaces' order: offset = 64 x + 8 y + z).
+  constexpr std::array<int, 6> kStep = {64, -64, 8, -8, 1, -1};
+  for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
+    const auto* cell_leaf = mesh.cell_grid->tree().probeConstLeaf(leaf->origin());
+    BT_CHECK(cell_leaf != nullptr);  // the cell grid has the fill's topology
+    const float* leaf_fill = leaf->buffer().data();
+    const std::int32_t* leaf_cell = cell_leaf->buffer().data();
+    const auto& on = leaf->getValueMask();
+    for (auto it = leaf->cbeginValueOn(); it; ++it) {
+      const auto n = static_cast<int>(it.pos());
+      const openvdb::Coord ijk = it.getCoord();
+      const double f = *it;
+      const std::int32_t cell = leaf_cell[n];
+      const std::array<int, 3> local = {n >> 6, (n >> 3) & 7, n & 7};
+      Eigen::Vector3d open = Eigen::Vector3d::Zero();
+      for (std::size_t d = 0; d < kFaces.size(); ++d) {
+        const openvdb::Coord q = ijk + kFaces[d];
+        const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
+        const int along = local[d / 2];
+        const bool inside = d % 2 == 0 ? along < 7 : along > 0;  // the neighbour is in this leaf
+        const int m = n + kStep[d];
+        const double fq =
+            inside ? (on.isOn(static_cast<openvdb::Index>(m)) ? static_cast<double>(leaf_fill[m]) : 0.0)
+            : fill_at.isValueOn(q) ? static_cast<double>(fill_at.getValue(q))
+                                   : 0.0;
+        if (fq > 0.0) {
+          const std::int32_t other = inside ? leaf_cell[m] : cell_at.getValue(q);
+          if (other == cell) {
+            if (f > fq) open += normal * (face_area * (f - fq));
+          } else if (d % 2 == 0) {  // each shared face once, from its lower side
+            const auto a = static_cast<std::uint32_t>(std::min(cell, other));
+            const auto b = static_cast<std::uint32_t>(std::max(cell, other));
+            const double sign = cell < other ? 1.0 : -1.0;
+            auto& list = contacts[a];
+            auto entry = std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
+            if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
+            Contact& c = entry->second;
+            c.vector += sign * normal * (face_area * std::min(f, fq));
+            c.faces += face_area * std::min(f, fq);
+          }
+          continue;
+        }
+        if (gap_at && gap_at->isValueOn(q)) continue;  // an enclosed gap: no air
+        if (d == 5 && ijk.z() == table_k) {
+          mesh.cells[static_cast<std::size_t>(cell)].table_area_mm2 += face_area * f;
+          continue;
+        }
+        open += normal * (face_area * f);
+      }
+      mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
+    }
+  }
+  return contacts;
+}
+
+// Step 5: the links in the order of their pairs (by the lower cell, then the higher); interfaces between
+// chains, or between pieces of one chain that are not neighbours. `keys`: each cell's key by index.
+std::vector<ThermalLink> make_links(ContactLists& contacts, std::span<const CellKey> keys) {
+  std::size_t link_count = 0;
+  for (auto& list : contacts) {
+    std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    link_count += list.size();
+  }
+  std::vector<ThermalLink> links;
+  links.reserve(link_count);
+  for (std::size_t a = 0; a < contacts.size(); ++a)
+    for (const auto& [b, c] : contacts[a]) {
+      ThermalLink link;
+      link.a = static_cast<std::uint32_t>(a);
+      link.b = b;
+      link.area_vector_mm2 = c.vector;
+      link.faces_mm2 = c.faces;
+      const CellKey ka = keys[link.a], kb = keys[link.b];
+      const bool same_chain = key_chain(ka) == key_chain(kb);
+      const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);
+      link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
+      links.push_back(link);
+    }
+  return links;
+}
+
+// What the user is told when the automatic cells were made longer.
+std::string longer_cells_note(const ThermalMesh& mesh) {
+  const double at_two_widths = mesh.cell_length_factor * static_cast<double>(mesh.cells.size());
+  return fmt::format(
+      "thermal cells made {:.3g} times two bead widths long, {} cells: at two bead widths there would be "
+      "about {}, too many to solve in reasonable time; set thermal.cell_length to choose",
+      mesh.cell_length_factor, mesh.cells.size(),
+      at_two_widths >= 1e6 ? fmt::format("{:.3g} million", at_two_widths / 1e6)
+                           : fmt::format("{:.0f}", at_two_widths));
+}
+
 }  // namespace
 
 double ThermalLink::area_mm2() const {
@@ -163,219 +395,21 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   mesh.voxel_size_mm = vs;
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return mesh;
   BT_CHECK(deposit.move && deposit.time);
+  // The steps go over the fill leaf by leaf: a deposit's grids hold voxels, never active tiles.
+  BT_CHECK(!deposit.fill->tree().hasActiveTiles());
   const Chains chains = find_chains(toolpath, options);
   mesh.chains = chains.pieces.size();
   mesh.cell_length_factor = chains.length_factor;
-  const openvdb::FloatTree& fill = deposit.fill->tree();
-  const openvdb::Int32Tree& moves = deposit.move->tree();
-  const openvdb::FloatTree& times = deposit.time->tree();
-  // The steps below go over the fill leaf by leaf: a deposit's grids hold voxels, never active tiles.
-  BT_CHECK(!fill.hasActiveTiles());
-  const double voxel_volume = vs * vs * vs;
-  const double face_area = vs * vs;
-
-  // 1. Which cells there are, and their volume, centroid, birth and direction. Each voxel's cell is kept,
-  // by its number in the order cells are met, for step 2 (in the same order: the cell grid has the fill's
-  // topology), so that each voxel is placed once.
-  std::unordered_map<CellKey, std::uint32_t> met;
-  std::vector<CellSums> sums;
-  std::vector<CellKey> sum_keys;
-  std::vector<std::uint32_t> voxel_cell;
-  voxel_cell.reserve(static_cast<std::size_t>(fill.activeVoxelCount()));
+  std::vector<std::int32_t> index_of_met;
+  std::vector<CellKey> keys;
   {
-    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> move_at(moves);
-    openvdb::tree::ValueAccessor<const openvdb::FloatTree> time_at(times);
-    CellKey last_key = 0;
-    std::uint32_t last = std::numeric_limits<std::uint32_t>::max();
-    // Leaf by leaf; the move and time of a voxel from its leaves' buffers where the grids have the leaf (they
-    // share the fill's topology), else through the accessors.
-    for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
-      const auto* move_leaf = moves.probeConstLeaf(leaf->origin());
-      const auto* time_leaf = times.probeConstLeaf(leaf->origin());
-      for (auto it = leaf->cbeginValueOn(); it; ++it) {
-        const openvdb::Coord ijk = it.getCoord();
-        const openvdb::Index n = it.pos();
-        const int move = move_leaf ? move_leaf->getValue(n) : move_at.getValue(ijk);
-        BT_CHECK(move >= 0 && static_cast<std::size_t>(move) < toolpath.moves.size());
-        const Eigen::Vector3d centre = sim::voxel_center_mm(ijk, vs);
-        const Placement pl = place(toolpath, chains, options, static_cast<std::size_t>(move), centre);
-        if (last == std::numeric_limits<std::uint32_t>::max() ||
-            pl.key != last_key) {  // neighbours mostly share
-          const auto [entry, added] = met.try_emplace(pl.key, static_cast<std::uint32_t>(sums.size()));
-          if (added) {
-            sums.emplace_back();
-            sum_keys.push_back(pl.key);
-          }
-          last = entry->second;
-          last_key = pl.key;
-        }
-        voxel_cell.push_back(last);
-        CellSums& c = sums[last];
-        const double f = *it;
-        c.fill += f;
-        c.moment += f * centre;
-        c.time += f * (time_leaf ? time_leaf->getValue(n) : time_at.getValue(ijk));
-        c.cos2 += f * pl.cos2;
-        c.sin2 += f * pl.sin2;
-        if (!c.any || static_cast<std::size_t>(move) < c.move) c.move = static_cast<std::size_t>(move);
-        c.any = true;
-      }
-    }
+    const MetCells met = meet_cells(toolpath, deposit, chains, options);
+    keys = order_cells(toolpath, met, vs * vs * vs, mesh.cells, index_of_met);
+    mesh.cell_grid = make_cell_grid(deposit, met.voxel_cell, index_of_met);
   }
-  met.clear();
-  struct Met {
-    CellKey key;
-    ThermalCell cell;
-    std::uint32_t number;  // in the order met
-  };
-  std::vector<Met> cells;
-  cells.reserve(sums.size());
-  for (std::size_t m = 0; m < sums.size(); ++m) {
-    const CellSums& c = sums[m];
-    ThermalCell cell;
-    cell.volume_mm3 = c.fill * voxel_volume;
-    cell.centroid_mm = c.fill > 0.0 ? Eigen::Vector3d(c.moment / c.fill) : Eigen::Vector3d::Zero();
-    cell.birth_s = c.fill > 0.0 ? c.time / c.fill : 0.0;
-    const double angle = 0.5 * std::atan2(c.sin2, c.cos2);
-    cell.along = Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    cell.move = c.move;
-    cell.layer = toolpath.moves[c.move].layer;
-    cells.push_back({sum_keys[m], cell, static_cast<std::uint32_t>(m)});
-  }
-  sums.clear();
-  std::sort(cells.begin(), cells.end(), [](const Met& x, const Met& y) {
-    return x.cell.birth_s != y.cell.birth_s ? x.cell.birth_s < y.cell.birth_s : x.key < y.key;
-  });
-  std::vector<CellKey> keys;                             // by index (birth order)
-  std::vector<std::int32_t> index_of_met(cells.size());  // the index of each cell by its number met
-  keys.reserve(cells.size());
-  mesh.cells.reserve(cells.size());
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    index_of_met[cells[i].number] = static_cast<std::int32_t>(i);
-    keys.push_back(cells[i].key);
-    mesh.cells.push_back(cells[i].cell);
-  }
-  cells.clear();
-
-  // 2. The cell of every material voxel.
-  mesh.cell_grid =
-      openvdb::Int32Grid::create(std::make_shared<openvdb::Int32Tree>(fill, -1, openvdb::TopologyCopy()));
-  mesh.cell_grid->setTransform(deposit.fill->transform().copy());
-  mesh.cell_grid->setName("cell");
-  {
-    std::size_t j = 0;
-    for (auto it = mesh.cell_grid->tree().beginValueOn(); it; ++it) {
-      BT_CHECK(j < voxel_cell.size());
-      it.setValue(index_of_met[voxel_cell[j++]]);
-    }
-    BT_CHECK_OP(j, ==, voxel_cell.size());
-  }
-
-  // 3. Faces: contacts between cells, open surface, the table.
-  openvdb::CoordBBox bounds = deposit.fill->evalActiveVoxelBoundingBox();
-  const int table_k = bounds.min().z();
-  mesh.table_z_mm = table_k * vs;
-  struct Contact {
-    Eigen::Vector3d vector = Eigen::Vector3d::Zero();
-    double faces = 0.0;
-  };
-  // By the lower-numbered cell of each pair: the higher one and their contact. A cell touches a dozen
-  // others or so, so a short list searched in order beats a hash map over all the pairs (whose lookups,
-  // each a cache miss, were most of this step).
-  std::vector<std::vector<std::pair<std::uint32_t, Contact>>> contacts(mesh.cells.size());
-  {
-    openvdb::tree::ValueAccessor<const openvdb::FloatTree> fill_at(fill);
-    openvdb::tree::ValueAccessor<const openvdb::Int32Tree> cell_at(mesh.cell_grid->tree());
-    std::optional<openvdb::tree::ValueAccessor<const openvdb::MaskTree>> gap_at;
-    if (deposit.gaps) gap_at.emplace(deposit.gaps->tree());
-    // Leaf by leaf, in the order of the fill's voxels (as step 1): a neighbour in the same leaf is read from
-    // the leaves' buffers, one across its border through the accessors. Most of this step's time went into
-    // the accessors' lookups, three for each of a voxel's six neighbours.
-    static_assert(openvdb::FloatTree::LeafNodeType::LOG2DIM == 3 &&
-                  openvdb::Int32Tree::LeafNodeType::LOG2DIM == 3);
-    // The step of a voxel's offset in its leaf towards each face (kFaces' order: offset = 64 x + 8 y + z).
-    constexpr std::array<int, 6> kStep = {64, -64, 8, -8, 1, -1};
-    for (auto leaf = fill.cbeginLeaf(); leaf; ++leaf) {
-      const auto* cell_leaf = mesh.cell_grid->tree().probeConstLeaf(leaf->origin());
-      BT_CHECK(cell_leaf != nullptr);  // the cell grid has the fill's topology
-      const float* leaf_fill = leaf->buffer().data();
-      const std::int32_t* leaf_cell = cell_leaf->buffer().data();
-      const auto& on = leaf->getValueMask();
-      for (auto it = leaf->cbeginValueOn(); it; ++it) {
-        const auto n = static_cast<int>(it.pos());
-        const openvdb::Coord ijk = it.getCoord();
-        const double f = *it;
-        const std::int32_t cell = leaf_cell[n];
-        const std::array<int, 3> local = {n >> 6, (n >> 3) & 7, n & 7};
-        Eigen::Vector3d open = Eigen::Vector3d::Zero();
-        for (std::size_t d = 0; d < kFaces.size(); ++d) {
-          const openvdb::Coord q = ijk + kFaces[d];
-          const Eigen::Vector3d normal(kFaces[d].x(), kFaces[d].y(), kFaces[d].z());
-          const int along = local[d / 2];
-          const bool inside = d % 2 == 0 ? along < 7 : along > 0;  // the neighbour is in this leaf
-          const int m = n + kStep[d];
-          const double fq =
-              inside ? (on.isOn(static_cast<openvdb::Index>(m)) ? static_cast<double>(leaf_fill[m]) : 0.0)
-              : fill_at.isValueOn(q) ? static_cast<double>(fill_at.getValue(q))
-                                     : 0.0;
-          if (fq > 0.0) {
-            const std::int32_t other = inside ? leaf_cell[m] : cell_at.getValue(q);
-            if (other == cell) {
-              if (f > fq) open += normal * (face_area * (f - fq));
-            } else if (d % 2 == 0) {  // each shared face once, from its lower side
-              const auto a = static_cast<std::uint32_t>(std::min(cell, other));
-              const auto b = static_cast<std::uint32_t>(std::max(cell, other));
-              const double sign = cell < other ? 1.0 : -1.0;
-              auto& list = contacts[a];
-              auto entry =
-                  std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
-              if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
-              Contact& c = entry->second;
-              c.vector += sign * normal * (face_area * std::min(f, fq));
-              c.faces += face_area * std::min(f, fq);
-            }
-            continue;
-          }
-          if (gap_at && gap_at->isValueOn(q)) continue;  // an enclosed gap: no air
-          if (d == 5 && ijk.z() == table_k) {
-            mesh.cells[static_cast<std::size_t>(cell)].table_area_mm2 += face_area * f;
-            continue;
-          }
-          open += normal * (face_area * f);
-        }
-        mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
-      }
-    }
-  }
-  // The links in the order of their pairs: by the lower cell, then the higher.
-  std::size_t link_count = 0;
-  for (auto& list : contacts) {
-    std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    link_count += list.size();
-  }
-  mesh.links.reserve(link_count);
-  for (std::size_t a = 0; a < contacts.size(); ++a)
-    for (const auto& [b, c] : contacts[a]) {
-      ThermalLink link;
-      link.a = static_cast<std::uint32_t>(a);
-      link.b = b;
-      link.area_vector_mm2 = c.vector;
-      link.faces_mm2 = c.faces;
-      const CellKey ka = keys[link.a], kb = keys[link.b];
-      const bool same_chain = key_chain(ka) == key_chain(kb);
-      const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);
-      link.interface = !same_chain || (pa > pb ? pa - pb : pb - pa) > 1;
-      mesh.links.push_back(link);
-    }
-  if (mesh.cell_length_factor > 1.0) {
-    const double at_two_widths = mesh.cell_length_factor * static_cast<double>(mesh.cells.size());
-    mesh.notes.push_back(fmt::format(
-        "thermal cells made {:.3g} times two bead widths long, {} cells: at two bead widths there would be "
-        "about {}, too many to solve in reasonable time; set thermal.cell_length to choose",
-        mesh.cell_length_factor, mesh.cells.size(),
-        at_two_widths >= 1e6 ? fmt::format("{:.3g} million", at_two_widths / 1e6)
-                             : fmt::format("{:.0f}", at_two_widths)));
-  }
+  ContactLists contacts = sum_faces(deposit, mesh);
+  mesh.links = make_links(contacts, keys);
+  if (mesh.cell_length_factor > 1.0) mesh.notes.push_back(longer_cells_note(mesh));
   return mesh;
 }
 

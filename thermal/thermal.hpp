@@ -1,77 +1,49 @@
-// Thermal history and interlayer fusion of a printed wall (docs/physics.md, cooling and fusion window), first
-// cut.
+// The thermal stage (docs/physics.md, heat transfer in the part and fusion window): from a print's deposit to
+// its thermal history and the fusion verdict of every interface between beads.
 //
-// The part is modelled as a 1-D stack of layers in the spirit of Compton et al. 2017 (Additive Manufacturing
-// 17:77-86): each layer is `nodes_per_layer` control volumes through its thickness, with its footprint area
-// and the length of its exposed side edges. Heat is conducted through the stack (k through the layer
-// thickness), lost by convection and radiation from the sides and from the exposed part of each layer's
-// top, and exchanged with the table under layer 0. Layers appear by element birth: in this first cut a
-// whole layer is born at once, at its start time and at the deposition temperature, so the time a bead
-// really waits before being covered is represented by the layer-to-layer period, not bead by bead.
-//
-// Integrated with SUNDIALS CVODE (BDF, banded direct solver), restarted at every birth. The healing of every
-// interface follows the non-isothermal reptation model of Yang & Pitchumani 2002 (docs/physics.md, fusion
-// window).
+// The stage cuts the deposit's beads into control volumes (thermal/mesh.hpp), solves the heat transfer as
+// they are born (thermal/heat.hpp), and sums up the interfaces per toolpath layer and per cell
+// (thermal/summary.hpp). It reads the toolpath and the deposit and nothing of how they were made.
 #pragma once
 
-#include <span>
-#include <string_view>
 #include <vector>
 
 #include "core/material.hpp"
+#include "core/toolpath.hpp"
+#include "sim/deposit.hpp"
 #include "thermal/fusion.hpp"
+#include "thermal/heat.hpp"
+#include "thermal/mesh.hpp"
+#include "thermal/summary.hpp"
 
 namespace beadtwin::thermal {
 
-struct LayerInput {
-  double z_top_mm = 0, height_mm = 0;
-  double start_s = 0,
-         end_s = 0;         // when the layer's deposition starts and ends; start times strictly increase
-  double area_mm2 = 0;      // footprint of the layer (deposited volume / height), > 0
-  double perimeter_mm = 0;  // length of the layer's exposed side edges (outer + inner contours), >= 0
+// What the thermal stage needs. The toolpath and the deposit are borrowed: they must outlive the call.
+struct ThermalInput {
+  const Toolpath& toolpath;     // the print, timed: its moves, layers and total time, s
+  const sim::Deposit& deposit;  // made from `toolpath`, with its move and time grids
+  Material material;
+  Environment environment;
+  MeshOptions mesh;  // how the beads are cut into cells
+  // The integrator, births, lumping, the history and snapshot times (s, from the print's start), the
+  // progress callback and the MPI ranks the solve is shared among.
+  HeatOptions heat;
 };
 
-struct Options {
-  double rel_tol = 1e-6;         // CVODE relative tolerance
-  double abs_tol_k = 1e-4;       // CVODE absolute tolerance on temperatures, K
-  int nodes_per_layer = 2;       // nodes through each layer's thickness, >= 1
-  double cooldown_s = 600;       // simulated time after the last layer (healing goes on), >= 0
-  double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
-};
-
-struct LayerResult {
-  // Temperature of the layer below (its top node) while this layer is laid, over [start_s, end_s]: minimum,
-  // time average and maximum, °C. Because the whole layer is born at start_s, this includes the reheating
-  // of the substrate by the new layer, which grows as the top node gets closer to the interface (more
-  // nodes per layer). Bed temperature for layer 0 (ambient on an insulated table).
-  double substrate_min_c = 0, substrate_mean_c = 0, substrate_max_c = 0;
-  // Temperature of the layer below's top node just before this layer touches it (at start_s), °C: the
-  // substrate temperature at deposition, not affected by the reheating. Bed/ambient for layer 0.
-  double substrate_at_start_c = 0;
-  // Degree of healing min(1, D_h) of the interface under this layer at the end of the simulation.
-  // NaN for layer 0 (no interface).
-  double healing = 0;
-  // substrate_at_start_c > support_limit_c: kTooHot; else healing < required_healing: kTooCold; else kOk.
-  Verdict verdict = Verdict::kNoInterface;
-};
-
+// What the thermal stage makes.
 struct ThermalResult {
-  std::vector<LayerResult> layers;
-  std::vector<double> sample_times_s;  // from the first layer's start to the end, every interval
-  // [layer][sample] mean temperature of the layer, °C; NaN before the layer exists.
-  std::vector<std::vector<float>> layer_temp_c;
-  // Energy relative to ambient, J: brought in by births, lost through all boundaries (negative when the bed
-  // heats the part), stored at the end; energy_balance_rel_error = |in − lost − stored| / max(|in|, |lost| +
-  // |stored|), 0 when nothing moves.
-  double energy_in_J = 0, energy_lost_J = 0, energy_stored_J = 0, energy_balance_rel_error = 0;
-  long steps = 0;         // CVODE steps taken
-  double end_time_s = 0;  // end of the simulation: last layer's end + cooldown
+  ThermalMesh mesh;
+  HeatResult heat;
+  std::vector<FusionSummary> layers;  // parallel to Toolpath::layers
+  std::vector<Verdict> cells;  // per thermal cell, its worst interface (cell_verdicts), for the fusion map
 };
 
-// Solves the thermal history of the layer stack. `layers` in deposition order (layer 0 on the table).
-// Throws InputError naming the layer index or the field when an input cannot be used (all problems found
-// are listed), InternalError when the integrator fails.
-ThermalResult solve_thermal(std::span<const LayerInput> layers, const Material& material,
-                            const Environment& env, const Options& options = {});
+// Builds the thermal mesh of `input.deposit`, solves its heat transfer from the first birth to the end of
+// the print plus input.heat.cooldown_s, and sums up its interfaces per layer (with the layers' durations as
+// printed) and per cell. Throws InputError for options out of range (naming the scenario's key),
+// InternalError when the integrator fails. Across MPI ranks (input.heat.communicator) every rank calls it
+// with the same input and gets the same result. A deposit without material gives an empty mesh and heat
+// result.
+ThermalResult solve_thermal(const ThermalInput& input);
 
 }  // namespace beadtwin::thermal

@@ -1,6 +1,6 @@
 // The thin wall of Compton et al. 2017 (scenarios/compton-wall.yaml): the shipped scenario holds the paper's
 // set-up and runs; and the 3-D thermal model of the wall, printed and deposited as a run does it, agrees with
-// the 1-D stacked-layer model (thermal/thermal.hpp) where the two make the same assumptions.
+// the 1-D stacked-layer model (thermal/wall_1d.hpp) where the two make the same assumptions.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -24,7 +24,7 @@
 #include "tests/scenarios/report_checks.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
-#include "thermal/thermal.hpp"
+#include "thermal/wall_1d.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -191,7 +191,7 @@ struct Agreement {
 // later, and each column of the wall lives the 1-D history that much later: the 3-D mean is compared with the
 // 1-D history averaged over the cells' shifts (volume-weighted, as the 3-D mean is).
 Agreement compare(const thermal::ThermalMesh& mesh, const thermal::HeatResult& heat,
-                  const std::vector<thermal::LayerInput>& stack, const thermal::ThermalResult& one_d) {
+                  const std::vector<thermal::Wall1dLayer>& stack, const thermal::Wall1dResult& one_d) {
   Agreement a;
   double sum2 = 0.0;
   for (std::size_t i = 0; i < stack.size(); ++i) {
@@ -281,10 +281,10 @@ TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
                  fmt::format("{:.4f}", geo.back().open_mm2 / (geo.back().volume_mm3 / h + 2000.0 * h)));
 
   // The 1-D stack of the same wall.
-  std::vector<thermal::LayerInput> stack;
+  std::vector<thermal::Wall1dLayer> stack;
   for (std::size_t i = 0; i < tp.layers.size(); ++i) {
     const ToolpathLayer& l = tp.layers[i];
-    thermal::LayerInput in;
+    thermal::Wall1dLayer in;
     in.z_top_mm = l.z_mm;
     in.height_mm = l.height_mm;
     in.start_s = in.end_s = first_deposit(tp, i).start_s;
@@ -307,11 +307,11 @@ TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
     }
     const thermal::HeatResult heat =
         thermal::solve_heat(mesh, tp.layers.size(), tp.total_time_s(), v.material, v.machine.environment, ho);
-    thermal::Options o1;
+    thermal::Wall1dOptions o1;
     o1.nodes_per_layer = 1;
     o1.cooldown_s = heat.end_time_s - stack.back().end_s;
     o1.sample_interval_s = 1.0;
-    const thermal::ThermalResult one_d = thermal::solve_thermal(stack, v.material, v.machine.environment, o1);
+    const thermal::Wall1dResult one_d = thermal::solve_wall_1d(stack, v.material, v.machine.environment, o1);
     const Agreement a = compare(mesh, heat, stack, one_d);
     const std::string tag = tight ? "tight" : "default";
     RecordProperty("max_difference_K_" + tag, fmt::format("{:.3f}", a.max_K));

@@ -1,391 +1,130 @@
-// Tests of the 1-D stacked-layer thermal model against analytic solutions (STYLE.md rule 12).
+// Tests of the thermal stage's entry (thermal/thermal.hpp): a print's deposit in, its mesh, heat solution,
+// layer summaries and cell verdicts out, with the input's options reaching every step.
 #include "thermal/thermal.hpp"
-
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <limits>
-#include <string>
-#include <vector>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include "core/error.hpp"
+#include "tests/sim/lsam_beads.hpp"
 
 namespace beadtwin::thermal {
 namespace {
 
-constexpr double kKelvinOffset = 273.15;
-constexpr double kGasConstant = 8.314462618;
+using testing::bead;
+using testing::kBeadHeight;
+using testing::timed;
+using testing::travel;
 
-// A straight LSAM wall: `count` layers of `width_mm` x `length_mm`, one every `period_s`, each deposited
-// over its whole period (the next layer starts when it ends).
-std::vector<LayerInput> straight_wall(int count, double period_s, double height_mm = 4.064,
-                                      double width_mm = 20.0, double length_mm = 1000.0) {
-  std::vector<LayerInput> layers;
-  for (int i = 0; i < count; ++i) {
-    LayerInput layer;
-    layer.height_mm = height_mm;
-    layer.z_top_mm = height_mm * (i + 1);
-    layer.start_s = i * period_s;
-    layer.end_s = layer.start_s + period_s;
-    layer.area_mm2 = width_mm * length_mm;
-    layer.perimeter_mm = 2.0 * (width_mm + length_mm);
-    layers.push_back(layer);
+constexpr double kLength = 120.0;
+
+// Two beads along x, the second laid on the first after a travel of 12 m away and back (half a minute):
+// two toolpath layers, the first cooling as the second lands.
+Toolpath stacked_beads() {
+  const double z0 = kBeadHeight, z1 = 2.0 * kBeadHeight;
+  return timed({bead({0.0, 0.0, z0}, {kLength, 0.0, z0}, 0),
+                travel({kLength, 0.0, z0}, {kLength, 6000.0, z1}),
+                travel({kLength, 6000.0, z1}, {0.0, 0.0, z1}), bead({0.0, 0.0, z1}, {kLength, 0.0, z1}, 1)});
+}
+
+sim::Deposit deposit_of(const Toolpath& toolpath) {
+  sim::DepositOptions options;
+  options.voxel_size_mm = kBeadHeight / 4.0;
+  return sim::deposit(toolpath, options);
+}
+
+ThermalInput input_for(const Toolpath& toolpath, const sim::Deposit& deposit) {
+  ThermalInput in{
+      .toolpath = toolpath, .deposit = deposit, .material = {}, .environment = {}, .mesh = {}, .heat = {}};
+  in.material.deposition_temp_c = 230.0;
+  in.environment.bed_temp_c = 80.0;
+  in.mesh.cells_across = 1;
+  in.mesh.cell_length_mm = 20.0;
+  in.heat.birth_interval_s = 0.5;
+  in.heat.cooldown_s = 120.0;
+  in.heat.sample_interval_s = 2.0;
+  return in;
+}
+
+TEST(ThermalStage, GivesWhatItsStepsGiveWithTheInputsOptions) {
+  const Toolpath toolpath = stacked_beads();
+  const sim::Deposit deposit = deposit_of(toolpath);
+  ThermalInput in = input_for(toolpath, deposit);
+  in.heat.snapshot_times_s = {toolpath.total_time_s(), 0.0};
+  std::vector<double> reported;
+  in.heat.progress = [&](double fraction) { reported.push_back(fraction); };
+  const ThermalResult result = solve_thermal(in);
+
+  // The mesh with the input's mesh options: 6 pieces of 20 mm, one strip and one slice, per bead.
+  const ThermalMesh mesh = build_thermal_mesh(toolpath, deposit, in.mesh);
+  ASSERT_EQ(result.mesh.cells.size(), 12u);
+  ASSERT_EQ(result.mesh.cells.size(), mesh.cells.size());
+  EXPECT_EQ(result.mesh.links.size(), mesh.links.size());
+
+  // The heat solve with the input's heat options, to the end of the print plus the cooldown.
+  HeatOptions quiet = in.heat;
+  quiet.progress = {};
+  const HeatResult heat =
+      solve_heat(mesh, toolpath.layers.size(), toolpath.total_time_s(), in.material, in.environment, quiet);
+  ASSERT_EQ(result.heat.interfaces.size(), heat.interfaces.size());
+  ASSERT_FALSE(heat.interfaces.empty());
+  for (std::size_t k = 0; k < heat.interfaces.size(); ++k) {
+    EXPECT_EQ(result.heat.interfaces[k].substrate_c, heat.interfaces[k].substrate_c) << k;
+    EXPECT_EQ(result.heat.interfaces[k].healing_integral, heat.interfaces[k].healing_integral) << k;
   }
-  return layers;
+  EXPECT_DOUBLE_EQ(result.heat.end_time_s, toolpath.total_time_s() + 120.0);
+  EXPECT_EQ(result.heat.sample_times_s.size(), heat.sample_times_s.size());
+  ASSERT_EQ(result.heat.snapshots.size(), 2u);
+  EXPECT_EQ(result.heat.snapshots[0].request, 1u);  // in time order: t = 0 first
+  EXPECT_EQ(result.heat.snapshots[1].request, 0u);
+  ASSERT_FALSE(reported.empty());
+  EXPECT_EQ(reported.back(), 1.0);
+
+  // The summaries: per toolpath layer, with the layers' durations as printed; per cell.
+  std::vector<double> durations;
+  for (const ToolpathLayer& l : toolpath.layers) durations.push_back(l.duration_s());
+  const std::vector<FusionSummary> layers =
+      summarise_layers(mesh, heat, durations, in.material, in.environment.ambient_c);
+  ASSERT_EQ(result.layers.size(), toolpath.layers.size());
+  EXPECT_EQ(result.layers[0].interfaces, 0u);  // the first bead lands on the table
+  EXPECT_EQ(result.layers[1].interfaces, heat.interfaces.size());
+  EXPECT_EQ(result.layers[1].substrate_mean_c, layers[1].substrate_mean_c);
+  EXPECT_EQ(result.layers[1].layer_time_min_s, layers[1].layer_time_min_s);
+  EXPECT_EQ(result.layers[1].layer_time_max_s, layers[1].layer_time_max_s);
+  EXPECT_LT(result.layers[1].substrate_mean_c, in.material.deposition_temp_c - 20.0);  // it cooled
+  EXPECT_TRUE(std::isfinite(result.layers[1].layer_time_max_s));
+  ASSERT_EQ(result.cells.size(), mesh.cells.size());
+  EXPECT_EQ(result.cells, cell_verdicts(mesh, heat));
+  for (std::size_t i = 0; i < mesh.cells.size(); ++i)
+    EXPECT_EQ(result.cells[i] == Verdict::kNoInterface, mesh.cells[i].layer == 0) << i;
 }
 
-std::string sci(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3e", value);
-  return text;
-}
-
-// Heat capacity ρ c_p V of one layer, J/K.
-double layer_capacity_J_K(const Material& m, const LayerInput& layer) {
-  return m.density_kg_m3 * m.specific_heat_J_kgK * layer.area_mm2 * 1e-6 * layer.height_mm * 1e-3;
-}
-
-// Newton's law of cooling of a lumped body (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer,
-// 6th ed., §5.2 eq. 5.6): T(t) = T∞ + (T0 − T∞) exp(−t/τ), τ = ρ c_p V / (h A_s), valid when the Biot
-// number is small. Returns the largest deviation of the sampled history of layer 0 from it, over (T0 − T∞).
-double max_deviation_from_lumped_cooling(const ThermalResult& result, double t0, double temp0_c,
-                                         double ambient_c, double tau_s) {
-  double worst = 0.0;
-  for (std::size_t k = 0; k < result.sample_times_s.size(); ++k) {
-    const double exact =
-        ambient_c + (temp0_c - ambient_c) * std::exp(-(result.sample_times_s[k] - t0) / tau_s);
-    worst = std::max(worst, std::abs(result.layer_temp_c[0][k] - exact));
-  }
-  return worst / (temp0_c - ambient_c);
-}
-
-TEST(ThermalTest, SingleLayerCoolsExponentially) {
-  // One LSAM bead 21 mm x 5 mm x 1 m on an insulated table, convection only: a lumped body whose free
-  // surface is its sides and its top.
-  Material material;
-  material.emissivity = 0.0;
-  Environment env;
-  env.bed_insulated = true;
-  LayerInput layer{.z_top_mm = 5,
-                   .height_mm = 5,
-                   .start_s = 0,
-                   .end_s = 30,
-                   .area_mm2 = 21.0 * 1000.0,
-                   .perimeter_mm = 2.0 * (21.0 + 1000.0)};
-  const double side_m2 = layer.perimeter_mm * 1e-3 * layer.height_mm * 1e-3;
-  const double top_m2 = layer.area_mm2 * 1e-6;
-  const double tau_s = layer_capacity_J_K(material, layer) / (env.convection_W_m2K * (side_m2 + top_m2));
-
-  Options options;
-  options.nodes_per_layer = 1;  // one control volume: exactly the lumped body
-  options.cooldown_s = 3000;
-  const ThermalResult result = solve_thermal(std::span(&layer, 1), material, env, options);
-  ASSERT_EQ(result.layer_temp_c.size(), 1u);
-  ASSERT_GT(result.sample_times_s.back(), 2.0 * tau_s);  // the history covers several time constants
-  const double error =
-      max_deviation_from_lumped_cooling(result, 0.0, material.deposition_temp_c, env.ambient_c, tau_s);
-  RecordProperty("max_error_fraction", sci(error));
-  EXPECT_LT(error, 0.005);  // the brief's criterion
-  EXPECT_LT(error, 1e-5);   // what the integrator actually achieves at its default tolerances
-  EXPECT_EQ(result.layers[0].verdict, Verdict::kNoInterface);
-  EXPECT_DOUBLE_EQ(result.layers[0].substrate_mean_c, env.ambient_c);  // insulated table: ambient
-}
-
-TEST(ThermalTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
-  // Same bead split into 4 nodes; with a huge conductivity (Biot number ~1e-5) the nodes stay together
-  // and the layer must again follow the lumped solution, now with the top loss on the top node only.
-  Material material;
-  material.emissivity = 0.0;
-  material.conductivity_through_W_mK = 1e4;
-  Environment env;
-  env.bed_insulated = true;
-  LayerInput layer{.z_top_mm = 5,
-                   .height_mm = 5,
-                   .start_s = 0,
-                   .end_s = 0,
-                   .area_mm2 = 21.0 * 1000.0,
-                   .perimeter_mm = 2.0 * (21.0 + 1000.0)};
-  const double area_m2 = layer.perimeter_mm * 1e-3 * layer.height_mm * 1e-3 + layer.area_mm2 * 1e-6;
-  const double tau_s = layer_capacity_J_K(material, layer) / (env.convection_W_m2K * area_m2);
-  Options options;
-  options.nodes_per_layer = 4;
-  options.cooldown_s = 3000;
-  const ThermalResult result = solve_thermal(std::span(&layer, 1), material, env, options);
-  const double error =
-      max_deviation_from_lumped_cooling(result, 0.0, material.deposition_temp_c, env.ambient_c, tau_s);
-  RecordProperty("max_error_fraction", sci(error));
-  EXPECT_LT(error, 0.005);
-  EXPECT_LT(error, 1e-4);
-}
-
-TEST(ThermalTest, EnergyIsConservedWithRadiationAndAHeatedBed) {
-  const Material material;  // ε = 0.85
-  const Environment env;    // table held at 65 °C, 100 W/m²K contact
-  const std::vector<LayerInput> layers = straight_wall(20, 60.0);
-  const ThermalResult result = solve_thermal(layers, material, env);
-  RecordProperty("energy_balance_rel_error", sci(result.energy_balance_rel_error));
-  EXPECT_LT(result.energy_balance_rel_error, 1e-3);
-  EXPECT_LT(result.energy_balance_rel_error, 1e-9);  // BDF keeps linear invariants up to the Newton tolerance
-
-  // Energy brought in: every layer born at the deposition temperature, relative to ambient.
-  double in_J = 0.0;
-  for (const LayerInput& layer : layers)
-    in_J += layer_capacity_J_K(material, layer) * (material.deposition_temp_c - env.ambient_c);
-  EXPECT_NEAR(result.energy_in_J, in_J, 1e-9 * in_J);
-  // Energy stored, recomputed from the last sample of the history (float precision).
-  ASSERT_EQ(result.sample_times_s.back(), result.end_time_s);
-  double stored_J = 0.0;
-  for (std::size_t i = 0; i < layers.size(); ++i)
-    stored_J += layer_capacity_J_K(material, layers[i]) * (result.layer_temp_c[i].back() - env.ambient_c);
-  EXPECT_NEAR(result.energy_stored_J, stored_J, 1e-5 * in_J);
-  EXPECT_GT(result.energy_lost_J, 0.5 * in_J);  // 30 min of printing and 10 of cooldown lose most of it
-}
-
-TEST(ThermalTest, HistoryIsNaNBeforeALayerExists) {
-  const std::vector<LayerInput> layers = straight_wall(3, 40.0);
-  const ThermalResult result = solve_thermal(layers, Material{}, Environment{});
-  ASSERT_EQ(result.layer_temp_c.size(), 3u);
-  EXPECT_DOUBLE_EQ(result.sample_times_s.front(), 0.0);
-  EXPECT_DOUBLE_EQ(result.sample_times_s.back(), 120.0 + 600.0);
-  for (std::size_t k = 0; k < result.sample_times_s.size(); ++k) {
-    const double t = result.sample_times_s[k];
-    for (std::size_t i = 0; i < layers.size(); ++i)
-      EXPECT_EQ(std::isnan(result.layer_temp_c[i][k]), t < layers[i].start_s) << "layer " << i << " t " << t;
-  }
-  // Born at the deposition temperature.
-  EXPECT_FLOAT_EQ(result.layer_temp_c[1][8], 200.0f);  // t = 40 s
-  EXPECT_GT(result.steps, 0);
-}
-
-TEST(ThermalTest, ReptationTimeFollowsArrhenius) {
-  const Material m;  // t_ref 1 s at 200 °C, E_a 150 kJ/mol, no healing below 110 °C
-  EXPECT_DOUBLE_EQ(reptation_time_s(m, m.healing_ref_temp_c), m.reptation_time_ref_s);
-  // By hand: 150000 / 8.314462618 · (1/423.15 − 1/473.15) = 4.5054055; exp(4.5054055) = 90.50504 s.
-  EXPECT_NEAR(reptation_time_s(m, 150.0), 90.50504, 1e-4);
-  // At the threshold itself: 150000 / 8.314462618 · (1/383.15 − 1/473.15) = 8.9563676 → 7757.129 s.
-  EXPECT_NEAR(reptation_time_s(m, 110.0), 7757.129, 1e-2);
-  EXPECT_TRUE(std::isinf(reptation_time_s(m, 109.9)));
-  Material shifted = m;
-  shifted.reptation_time_ref_s = 3.0;
-  EXPECT_NEAR(reptation_time_s(shifted, 150.0), 3.0 * 90.50504, 3e-4);
-}
-
-TEST(ThermalTest, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
-  // A printer in an oven: deposition, ambient and table all at 150 °C. No heat flows anywhere, so the
-  // interface stays at exactly 150 °C and Yang & Pitchumani's integral reduces to D_h = (t / t_w)^(1/4)
-  // (the isothermal reptation result of de Gennes / Wool & O'Connor), t counted from the layer's birth.
-  Material material;
-  material.deposition_temp_c = 150.0;
-  material.support_limit_c = 200.0;  // so that the verdict is about healing only
-  Environment env;
-  env.ambient_c = env.bed_temp_c = 150.0;
-  std::vector<LayerInput> layers = straight_wall(2, 20.0);
-  layers[1].end_s = 30.0;  // layer 1 born at 20 s, simulation ends at 30 + 20 s
-  Options options;
-  options.cooldown_s = 20.0;
-  const ThermalResult result = solve_thermal(layers, material, env, options);
-  const double expected = std::pow((50.0 - 20.0) / 90.50504, 0.25);  // 0.7588
-  EXPECT_NEAR(result.layers[1].healing, expected, 1e-6);
-  EXPECT_EQ(result.layers[1].verdict, Verdict::kTooCold);  // below the required 0.9
-  EXPECT_TRUE(std::isnan(result.layers[0].healing));
-  for (const auto& history : result.layer_temp_c) {
-    for (float temp : history) {
-      if (!std::isnan(temp)) {
-        EXPECT_FLOAT_EQ(temp, 150.0f);
-      }
-    }
-  }
-
-  // The same oven below the healing threshold: no healing at all.
-  material.deposition_temp_c = env.ambient_c = env.bed_temp_c = 100.0;
-  EXPECT_EQ(solve_thermal(layers, material, env, options).layers[1].healing, 0.0);
-}
-
-TEST(ThermalTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
-  // Two equal layers with a huge conductivity cool together as one lumped body (Newton cooling, see
-  // above): T(t) = T∞ + (T0 − T∞) exp(−t/τ) with τ = 2 ρ c_p V / (h (2 A_side + A_top)), the lower layer's
-  // top being covered. The healing integral ∫ dt / t_w(T(t)) up to the time T reaches the 110 °C threshold
-  // is then computed here by Simpson's rule and compared with the solver's D_h.
-  Material material;
-  material.emissivity = 0.0;
-  material.conductivity_through_W_mK = 1e4;
-  material.reptation_time_ref_s = 300.0;  // keeps D_h below 1 so that the comparison means something
-  Environment env;
-  env.bed_insulated = true;
-  std::vector<LayerInput> layers = straight_wall(2, 1e-3, 5.0, 21.0, 1000.0);
-  Options options;
-  options.nodes_per_layer = 1;
-  options.cooldown_s = 5000.0;
-  const ThermalResult result = solve_thermal(layers, material, env, options);
-
-  const double side_m2 = layers[0].perimeter_mm * 1e-3 * layers[0].height_mm * 1e-3;
-  const double top_m2 = layers[0].area_mm2 * 1e-6;
-  const double tau_s =
-      2.0 * layer_capacity_J_K(material, layers[0]) / (env.convection_W_m2K * (2.0 * side_m2 + top_m2));
-  const double excess0 = material.deposition_temp_c - env.ambient_c;
-  const double t_threshold = tau_s * std::log(excess0 / (material.healing_min_temp_c - env.ambient_c));
-  ASSERT_LT(t_threshold, options.cooldown_s);
-  const int intervals = 20000;
-  double sum = 0.0;
-  for (int k = 0; k <= intervals; ++k) {
-    const double t = t_threshold * k / intervals;
-    const double temp_k = env.ambient_c + excess0 * std::exp(-t / tau_s) + kKelvinOffset;
-    const double rate = std::exp(-material.healing_activation_J_mol / kGasConstant *
-                                 (1.0 / temp_k - 1.0 / (material.healing_ref_temp_c + kKelvinOffset))) /
-                        material.reptation_time_ref_s;
-    sum += (k == 0 || k == intervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0)) * rate;
-  }
-  const double expected = std::pow(sum * t_threshold / intervals / 3.0, 0.25);  // ≈ 0.748
-  ASSERT_LT(expected, 0.95);
-  RecordProperty("relative_error", sci(std::abs(result.layers[1].healing - expected) / expected));
-  EXPECT_NEAR(result.layers[1].healing, expected, 1e-4 * expected);
-}
-
-TEST(ThermalTest, HealingIsConvergedAtTheDefaultTolerances) {
-  // Slow layers: every interface crosses the healing threshold while cooling, the hardest case for the
-  // integrator (the healing rate jumps there). Tightening the tolerances must not change D_h beyond what
-  // the temperature error explains: d ln(1/t_w)/dT = E_a/(R T²) ≈ 0.1 /K near 130 °C, so a 1e-3 K error in
-  // the interface temperature is 2.5e-5 in D_h/D_h.
-  const std::vector<LayerInput> layers = straight_wall(12, 300.0);
-  const ThermalResult coarse = solve_thermal(layers, Material{}, Environment{});
-  Options fine;
-  fine.rel_tol = 1e-9;
-  fine.abs_tol_k = 1e-7;
-  const ThermalResult reference = solve_thermal(layers, Material{}, Environment{}, fine);
-  for (std::size_t i = 1; i < layers.size(); ++i) {
-    EXPECT_GT(reference.layers[i].healing, 0.1);
-    EXPECT_LT(reference.layers[i].healing, 0.95);
-    EXPECT_NEAR(coarse.layers[i].healing, reference.layers[i].healing, 1e-4) << "layer " << i;
-    EXPECT_NEAR(coarse.layers[i].substrate_mean_c, reference.layers[i].substrate_mean_c, 1e-3)
-        << "layer " << i;
-  }
-}
-
-TEST(ThermalTest, LongerLayerTimesGiveColderSubstrates) {
-  const Material material;
-  const Environment env;
-  double previous_mean = std::numeric_limits<double>::infinity();
-  double previous_start = std::numeric_limits<double>::infinity();
-  for (double period_s : {10.0, 20.0, 40.0, 80.0, 160.0, 320.0, 640.0}) {
-    const ThermalResult result = solve_thermal(straight_wall(10, period_s), material, env);
-    const LayerResult& top = result.layers.back();
-    EXPECT_LT(top.substrate_mean_c, previous_mean) << period_s << " s";
-    EXPECT_LT(top.substrate_at_start_c, previous_start) << period_s << " s";
-    EXPECT_LE(top.substrate_min_c, top.substrate_mean_c);
-    EXPECT_LE(top.substrate_mean_c, top.substrate_max_c);
-    // The new layer reheats its substrate: the top node of the layer below gets no colder while it is laid.
-    EXPECT_DOUBLE_EQ(top.substrate_min_c, top.substrate_at_start_c);
-    previous_mean = top.substrate_mean_c;
-    previous_start = top.substrate_at_start_c;
-  }
-}
-
-TEST(ThermalTest, ShortLayersAreTooHotAndLongOnesTooCold) {
-  const Material material;  // core/material.hpp defaults
-  const Environment env;
-  const ThermalResult fast = solve_thermal(straight_wall(10, 5.0), material, env);
-  const ThermalResult slow = solve_thermal(straight_wall(10, 1000.0), material, env);
-  EXPECT_EQ(fast.layers[0].verdict, Verdict::kNoInterface);
-  EXPECT_EQ(slow.layers[0].verdict, Verdict::kNoInterface);
-  EXPECT_DOUBLE_EQ(slow.layers[0].substrate_max_c, env.bed_temp_c);
-  for (std::size_t i = 1; i < 10; ++i) {
-    EXPECT_EQ(fast.layers[i].verdict, Verdict::kTooHot) << "layer " << i;
-    EXPECT_GT(fast.layers[i].substrate_at_start_c, material.support_limit_c);
-    EXPECT_EQ(slow.layers[i].verdict, Verdict::kTooCold) << "layer " << i;
-    EXPECT_LT(slow.layers[i].healing, material.required_healing);
-  }
-}
-
-TEST(ThermalTest, A150LayerComptonWallSolvesInUnderTwoSeconds) {
-  // Compton et al. 2017 set-up (docs/physics.md, cooling): 150 layers of 4.064 mm, 20 mm wall (1 m long
-  // here), 40 s per layer, 100 min of printing plus 10 min of cooldown.
-  const std::vector<LayerInput> layers = straight_wall(150, 40.0);
-  const auto t0 = std::chrono::steady_clock::now();
-  const ThermalResult result = solve_thermal(layers, Material{}, Environment{});
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  RecordProperty("solve_seconds", sci(seconds));
-  RecordProperty("cvode_steps", std::to_string(result.steps));
-  EXPECT_LT(seconds, 2.0);
-  EXPECT_LT(result.energy_balance_rel_error, 1e-3);
-  ASSERT_EQ(result.layers.size(), 150u);
-}
-
-TEST(ThermalTest, BadInputIsAnInputErrorNamingTheField) {
-  const Material material;
-  const Environment env;
-  auto key_of = [&](std::vector<LayerInput> layers, const Material& m = Material{}) -> std::string {
-    try {
-      solve_thermal(layers, m, env);
-    } catch (const InputError& e) {
-      return e.key();
-    }
-    return "no error";
-  };
-  std::vector<LayerInput> layers = straight_wall(4, 40.0);
-  EXPECT_EQ(key_of(layers), "no error");
-
-  auto bad = layers;
-  bad[2].start_s = bad[1].start_s;  // not increasing
-  EXPECT_EQ(key_of(bad), "layers[2].start_s");
-  bad = layers;
-  bad[3].start_s = 10.0;  // decreasing
-  bad[3].end_s = 20.0;
-  EXPECT_EQ(key_of(bad), "layers[3].start_s");
-  bad = layers;
-  bad[1].height_mm = 0.0;
-  EXPECT_EQ(key_of(bad), "layers[1].height_mm");
-  bad = layers;
-  bad[2].area_mm2 = -5.0;
-  EXPECT_EQ(key_of(bad), "layers[2].area_mm2");
-  bad = layers;
-  bad[0].end_s = bad[0].start_s - 1.0;
-  EXPECT_EQ(key_of(bad), "layers[0].end_s");
-  bad = layers;
-  bad[1].perimeter_mm = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(key_of(bad), "layers[1].perimeter_mm");
-  EXPECT_EQ(key_of({}), "layers");
-
-  Material m = material;
-  m.density_kg_m3 = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(key_of(layers, m), "material.density_kg_m3");
-  m = material;
-  m.conductivity_through_W_mK = -0.17;
-  EXPECT_EQ(key_of(layers, m), "material.conductivity_through_W_mK");
-  m = material;
-  m.healing_activation_J_mol = -1.0;
-  EXPECT_EQ(key_of(layers, m), "material.healing_activation_J_mol");
-
-  // Every problem is reported at once.
-  bad = layers;
-  bad[1].height_mm = 0.0;
-  bad[3].area_mm2 = 0.0;
-  m = material;
-  m.specific_heat_J_kgK = -1.0;
+TEST(ThermalStage, BadOptionsAreInputErrorsNamingTheKey) {
+  const Toolpath toolpath = stacked_beads();
+  const sim::Deposit deposit = deposit_of(toolpath);
+  ThermalInput even_strips = input_for(toolpath, deposit);
+  even_strips.mesh.cells_across = 2;
+  EXPECT_THROW(solve_thermal(even_strips), InputError);
+  ThermalInput no_tolerance = input_for(toolpath, deposit);
+  no_tolerance.heat.rel_tol = 0.0;
   try {
-    solve_thermal(bad, m, env);
+    solve_thermal(no_tolerance);
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("layers[1].height_mm"), std::string::npos) << what;
-    EXPECT_NE(what.find("layers[3].area_mm2"), std::string::npos) << what;
-    EXPECT_NE(what.find("material.specific_heat_J_kgK"), std::string::npos) << what;
+    EXPECT_NE(std::string(e.what()).find("thermal.rel_tol"), std::string::npos) << e.what();
   }
-
-  Options options;
-  options.nodes_per_layer = 0;
-  EXPECT_THROW(solve_thermal(layers, material, env, options), InputError);
-  Environment cold = env;
-  cold.ambient_c = -300.0;
-  EXPECT_THROW(solve_thermal(layers, material, cold), InputError);
 }
 
-TEST(ThermalTest, VerdictNames) {
-  EXPECT_EQ(to_string(Verdict::kOk), "ok");
-  EXPECT_EQ(to_string(Verdict::kTooHot), "too_hot");
-  EXPECT_EQ(to_string(Verdict::kTooCold), "too_cold");
-  EXPECT_EQ(to_string(Verdict::kNoInterface), "no_interface");
+TEST(ThermalStage, ADepositWithoutMaterialGivesAnEmptyMeshAndSolution) {
+  const Toolpath toolpath = timed({travel({0.0, 0.0, kBeadHeight}, {kLength, 0.0, kBeadHeight})});
+  const sim::Deposit deposit = deposit_of(toolpath);
+  const ThermalResult result = solve_thermal(input_for(toolpath, deposit));
+  EXPECT_TRUE(result.mesh.cells.empty());
+  EXPECT_TRUE(result.heat.interfaces.empty());
+  EXPECT_TRUE(result.cells.empty());
 }
 
 }  // namespace

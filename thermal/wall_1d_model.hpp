@@ -1,4 +1,4 @@
-// The 1-D stacked-layer wall as an ODE system (internal to the thermal library; see thermal.hpp for the
+// The 1-D stacked-layer wall as an ODE system (internal to the thermal library; see wall_1d.hpp for the
 // model). Everything here is SI: m, m², J, W, K for differences; temperatures in °C, converted to K where a
 // formula needs absolute temperature (radiation, Arrhenius).
 #pragma once
@@ -10,7 +10,7 @@
 #include "core/material.hpp"
 #include "thermal/cvode.hpp"
 #include "thermal/fusion.hpp"
-#include "thermal/thermal.hpp"
+#include "thermal/wall_1d.hpp"
 
 namespace beadtwin::thermal {
 
@@ -27,10 +27,10 @@ namespace beadtwin::thermal {
 // at the healing threshold is met by CVODE's step control instead of being smeared between samples. The
 // energy lost is a state for the same reason: the balance in − lost − stored then checks the flux
 // bookkeeping (BDF keeps this linear invariant up to the Newton tolerance), not a post-processing rule.
-class WallModel final : public OdeSystem {
+class Wall1dModel final : public OdeSystem {
  public:
-  WallModel(std::span<const LayerInput> layers, const Material& material, const Environment& env,
-            int nodes_per_layer);
+  Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material, const Environment& env,
+              int nodes_per_layer);
 
   std::size_t size() const { return layers_.size() * block_; }
   std::size_t upper_bandwidth() const { return 3; }

@@ -1,4 +1,4 @@
-#include "thermal/wall_model.hpp"
+#include "thermal/wall_1d_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,8 +19,8 @@ double kelvin(double temp_c) {
 
 }  // namespace
 
-WallModel::WallModel(std::span<const LayerInput> layers, const Material& material, const Environment& env,
-                     int nodes_per_layer)
+Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material,
+                         const Environment& env, int nodes_per_layer)
     : n_(static_cast<std::size_t>(nodes_per_layer)),
       block_(n_ + 2),
       reptation_(material),
@@ -37,7 +37,7 @@ WallModel::WallModel(std::span<const LayerInput> layers, const Material& materia
   const double n = static_cast<double>(n_);
   layers_.reserve(layers.size());
   for (std::size_t i = 0; i < layers.size(); ++i) {
-    const LayerInput& in = layers[i];
+    const Wall1dLayer& in = layers[i];
     const double area_m2 = in.area_mm2 * kM2PerMm2;
     const double node_thickness_m = in.height_mm * kMPerMm / n;
     Layer layer;
@@ -61,7 +61,7 @@ WallModel::WallModel(std::span<const LayerInput> layers, const Material& materia
   if (!env.bed_insulated) bed_conductance_W_K_ = env.bed_contact_W_m2K * layers_[0].area_m2;
 }
 
-std::vector<double> WallModel::initial_state() const {
+std::vector<double> Wall1dModel::initial_state() const {
   std::vector<double> y(size(), 0.0);
   // Unborn nodes keep whatever value they hold (their derivative is zero); the deposition temperature
   // keeps the error weights of the whole state alike.
@@ -70,13 +70,13 @@ std::vector<double> WallModel::initial_state() const {
   return y;
 }
 
-void WallModel::set_tolerances(double rel_tol, double abs_tol_k, double healing_abs_tol) {
+void Wall1dModel::set_tolerances(double rel_tol, double abs_tol_k, double healing_abs_tol) {
   rel_tol_ = rel_tol;
   abs_tol_k_ = abs_tol_k;
   healing_abs_tol_ = healing_abs_tol;
 }
 
-void WallModel::error_weights(std::span<const double> y, std::span<double> weights) {
+void Wall1dModel::error_weights(std::span<const double> y, std::span<double> weights) {
   for (std::size_t i = 0; i < layers_.size(); ++i) {
     for (std::size_t j = 0; j < n_; ++j) {
       const std::size_t k = temp_index(i, j);
@@ -97,7 +97,7 @@ void WallModel::error_weights(std::span<const double> y, std::span<double> weigh
   }
 }
 
-void WallModel::birth(std::size_t layer, std::span<double> y) {
+void Wall1dModel::birth(std::size_t layer, std::span<double> y) {
   BT_CHECK_OP(layer, ==, born_);
   BT_CHECK_OP(layer, <, layers_.size());
   for (std::size_t j = 0; j < n_; ++j) y[temp_index(layer, j)] = deposition_temp_c_;
@@ -106,31 +106,31 @@ void WallModel::birth(std::size_t layer, std::span<double> y) {
   ++born_;
 }
 
-double WallModel::layer_mean_temp_c(std::size_t layer, std::span<const double> y) const {
+double Wall1dModel::layer_mean_temp_c(std::size_t layer, std::span<const double> y) const {
   double sum = 0.0;
   for (std::size_t j = 0; j < n_; ++j) sum += y[temp_index(layer, j)];
   return sum / static_cast<double>(n_);
 }
 
-double WallModel::substrate_temp_c(std::size_t layer, std::span<const double> y) const {
+double Wall1dModel::substrate_temp_c(std::size_t layer, std::span<const double> y) const {
   BT_CHECK_OP(layer, >=, 1u);
   return y[temp_index(layer - 1, n_ - 1)];
 }
 
-double WallModel::interface_temp_c(std::size_t layer, std::span<const double> y) const {
+double Wall1dModel::interface_temp_c(std::size_t layer, std::span<const double> y) const {
   BT_CHECK_OP(layer, >=, 1u);
   const double w = layers_[layer].below_weight;
   return w * y[temp_index(layer - 1, n_ - 1)] + (1.0 - w) * y[temp_index(layer, 0)];
 }
 
-double WallModel::energy_in_J() const {
+double Wall1dModel::energy_in_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i)
     sum += layers_[i].node_capacity_J_K * static_cast<double>(n_) * (deposition_temp_c_ - ambient_c_);
   return sum;
 }
 
-double WallModel::energy_stored_J(std::span<const double> y) const {
+double Wall1dModel::energy_stored_J(std::span<const double> y) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i)
     for (std::size_t j = 0; j < n_; ++j)
@@ -138,13 +138,13 @@ double WallModel::energy_stored_J(std::span<const double> y) const {
   return sum;
 }
 
-double WallModel::energy_lost_J(std::span<const double> y) const {
+double Wall1dModel::energy_lost_J(std::span<const double> y) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i) sum += y[loss_index(i)];
   return sum;
 }
 
-double WallModel::free_area_m2(std::size_t layer, std::size_t node) const {
+double Wall1dModel::free_area_m2(std::size_t layer, std::size_t node) const {
   double area = layers_[layer].side_area_node_m2;
   if (node + 1 == n_) {
     const bool topmost = layer + 1 >= born_;
@@ -154,23 +154,23 @@ double WallModel::free_area_m2(std::size_t layer, std::size_t node) const {
   return area;
 }
 
-double WallModel::bed_conductance_W_K(std::size_t layer, std::size_t node) const {
+double Wall1dModel::bed_conductance_W_K(std::size_t layer, std::size_t node) const {
   return layer == 0 && node == 0 ? bed_conductance_W_K_ : 0.0;
 }
 
-double WallModel::loss_W(double temp_c, double area_m2, double bed_conductance) const {
+double Wall1dModel::loss_W(double temp_c, double area_m2, double bed_conductance) const {
   const double t_k = kelvin(temp_c);
   return area_m2 * (convection_W_m2K_ * (temp_c - ambient_c_) +
                     emissivity_sigma_ * (t_k * t_k * t_k * t_k - ambient_k4_)) +
          bed_conductance * (temp_c - bed_temp_c_);
 }
 
-double WallModel::loss_derivative_W_K(double temp_c, double area_m2, double bed_conductance) const {
+double Wall1dModel::loss_derivative_W_K(double temp_c, double area_m2, double bed_conductance) const {
   const double t_k = kelvin(temp_c);
   return area_m2 * (convection_W_m2K_ + 4.0 * emissivity_sigma_ * t_k * t_k * t_k) + bed_conductance;
 }
 
-void WallModel::rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) {
+void Wall1dModel::rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) {
   std::fill(ydot.begin(), ydot.end(), 0.0);
   for (std::size_t i = 0; i < born_; ++i) {
     const Layer& layer = layers_[i];
@@ -192,7 +192,7 @@ void WallModel::rhs(double /*t*/, std::span<const double> y, std::span<double> y
   }
 }
 
-void WallModel::jacobian(double /*t*/, std::span<const double> y, BandJacobian& jac) {
+void Wall1dModel::jacobian(double /*t*/, std::span<const double> y, BandJacobian& jac) {
   for (std::size_t i = 0; i < born_; ++i) {
     const Layer& layer = layers_[i];
     for (std::size_t j = 0; j < n_; ++j) {

@@ -1,0 +1,55 @@
+#include "thermal/healing.hpp"
+
+#include <algorithm>
+
+#include "thermal/for_range.hpp"
+
+namespace beadtwin::thermal {
+
+HealingIntegrator::HealingIntegrator(const Material& material, const InterfaceIndex& index)
+    : reptation_(material), warm_c_(reptation_.min_temp_c() - 1.0), integral_(index.size(), 0.0) {
+  reset_lumps(index);
+}
+
+bool HealingIntegrator::find(const InterfaceIndex& index, std::size_t born, std::span<const double> start,
+                             std::span<const double> end) {
+  for (std::size_t i = 0; i < born; ++i) warm_[i] = std::max(start[i], end[i]) >= warm_c_;
+  healing_now_.clear();
+  lumps_healing_now_.clear();
+  for (std::size_t i = 0; i < born; ++i) {
+    if (!warm_[i]) continue;
+    if (index.has_inner(i)) lumps_healing_now_.push_back(static_cast<std::uint32_t>(i));
+    for (const InterfaceIndex::CellInterface& c : index.of_cell(i)) {
+      if (c.younger >= born) continue;
+      if (c.other < i && warm_[c.other]) continue;  // counted from the other cell
+      healing_now_.push_back(c.interface);
+    }
+  }
+  return !healing_now_.empty() || !lumps_healing_now_.empty();
+}
+
+void HealingIntegrator::integrate(const InterfaceIndex& index, double half_s, std::span<const double> y0,
+                                  std::span<const double> y1) {
+  for_range(0, healing_now_.size(), [&](std::size_t e) {
+    const std::uint32_t k = healing_now_[e];
+    integral_[k] += half_s * healing_rate(index, y0, k);
+    integral_[k] += half_s * healing_rate(index, y1, k);
+  });
+  for (const std::uint32_t g : lumps_healing_now_) {
+    lump_integral_[g] += half_s * reptation_.rate_per_s(y0[g]);
+    lump_integral_[g] += half_s * reptation_.rate_per_s(y1[g]);
+  }
+}
+
+void HealingIntegrator::flush_lumps(const InterfaceIndex& index) {
+  for (std::size_t g = 0; g < index.model_cells(); ++g)
+    for (const std::uint32_t k : index.inner(g)) integral_[k] += lump_integral_[g];
+  std::fill(lump_integral_.begin(), lump_integral_.end(), 0.0);
+}
+
+void HealingIntegrator::reset_lumps(const InterfaceIndex& index) {
+  lump_integral_.assign(index.model_cells(), 0.0);
+  warm_.assign(index.model_cells(), 0);
+}
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,387 @@
+#include "thermal/part_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "core/error.hpp"
+#include "thermal/for_range.hpp"
+
+namespace beadtwin::thermal {
+namespace {
+
+constexpr double kM2PerMm2 = 1e-6;
+constexpr double kMPerMm = 1e-3;
+constexpr double kM3PerMm3 = 1e-9;
+
+// One neighbour of a cell: who, the conductance to it and the contact area that is open surface while the
+// neighbour is not yet born.
+struct Neighbour {
+  std::uint32_t cell = 0;
+  double conductance_W_K = 0.0;
+  double area_m2 = 0.0;
+};
+
+// The conductivity tensor of a cell whose bead runs along `along` (a unit vector in plan).
+Eigen::Matrix3d conductivity(const Eigen::Vector2d& along, const Material& m) {
+  const Eigen::Vector3d t(along.x(), along.y(), 0.0);
+  const Eigen::Vector3d s(-along.y(), along.x(), 0.0);
+  const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
+  return m.conductivity_along_W_mK * t * t.transpose() + m.conductivity_across_W_mK * s * s.transpose() +
+         m.conductivity_through_W_mK * z * z.transpose();
+}
+
+}  // namespace
+
+PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env)
+    : n_(mesh.cells.size()),
+      material_(material),
+      deposition_c_(material.deposition_temp_c),
+      ambient_c_(env.ambient_c),
+      ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
+      bed_c_(env.bed_temp_c),
+      eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
+  mass_kg_.resize(n_);
+  exposed_m2_.resize(n_);
+  table_W_K_.resize(n_);
+  h_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const ThermalCell& c = mesh.cells[i];
+    h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
+    mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
+    exposed_m2_[i] = c.open_area_mm2 * kM2PerMm2;
+    table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
+  }
+  list_neighbours(mesh, material);
+  // Every contact is open surface until the neighbour is born.
+  for (std::size_t i = 0; i < n_; ++i)
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) exposed_m2_[i] += nb_area_m2_[k];
+  loss_.assign(n_, 0.0);
+  born_end_.assign(first_.begin(), first_.end() - 1);
+  born_g_.assign(n_, 0.0);
+}
+
+void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& material) {
+  std::vector<std::size_t> count(n_ + 1, 0);
+  for (const ThermalLink& l : mesh.links) {
+    ++count[l.a + 1];
+    ++count[l.b + 1];
+  }
+  for (std::size_t i = 0; i < n_; ++i) count[i + 1] += count[i];
+  first_ = count;
+  std::vector<Neighbour> neighbours(count[n_]);
+  std::vector<std::size_t> next(count.begin(), count.end() - 1);
+  const double half_voxel = 0.5 * mesh.voxel_size_mm;
+  for (const ThermalLink& l : mesh.links) {
+    const ThermalCell& a = mesh.cells[l.a];
+    const ThermalCell& b = mesh.cells[l.b];
+    const double area = l.area_mm2();
+    const double vector_length = l.area_vector_mm2.norm();
+    const Eigen::Vector3d normal =
+        vector_length > 0.0 ? Eigen::Vector3d(l.area_vector_mm2 / vector_length) : Eigen::Vector3d::UnitZ();
+    const Eigen::Matrix3d k = 0.5 * (conductivity(a.along, material) + conductivity(b.along, material));
+    const double k_n = normal.dot(k * normal);
+    const double distance = std::max(std::abs((b.centroid_mm - a.centroid_mm).dot(normal)), half_voxel);
+    const double g = k_n * area * kM2PerMm2 / (distance * kMPerMm);
+    neighbours[next[l.a]++] = {l.b, g, area * kM2PerMm2};
+    neighbours[next[l.b]++] = {l.a, g, area * kM2PerMm2};
+  }
+  // Sorted by neighbour, so the born ones come first; kept as three arrays, so that the integrator's
+  // loops read 12 bytes a neighbour (who and the conductance) rather than a whole Neighbour.
+  for (std::size_t i = 0; i < n_; ++i)
+    std::sort(neighbours.begin() + static_cast<std::ptrdiff_t>(first_[i]),
+              neighbours.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]),
+              [](const Neighbour& x, const Neighbour& y) { return x.cell < y.cell; });
+  nb_cell_.reserve(neighbours.size());
+  nb_g_.reserve(neighbours.size());
+  nb_area_m2_.reserve(neighbours.size());
+  for (const Neighbour& nb : neighbours) {
+    nb_cell_.push_back(nb.cell);
+    nb_g_.push_back(nb.conductance_W_K);
+    nb_area_m2_.push_back(nb.area_m2);
+  }
+}
+
+void PartModel::set_capacity(std::size_t capacity) {
+  BT_CHECK(capacity >= born_ && capacity <= n_);
+  cap_ = capacity;
+  partition();
+}
+
+std::vector<double> PartModel::local(std::span<const double> full) const {
+  BT_CHECK_OP(full.size(), ==, cap_ + 1);
+  std::vector<double> out(full.begin() + static_cast<std::ptrdiff_t>(lo_),
+                          full.begin() + static_cast<std::ptrdiff_t>(hi_));
+  out.push_back(comm_ == nullptr || comm_->rank() == 0 ? full[cap_] : 0.0);
+  return out;
+}
+
+std::span<const double> PartModel::gather(std::span<const double> local, std::vector<double>& buffer) const {
+  if (comm_ == nullptr) return local;
+  BT_CHECK_OP(local.size(), ==, hi_ - lo_ + 1);
+  gathered_.resize(cap_ + part_counts_.size());
+  comm_->all_gather(local, part_counts_, gathered_);
+  buffer.resize(cap_ + 1);
+  double lost = 0.0;
+  std::size_t at = 0;
+  for (std::size_t r = 0; r < part_counts_.size(); ++r) {
+    const std::size_t cells = bounds_[r + 1] - bounds_[r];
+    std::copy_n(gathered_.begin() + static_cast<std::ptrdiff_t>(at), cells,
+                buffer.begin() + static_cast<std::ptrdiff_t>(bounds_[r]));
+    lost += gathered_[at + cells];
+    at += cells + 1;
+  }
+  buffer[cap_] = lost;
+  return buffer;
+}
+
+double PartModel::time_constant_s(std::size_t i) const {
+  double g = table_W_K_[i];
+  for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) g += nb_g_[k];
+  return g > 0.0 ? heat_capacity(i, deposition_c_) / g : std::numeric_limits<double>::infinity();
+}
+
+void PartModel::birth(std::size_t end, std::span<double> y) {
+  for (std::size_t i = born_; i < end; ++i) {
+    y[i] = deposition_c_;
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+      if (nb_cell_[k] < end) exposed_m2_[i] -= nb_area_m2_[k];
+      if (nb_cell_[k] < born_) exposed_m2_[nb_cell_[k]] -= nb_area_m2_[k];
+    }
+    energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
+  }
+  const std::size_t before = born_;
+  born_ = end;
+  for (std::size_t i = before; i < end; ++i) {
+    find_born_end(i);
+    for (std::size_t k = first_[i]; k < first_[i + 1] && nb_cell_[k] < before; ++k)
+      find_born_end(nb_cell_[k]);
+  }
+}
+
+void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
+  const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
+  std::vector<double> mass(m, 0.0), exposed(m, 0.0), table(m, 0.0), h_area(m, 0.0), h_sum(m, 0.0),
+      count(m, 0.0), enthalpy(m, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const std::size_t g = to[i];
+    mass[g] += mass_kg_[i];
+    exposed[g] += exposed_m2_[i];
+    table[g] += table_W_K_[i];
+    h_area[g] += h_[i] * exposed_m2_[i];
+    h_sum[g] += h_[i];
+    count[g] += 1.0;
+    if (i < cap_) enthalpy[g] += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, y[i]);
+  }
+  std::vector<double> h(m);
+  for (std::size_t g = 0; g < m; ++g) h[g] = exposed[g] > 0.0 ? h_area[g] / exposed[g] : h_sum[g] / count[g];
+  std::vector<std::size_t> first;
+  std::vector<std::uint32_t> nb_cell;
+  std::vector<double> nb_g, nb_area;
+  merge_neighbours(to, m, first, nb_cell, nb_g, nb_area);
+  // The state: each new cell at the temperature that holds its enthalpy (Newton on m h(T) = H from the
+  // mass-weighted mean; c_p changes slowly with T, so a few steps reach round-off).
+  const std::size_t cap = cap_ == 0 ? 0 : std::size_t{to[cap_ - 1]} + 1;
+  std::vector<double> state(cap + 1, 0.0), weighted(cap, 0.0);
+  for (std::size_t i = 0; i < cap_; ++i) weighted[to[i]] += mass_kg_[i] * y[i];
+  for (std::size_t g = 0; g < cap; ++g) {
+    double t = weighted[g] / mass[g];
+    for (int it = 0; it < 8; ++it) {
+      const double f = mass[g] * material_.enthalpy_J_kg(ambient_c_, t) - enthalpy[g];
+      const double step = f / (mass[g] * material_.specific_heat_at(t));
+      t -= step;
+      if (std::abs(step) < 1e-9) break;
+    }
+    state[g] = t;
+  }
+  state[cap] = y[cap_];
+  const std::size_t born = born_ == 0 ? 0 : std::size_t{to[born_ - 1]} + 1;
+  n_ = m;
+  mass_kg_ = std::move(mass);
+  exposed_m2_ = std::move(exposed);
+  table_W_K_ = std::move(table);
+  h_ = std::move(h);
+  first_ = std::move(first);
+  nb_cell_ = std::move(nb_cell);
+  nb_g_ = std::move(nb_g);
+  nb_area_m2_ = std::move(nb_area);
+  loss_.assign(n_, 0.0);
+  born_ = born;
+  born_end_.resize(n_);
+  born_g_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i) find_born_end(i);
+  cap_ = cap;
+  y = std::move(state);
+}
+
+void PartModel::merge_neighbours(std::span<const std::uint32_t> to, std::size_t m,
+                                 std::vector<std::size_t>& first, std::vector<std::uint32_t>& nb_cell,
+                                 std::vector<double>& nb_g, std::vector<double>& nb_area) const {
+  // The members' lists, renumbered (still in order, as `to` keeps order), merged per neighbour.
+  first.assign(m + 1, 0);
+  nb_cell.reserve(nb_cell_.size());
+  nb_g.reserve(nb_cell_.size());
+  nb_area.reserve(nb_cell_.size());
+  std::vector<std::pair<std::uint32_t, std::size_t>> entries;  // (new neighbour, old entry)
+  for (std::size_t i = 0; i < n_;) {
+    const std::uint32_t g = to[i];
+    std::size_t j = i;
+    entries.clear();
+    for (; j < n_ && to[j] == g; ++j)
+      for (std::size_t k = first_[j]; k < first_[j + 1]; ++k)
+        if (to[nb_cell_[k]] != g) entries.emplace_back(to[nb_cell_[k]], k);
+    std::sort(entries.begin(), entries.end());
+    for (std::size_t e = 0; e < entries.size(); ++e) {
+      if (e == 0 || entries[e].first != entries[e - 1].first) {
+        nb_cell.push_back(entries[e].first);
+        nb_g.push_back(0.0);
+        nb_area.push_back(0.0);
+      }
+      nb_g.back() += nb_g_[entries[e].second];
+      nb_area.back() += nb_area_m2_[entries[e].second];
+    }
+    first[g + 1] = nb_cell.size();
+    i = j;
+  }
+}
+
+double PartModel::energy_stored_J(std::span<const double> y) const {
+  double e = 0.0;
+  for (std::size_t i = 0; i < born_; ++i) e += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, y[i]);
+  return e;
+}
+
+void PartModel::set_tolerances(double rel_tol, double abs_tol_k) {
+  rel_tol_ = rel_tol;
+  abs_tol_k_ = abs_tol_k;
+  double total = 0.0;
+  for (std::size_t i = 0; i < n_; ++i) total += heat_capacity(i, deposition_c_);
+  abs_tol_J_ = std::max(total * abs_tol_k, 1e-12);
+}
+
+void PartModel::rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) {
+  const double* all = with_halo(y, halo_y_);
+  const std::size_t end = owned_born();
+  for_range(lo_, end, [&](std::size_t i) { ydot[i - lo_] = rate(i, all, loss_[i]); });
+  double q = 0.0;
+  for (std::size_t i = lo_; i < end; ++i) q += loss_[i];
+  for (std::size_t i = end; i < hi_; ++i) ydot[i - lo_] = 0.0;
+  ydot[hi_ - lo_] = q;
+}
+
+void PartModel::jacobian_times_setup(double /*t*/, std::span<const double> y) {
+  const std::size_t end = owned_born();
+  jt_capacity_.resize(hi_ - lo_);
+  jt_loss_derivative_.resize(hi_ - lo_);
+  for_range(lo_, end, [&](std::size_t i) {
+    const double yi = y[i - lo_];
+    jt_capacity_[i - lo_] = heat_capacity(i, yi);
+    jt_loss_derivative_[i - lo_] = loss_derivative(i, yi);
+  });
+}
+
+void PartModel::jacobian_times(double /*t*/, std::span<const double> /*y*/, std::span<const double> v,
+                               std::span<double> jv) {
+  const std::size_t end = owned_born();
+  const double* all_v = with_halo(v, halo_v_);
+  BT_CHECK_OP(jt_capacity_.size(), ==, hi_ - lo_);
+  for_range(lo_, end, [&](std::size_t i) {
+    double sum = 0.0;
+    const double vi = all_v[i];
+    for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) sum += nb_g_[k] * (all_v[nb_cell_[k]] - vi);
+    const double d_loss = jt_loss_derivative_[i - lo_] * vi;
+    loss_[i] = d_loss;
+    jv[i - lo_] = (sum - d_loss) / jt_capacity_[i - lo_];
+  });
+  double q = 0.0;
+  for (std::size_t i = lo_; i < end; ++i) q += loss_[i];
+  for (std::size_t i = end; i < hi_; ++i) jv[i - lo_] = 0.0;
+  jv[hi_ - lo_] = q;
+}
+
+void PartModel::jacobian_diagonal(double /*t*/, std::span<const double> y, std::span<double> diagonal) {
+  const std::size_t end = owned_born();
+  for_range(lo_, end, [&](std::size_t i) {
+    diagonal[i - lo_] = -(born_g_[i] + loss_derivative(i, y[i - lo_])) / heat_capacity(i, y[i - lo_]);
+  });
+  for (std::size_t i = end; i < hi_; ++i) diagonal[i - lo_] = 0.0;
+  diagonal[hi_ - lo_] = 0.0;
+}
+
+void PartModel::error_weights(std::span<const double> y, std::span<double> weights) {
+  const std::size_t cells = hi_ - lo_;
+  for (std::size_t i = 0; i < cells; ++i) weights[i] = 1.0 / (rel_tol_ * std::abs(y[i]) + abs_tol_k_);
+  weights[cells] = 1.0 / (rel_tol_ * std::abs(y[cells]) + abs_tol_J_);
+}
+
+void PartModel::find_born_end(std::size_t i) {
+  double g = 0.0;
+  std::size_t k = first_[i];
+  for (; k < first_[i + 1] && nb_cell_[k] < born_; ++k) g += nb_g_[k];
+  born_end_[i] = k;
+  born_g_[i] = g;
+}
+
+void PartModel::partition() {
+  const std::size_t ranks = comm_ != nullptr ? static_cast<std::size_t>(comm_->size()) : 1;
+  const std::size_t me = comm_ != nullptr ? static_cast<std::size_t>(comm_->rank()) : 0;
+  bounds_.assign(ranks + 1, cap_);
+  bounds_[0] = 0;
+  const double expected = 0.5 * static_cast<double>(born_ + cap_);
+  for (std::size_t r = 1; r < ranks; ++r)
+    bounds_[r] = std::min(cap_, static_cast<std::size_t>(std::llround(expected * static_cast<double>(r) /
+                                                                      static_cast<double>(ranks))));
+  lo_ = bounds_[me];
+  hi_ = bounds_[me + 1];
+  if (comm_ == nullptr) return;
+  part_counts_.resize(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) part_counts_[r] = static_cast<int>(bounds_[r + 1] - bounds_[r] + 1);
+  partition_halo(ranks, me);
+}
+
+void PartModel::partition_halo(std::size_t ranks, std::size_t me) {
+  // The cells outside rank r's block that its cells touch, in order (each rank works this out for all).
+  const auto owner = [&](std::uint32_t j) {
+    return static_cast<std::size_t>(std::upper_bound(bounds_.begin(), bounds_.end(), std::size_t{j}) -
+                                    bounds_.begin()) -
+           1;
+  };
+  std::vector<std::uint32_t> needs;
+  const auto needed_by = [&](std::size_t r) {
+    needs.clear();
+    for (std::size_t i = bounds_[r]; i < bounds_[r + 1]; ++i)
+      for (std::size_t k = first_[i]; k < first_[i + 1] && nb_cell_[k] < cap_; ++k)
+        if (nb_cell_[k] < bounds_[r] || nb_cell_[k] >= bounds_[r + 1]) needs.push_back(nb_cell_[k]);
+    std::sort(needs.begin(), needs.end());
+    needs.erase(std::unique(needs.begin(), needs.end()), needs.end());
+  };
+  send_counts_.assign(ranks, 0);
+  recv_counts_.assign(ranks, 0);
+  send_cells_.clear();
+  for (std::size_t r = 0; r < ranks; ++r) {
+    needed_by(r);
+    if (r == me) {
+      recv_cells_ = needs;
+      for (const std::uint32_t j : needs) ++recv_counts_[owner(j)];
+      continue;
+    }
+    for (const std::uint32_t j : needs)
+      if (j >= lo_ && j < hi_) send_cells_.push_back(j), ++send_counts_[r];
+  }
+  send_buffer_.resize(send_cells_.size());
+  recv_buffer_.resize(recv_cells_.size());
+}
+
+const double* PartModel::with_halo(std::span<const double> local, std::vector<double>& all) const {
+  if (comm_ == nullptr) return local.data();
+  all.resize(cap_);
+  std::copy(local.begin(), local.begin() + static_cast<std::ptrdiff_t>(hi_ - lo_),
+            all.begin() + static_cast<std::ptrdiff_t>(lo_));
+  for (std::size_t k = 0; k < send_cells_.size(); ++k) send_buffer_[k] = local[send_cells_[k] - lo_];
+  comm_->exchange(send_buffer_, send_counts_, recv_buffer_, recv_counts_);
+  for (std::size_t k = 0; k < recv_cells_.size(); ++k) all[recv_cells_[k]] = recv_buffer_[k];
+  return all.data();
+}
+
+}  // namespace beadtwin::thermal

@@ -1,0 +1,177 @@
+// The printed part as an ODE system for CVODE, internal to the thermal library (thermal/heat.hpp describes
+// the model): each cell's temperature and the energy lost through the boundary, the births that add cells,
+// and the lumping of settled cells into one.
+//
+// State: y = [T_0 .. T_{n-1} (°C) | Q (J lost through the boundary)]. Cells are in birth order, so the born
+// ones are the first born(). Units inside: m, m², kg, J, W; temperatures in °C, in K where radiation needs
+// absolute temperature.
+//
+// Across ranks (set_communicator) each rank integrates a contiguous block of the cells, [lo_, hi_), and its
+// own share of Q: its part of the state is [T_lo .. T_{hi-1} | Q_rank], and the energy lost is the sum of
+// the ranks' shares. Cells in birth order are cells by height, so the blocks are slices of the part, bottom
+// to top. Each right-hand side and Jacobian product first brings in, from the other ranks, the temperatures
+// of the cells its own cells touch (the halo).
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/material.hpp"
+#include "core/units.hpp"
+#include "thermal/communicator.hpp"
+#include "thermal/cvode.hpp"
+#include "thermal/fusion.hpp"
+#include "thermal/mesh.hpp"
+
+namespace beadtwin::thermal {
+
+class PartModel final : public OdeSystem {
+ public:
+  // The cells and contacts of `mesh`, none born yet: every contact is open surface until its neighbour is
+  // born. Conductances from the material's orthotropic conductivity (thermal/heat.hpp).
+  PartModel(const ThermalMesh& mesh, const Material& material, const Environment& env);
+
+  // The integrator's state: the first `capacity` cells (the born ones and room for the next) and the energy
+  // lost, at index capacity. Every vector operation of a step runs over it, so it grows with the print.
+  // Shares it among the ranks anew (the cells born so far set the blocks). born() <= capacity <= cells.
+  void set_capacity(std::size_t capacity);
+  std::size_t capacity() const { return cap_; }
+  // Shares the state among `comm`'s ranks; null or one rank: all on this one.
+  void set_communicator(Communicator* comm) { comm_ = comm != nullptr && comm->size() > 1 ? comm : nullptr; }
+  Communicator* communicator() const { return comm_; }
+
+  // This rank's part of a state of all cells (the first capacity() and the energy lost): its cells, and the
+  // energy lost on rank 0 (0 on the others, so that the ranks' shares add up to it).
+  std::vector<double> local(std::span<const double> full) const;
+  // The state of all cells from every rank's part (`local` is this rank's): in `buffer`, or `local` itself
+  // on one rank.
+  std::span<const double> gather(std::span<const double> local, std::vector<double>& buffer) const;
+  std::size_t born() const { return born_; }
+  // C / ΣG of cell i over all its contacts, s.
+  double time_constant_s(std::size_t i) const;
+
+  // Cells [born(), end) are born: at the deposition temperature in y, their faces towards born cells closed.
+  void birth(std::size_t end, std::span<double> y);
+
+  // The model's cells: the mesh's, less what lumping took.
+  std::size_t size_of_model() const { return n_; }
+  double mass_kg(std::size_t i) const { return mass_kg_[i]; }
+  // Whether cell i has a neighbour not yet born (neighbours are sorted, so the last tells).
+  bool on_top(std::size_t i) const {
+    return first_[i] != first_[i + 1] && nb_cell_[first_[i + 1] - 1] >= born_;
+  }
+  // Cell i's neighbours, in increasing order.
+  std::span<const std::uint32_t> neighbours(std::size_t i) const {
+    return {nb_cell_.data() + first_[i], nb_cell_.data() + first_[i + 1]};
+  }
+
+  // Lumps runs of born cells into one cell each (thermal/heat.hpp, settled cells): `to[i]`, for every cell,
+  // is its cell afterwards, non-decreasing, equal only within a run, one to one for the cells not yet born.
+  // A lumped cell has its members' mass, open and table surface and contacts (summed per neighbour; the
+  // contacts between members go); its temperature is the one at which it holds its members' enthalpy, so the
+  // energy stored does not change. `y` (the first capacity() cells) becomes the new cells' state; the energy
+  // lost, after it, is carried over.
+  void lump(std::span<const std::uint32_t> to, std::vector<double>& y);
+
+  // Energy relative to ambient brought in by the births so far, J.
+  double energy_in_J() const { return energy_in_J_; }
+  // Energy relative to ambient held by the born cells in state y (indexed by cell), J.
+  double energy_stored_J(std::span<const double> y) const;
+
+  // The error test's tolerances: relative, and absolute on temperatures, K (on the energy lost: the
+  // absolute tolerance times the part's heat capacity).
+  void set_tolerances(double rel_tol, double abs_tol_k);
+
+  // dT/dt of born cell i in state y (indexed by cell), K/s; its boundary loss, W, in `loss`.
+  double rate(std::size_t i, const double* y, double& loss) const {
+    const double t = y[i];
+    double flux = 0.0;
+    for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) flux += nb_g_[k] * (y[nb_cell_[k]] - t);
+    const double tk = t + kKelvinOffset;
+    loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
+           table_W_K_[i] * (t - bed_c_);
+    return (flux - loss) / heat_capacity(i, t);
+  }
+
+  // The vectors below are this rank's part of the state: cell i at [i − lo_], its share of Q last.
+  void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
+  // What every product of a linear solve shares: each cell's heat capacity and boundary loss derivative at
+  // the solve's y (CVODE calls this before each solve: cvode.hpp). Kept as they are, not as reciprocals,
+  // so a product is the same to the last bit as one working them out itself.
+  void jacobian_times_setup(double t, std::span<const double> y) override;
+  void jacobian_times(double t, std::span<const double> y, std::span<const double> v,
+                      std::span<double> jv) override;
+  void jacobian_diagonal(double t, std::span<const double> y, std::span<double> diagonal) override;
+  void error_weights(std::span<const double> y, std::span<double> weights) override;
+
+ private:
+  // m c_p(T) of cell i, J/K. (The Jacobian leaves out the change of c_p with T: Newton's matrix need not
+  // be exact.)
+  double heat_capacity(std::size_t i, double t) const { return mass_kg_[i] * material_.specific_heat_at(t); }
+
+  // d(loss)/dT of cell i at temperature t, W/K.
+  double loss_derivative(std::size_t i, double t) const {
+    const double tk = t + kKelvinOffset;
+    return exposed_m2_[i] * (h_[i] + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
+  }
+
+  // The contacts of `mesh` as neighbour lists (first_, nb_*), each sorted by neighbour.
+  void list_neighbours(const ThermalMesh& mesh, const Material& material);
+  // The lumped cells' contacts (see lump): the members' lists renumbered by `to` and merged per neighbour,
+  // into the neighbour lists of the m cells afterwards.
+  void merge_neighbours(std::span<const std::uint32_t> to, std::size_t m, std::vector<std::size_t>& first,
+                        std::vector<std::uint32_t>& nb_cell, std::vector<double>& nb_g,
+                        std::vector<double>& nb_area) const;
+  void find_born_end(std::size_t i);
+
+  // The end of this rank's born cells: [lo_, owned_born()).
+  std::size_t owned_born() const { return std::clamp(born_, lo_, hi_); }
+
+  // The blocks of the ranks: rank r integrates cells [bounds_[r], bounds_[r + 1]). Between two rebuilds of
+  // the integrator the born cells grow from born_ towards cap_, so the blocks share out the cells born on
+  // average over that time, (born_ + cap_) / 2, and the last block takes the rest. With several ranks, also
+  // the halo: which of its cells each rank sends to which, and which it receives.
+  void partition();
+  void partition_halo(std::size_t ranks, std::size_t me);
+
+  // Values of a vector by cell for this rank's cells and its halo: `local` itself on one rank; else `all`,
+  // its block copied in and the halo brought from the other ranks.
+  const double* with_halo(std::span<const double> local, std::vector<double>& all) const;
+
+  std::size_t n_;
+  std::vector<double> mass_kg_;
+  Material material_;
+  std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
+  std::vector<double> table_W_K_;   // bed contact conductance
+  std::vector<std::size_t> first_;
+  // Neighbours of cell i at [first_[i], first_[i + 1]), by index: who, the conductance, the contact area.
+  std::vector<std::uint32_t> nb_cell_;
+  std::vector<double> nb_g_;
+  std::vector<double> nb_area_m2_;
+  // Per cell: the end of its born neighbours, [first_[i], born_end_[i]) (kept for the born cells and their
+  // neighbours at every birth), so the integrator's loops need not test each neighbour.
+  std::vector<std::size_t> born_end_;
+  std::vector<double> born_g_;        // and the sum of their conductances, W/K
+  mutable std::vector<double> loss_;  // per cell, scratch of rhs and jacobian_times
+  // Per cell of this rank, at the y of the linear solve under way (jacobian_times_setup).
+  std::vector<double> jt_capacity_, jt_loss_derivative_;
+  std::size_t born_ = 0;
+  std::size_t cap_ = 0;
+  // Across ranks (null on one): this rank's cells [lo_, hi_), every rank's block (bounds_) and part of the
+  // state (part_counts_: its cells and its share of Q), the halo, and scratch.
+  Communicator* comm_ = nullptr;
+  std::size_t lo_ = 0, hi_ = 0;
+  std::vector<std::size_t> bounds_;
+  std::vector<int> part_counts_, send_counts_, recv_counts_;
+  std::vector<std::uint32_t> send_cells_, recv_cells_;
+  mutable std::vector<double> send_buffer_, recv_buffer_, halo_y_, halo_v_, gathered_;
+  std::vector<double> h_;  // convection coefficient at the cell's height, W/m²K
+  double deposition_c_, ambient_c_, ambient_k4_, bed_c_, eps_sigma_;
+  double energy_in_J_ = 0.0;
+  double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
+};
+
+}  // namespace beadtwin::thermal

@@ -13,7 +13,7 @@ frames="${2:-5}"
 out="${3:-}"
 build_bench "$build" render_bench
 write_hull_mould
-for scenario in "$work/hull-mould.yaml" "$root/scenarios/default.yaml"; do
+for scenario in "$work/hull-mould.yaml" "$root/scenarios/data/default.yaml"; do
   name="$(basename "$scenario" .yaml)"
   echo "== $name"
   if [ -n "$out" ]; then

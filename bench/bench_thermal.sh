@@ -12,7 +12,7 @@ build="${1:-$root/build}"
 runs="${2:-3}"
 build_bench "$build" thermal_bench
 write_hull_mould
-for scenario in "$work/hull-mould.yaml" "$root/scenarios/default.yaml"; do
+for scenario in "$work/hull-mould.yaml" "$root/scenarios/data/default.yaml"; do
   : > "$work/runs"
   for _ in $(seq "$runs"); do
     /usr/bin/time -f "%M" -o "$work/time.txt" "$build/bench/thermal_bench" "$scenario" > "$work/out.txt"

@@ -26,8 +26,8 @@
 #include "bench/bench_common.hpp"
 #include "render/render.hpp"
 #include "render/surface.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "sim/deposit_files.hpp"
 

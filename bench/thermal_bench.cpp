@@ -25,8 +25,8 @@
 #endif
 
 #include "bench/bench_common.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"

@@ -17,7 +17,7 @@ build_bench "$build" thermal_ranks_bench
 bin="$build/bench/thermal_ranks_bench"
 if [ -z "${scenarios[0]}" ]; then
   write_hull_mould
-  scenarios=("$root/scenarios/default.yaml" "$work/hull-mould.yaml")
+  scenarios=("$root/scenarios/data/default.yaml" "$work/hull-mould.yaml")
 fi
 mpirun=(mpirun --allow-run-as-root --oversubscribe --bind-to none)
 

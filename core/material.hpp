@@ -1,5 +1,6 @@
 // Material and machine data as the physics reads them: typed, in internal units, already
-// validated. The scenario loader fills them from scenarios/materials/*.yaml and scenarios/machines/*.yaml.
+// validated. The scenario loader fills them from scenarios/data/materials/*.yaml and
+// scenarios/data/machines/*.yaml.
 #pragma once
 
 #include <string>

@@ -1,13 +1,13 @@
 // Reports: report.json for machines, report.html for people, junit.xml for CI systems and
 // summary.md for a pull-request comment. All written atomically. Each format has its own file
 // (report_json.cpp, report_html.cpp, report_junit.cpp, report_summary.cpp); the metrics they show are
-// declared in scenarios/metrics.hpp.
+// declared in scenarios/input/metrics.hpp.
 #pragma once
 
 #include <filesystem>
 #include <string>
 
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 
 namespace beadtwin::scenarios {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 #include "scenarios/report_text.hpp"
 
 namespace beadtwin::scenarios {

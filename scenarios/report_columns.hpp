@@ -1,13 +1,13 @@
 // The variants side by side, as report.html's variants table and summary.md show them: the columns, each a
-// declared metric (scenarios/metrics.hpp) with its heading and how its value is written, and each cell's
-// difference from the baseline variant's, better or worse as the metric's declaration says.
+// declared metric (scenarios/input/metrics.hpp) with its heading and how its value is written, and each
+// cell's difference from the baseline variant's, better or worse as the metric's declaration says.
 #pragma once
 
 #include <span>
 #include <string>
 #include <string_view>
 
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 
 namespace beadtwin::scenarios {
 

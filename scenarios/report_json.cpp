@@ -5,7 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/report_parameters.hpp"
 #include "scenarios/report_text.hpp"

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/param.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 namespace beadtwin::scenarios {
 

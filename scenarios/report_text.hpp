@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 
 namespace beadtwin::scenarios {
 

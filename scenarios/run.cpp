@@ -18,7 +18,7 @@
 #include "core/memory.hpp"
 #include "gcode/writer.hpp"
 #include "render/surface.hpp"
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 #include "scenarios/pictures.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/variant_run.hpp"

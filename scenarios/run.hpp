@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 #include "sim/cad_compare.hpp"
 #include "thermal/communicator.hpp"
 

@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/result.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/sweep_spec.hpp"
+#include "scenarios/input/result.hpp"
+#include "scenarios/input/scenario.hpp"
+#include "scenarios/input/sweep_spec.hpp"
 
 namespace beadtwin::scenarios {
 

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

@@ -6,7 +6,7 @@
 #include <limits>
 #include <vector>
 
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "sim/cad_compare.hpp"
 
 namespace beadtwin::scenarios {

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The shipped scenarios' reports against their references: a change meant to keep behaviour keeps them.
 
-Runs `beadtwin run` on every shipped scenario (scenarios/*.yaml, the built-in default among them) and
-`beadtwin check` on every shipped program (scenarios/programs/), and compares each report.json with its
+Runs `beadtwin run` on every shipped scenario (scenarios/data/*.yaml, the built-in default among them) and
+`beadtwin check` on every shipped program (scenarios/data/programs/), and compares each report.json with its
 reference in tests/data/reports/, leaving out what changes from run to run: the wall and stage times and
 the scenario file's path, with the checkout's own path written as <repo>. The references are regenerated only in a commit that says why they changed.
 
@@ -30,9 +30,9 @@ VOLATILE = {"wall_time_s", "stage_seconds", "scenario_file"}
 def jobs():
     """(name, beadtwin arguments) for every shipped scenario and program."""
     out = []
-    for yaml in sorted((ROOT / "scenarios").glob("*.yaml")):
+    for yaml in sorted((ROOT / "scenarios" / "data").glob("*.yaml")):
         out.append((yaml.stem, ["run", str(yaml)]))
-    for program in sorted((ROOT / "scenarios" / "programs").iterdir()):
+    for program in sorted((ROOT / "scenarios" / "data" / "programs").iterdir()):
         # The Fanuc macro programs are seed 002's, for its filament machining centre (its scenario says so).
         machine = ["--machine", "tma-al-550-filament", "--material", "pla"] if program.suffix == ".nc" else []
         out.append(("check-" + program.name, ["check", str(program), *machine]))

@@ -29,7 +29,7 @@
 #include "core/error.hpp"
 #include "core/hash.hpp"
 #include "core/memory.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/sweep.hpp"
 #include "tools/mpi_loader.hpp"
 #include "tools/mpi_module.hpp"

@@ -13,7 +13,7 @@
 #include <cstdlib>
 
 #include "core/error.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 using namespace beadtwin;
 

@@ -1,5 +1,6 @@
-// libFuzzer target: what a sweep reads from its user (scenarios/sweep_spec.hpp): a combinations file (YAML
-// through yaml-cpp, then lists of setting maps), and the same bytes as a --set KEY=V1,V2,... option and as a
+// libFuzzer target: what a sweep reads from its user (scenarios/input/sweep_spec.hpp): a combinations file
+// (YAML through yaml-cpp, then lists of setting maps), and the same bytes as a --set KEY=V1,V2,... option and
+// as a
 // --sort metric. Any bytes give combinations or an InputError, nothing else.
 #include <cstddef>
 #include <cstdint>
@@ -8,7 +9,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "scenarios/sweep_spec.hpp"
+#include "scenarios/input/sweep_spec.hpp"
 
 using namespace beadtwin;
 

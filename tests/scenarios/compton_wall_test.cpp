@@ -1,6 +1,6 @@
-// The thin wall of Compton et al. 2017 (scenarios/compton-wall.yaml): the shipped scenario holds the paper's
-// set-up and runs; and the 3-D thermal model of the wall, printed and deposited as a run does it, agrees with
-// the 1-D stacked-layer model (thermal/wall_1d.hpp) where the two make the same assumptions.
+// The thin wall of Compton et al. 2017 (scenarios/data/compton-wall.yaml): the shipped scenario holds the
+// paper's set-up and runs; and the 3-D thermal model of the wall, printed and deposited as a run does it,
+// agrees with the 1-D stacked-layer model (thermal/wall_1d.hpp) where the two make the same assumptions.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
-#include "scenarios/embedded.hpp"
+#include "scenarios/input/embedded.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"

@@ -1,4 +1,4 @@
-// The parameter declarations (core/param.hpp; scenarios/params.hpp, slicer/section_params.hpp) held
+// The parameter declarations (core/param.hpp; scenarios/input/params.hpp, slicer/section_params.hpp) held
 // against the code that uses them: every declared key is read into the member it names, every default is
 // the struct's own, every range is enforced at its key, and every machine code a scenario sets reaches the
 // program writer and reader.
@@ -13,11 +13,11 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "scenarios/params.hpp"
-#include "scenarios/yaml_reader.hpp"
 #include "gcode/program_reader.hpp"
 #include "gcode/reader_options.hpp"
 #include "gcode/writer.hpp"
+#include "scenarios/input/params.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 #include "slicer/section_params.hpp"
 
 namespace beadtwin::scenarios {

@@ -1,8 +1,8 @@
-// The shipped LSAM hull mould (scenarios/lsam-hull-mould.yaml) end to end, at a test's cost: small pictures
-// and the wall cut to its first 110 mm (21 wall layers and one of stock on top, on the 8 of the floor),
-// where the two parameter sets already part. Both variants report, and they differ as the scenario says:
-// the one-bead set lays one bead as wide as the wall where the two-bead set lays two, with the same material
-// per layer, in half the layer time, and lands its wall on a substrate above the support limit.
+// The shipped LSAM hull mould (scenarios/data/lsam-hull-mould.yaml) end to end, at a test's cost: small
+// pictures and the wall cut to its first 110 mm (21 wall layers and one of stock on top, on the 8 of the
+// floor), where the two parameter sets already part. Both variants report, and they differ as the scenario
+// says: the one-bead set lays one bead as wide as the wall where the two-bead set lays two, with the same
+// material per layer, in half the layer time, and lands its wall on a substrate above the support limit.
 #include <cstddef>
 #include <filesystem>
 #include <stdexcept>
@@ -12,8 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/toolpath.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "tests/read_file.hpp"
 
 namespace beadtwin::scenarios {
@@ -77,10 +77,10 @@ const GateResult& gate(const VariantResult& v, const std::string& expr) {
 }
 
 TEST(LsamMould, ShippedScenarioShowsTheLayerTimeTradeOff) {
-  const Scenario sc =
-      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "lsam-hull-mould.yaml",
-                    {parse_setting("render.width=160"), parse_setting("render.height=100"),
-                     parse_setting("sections.walls.z=[40.64, 150]")});
+  const Scenario sc = load_scenario(
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" / "lsam-hull-mould.yaml",
+      {parse_setting("render.width=160"), parse_setting("render.height=100"),
+       parse_setting("sections.walls.z=[40.64, 150]")});
   ASSERT_EQ(sc.variants.size(), 2u);
   ASSERT_EQ(sc.variants[0].name, "two-bead");
   ASSERT_EQ(sc.variants[1].name, "one-bead");

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "scenarios/embedded.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/embedded.hpp"
+#include "scenarios/input/scenario.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

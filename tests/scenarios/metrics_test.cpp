@@ -1,6 +1,6 @@
-// The metric declarations (scenarios/metrics.hpp): each reads its own figure, the names are unique, the
+// The metric declarations (scenarios/input/metrics.hpp): each reads its own figure, the names are unique, the
 // gate metrics are what gates, "values" and messages know, and a metric not measured is left out.
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 
 #include <cmath>
 #include <map>
@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

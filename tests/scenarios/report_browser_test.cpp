@@ -16,8 +16,8 @@
 #include <nlohmann/json.hpp>
 
 #include "render/image.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "scenarios/sweep.hpp"
 #include "tests/chromium.hpp"
 #include "tests/scenarios/small_box.hpp"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "scenarios/metrics.hpp"
+#include "scenarios/input/metrics.hpp"
 
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"

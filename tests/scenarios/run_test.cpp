@@ -16,7 +16,7 @@
 #include "render/colormap.hpp"
 #include "render/image.hpp"
 #include "scenarios/colours.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"
@@ -531,7 +531,7 @@ TEST(Run, RelativeGateFailsTheSlowerVariant) {
 // pictures (a cutaway among them) at a small size.
 TEST(Run, ShippedDesktopScenarioFromPrusaSlicer) {
   const Scenario sc =
-      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "desktop-prusa.yaml",
+      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" / "desktop-prusa.yaml",
                     {parse_setting("render.width=320"), parse_setting("render.height=200")});
   RunOptions o;
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_desktop";
@@ -550,7 +550,7 @@ TEST(Run, ShippedDesktopScenarioFromPrusaSlicer) {
 // The shipped scenarios not run by a test of their own run as shipped, with small pictures: every variant
 // reports, with its pictures, and the report parses.
 void expect_shipped_scenario_runs(const std::string& file) {
-  const Scenario sc = load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / file,
+  const Scenario sc = load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" / file,
                                     {parse_setting("render.width=160"), parse_setting("render.height=100")});
   RunOptions o;
   o.out_dir = std::filesystem::temp_directory_path() / ("beadtwin_shipped_" + sc.name);

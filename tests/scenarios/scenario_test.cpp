@@ -1,4 +1,4 @@
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -256,7 +256,8 @@ TEST(Scenario, UnknownOutputFileTypesNameTheKeyAndTheChoices) {
   };
   const InputError skin = load_error(with_output("{skin: obj}"));
   EXPECT_EQ(skin.key(), "output.skin");
-  EXPECT_NE(std::string(skin.what()).find("expected one of ply, stl, none but found 'obj'"), std::string::npos)
+  EXPECT_NE(std::string(skin.what()).find("expected one of ply, stl, none but found 'obj'"),
+            std::string::npos)
       << skin.what();
   const InputError fields = load_error(with_output("{fields: vti}"));
   EXPECT_EQ(fields.key(), "output.fields");
@@ -555,7 +556,7 @@ TEST(Scenario, MeshPartIsReadOnceWithItsRepairsReported) {
 }  // namespace
 }  // namespace beadtwin::scenarios
 
-#include "scenarios/embedded.hpp"
+#include "scenarios/input/embedded.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -567,7 +568,8 @@ TEST(Scenario, EveryShippedScenarioLoads) {
     if (path.find('/') != std::string::npos) continue;  // machines/, materials/
     SCOPED_TRACE(path);
     // From the source tree, where the files a scenario names (meshes, programs) lie beside it.
-    const std::filesystem::path file = std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / path;
+    const std::filesystem::path file =
+        std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" / path;
     EXPECT_EQ(read_file(file), text);  // the embedded copy is the file
     const Scenario sc = load_scenario(file);
     EXPECT_FALSE(sc.variants.empty());

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

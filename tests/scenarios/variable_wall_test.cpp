@@ -14,8 +14,8 @@
 #include "core/error.hpp"
 #include "core/flow.hpp"
 #include "core/units.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
-#include "scenarios/scenario.hpp"
 #include "sim/deposit.hpp"
 
 namespace beadtwin::scenarios {
@@ -105,12 +105,12 @@ struct Wall {
 // pixel, no skin, and a coarse thermal model without the cooldown keep it to a few seconds: the deposit,
 // which this test measures, is the scenario's own.
 std::map<std::string, Wall> run_and_measure(const std::filesystem::path& dir, RunResult& result) {
-  const Scenario sc =
-      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "variable-wall-cylinder.yaml",
-                    {parse_setting("render.width=160"), parse_setting("render.height=100"),
-                     parse_setting("render.samples=1"), parse_setting("output.skin=none"),
-                     parse_setting("thermal.cells_across=1"), parse_setting("thermal.cell_length=20 mm"),
-                     parse_setting("thermal.cooldown=0")});
+  const Scenario sc = load_scenario(
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" / "variable-wall-cylinder.yaml",
+      {parse_setting("render.width=160"), parse_setting("render.height=100"),
+       parse_setting("render.samples=1"), parse_setting("output.skin=none"),
+       parse_setting("thermal.cells_across=1"), parse_setting("thermal.cell_length=20 mm"),
+       parse_setting("thermal.cooldown=0")});
   RunOptions o;
   o.out_dir = dir;
   std::filesystem::remove_all(o.out_dir);
@@ -166,8 +166,8 @@ TEST(VariableWall, WallFollowsTheFlowBalanceOfSeed002) {
 // The machine file holds the paper's head: 0.8 mm nozzle, 1.75 mm filament fed at 2.31 mm/s (Table 1),
 // M23/M24 feed and M27/M28 heating, no roller.
 TEST(VariableWall, MachineHoldsThePapersHead) {
-  const Scenario sc =
-      load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "variable-wall-cylinder.yaml");
+  const Scenario sc = load_scenario(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios" / "data" /
+                                    "variable-wall-cylinder.yaml");
   const Machine& m = sc.variants.at(0).machine;
   EXPECT_EQ(m.extruder.kind, ExtruderKind::kFilament);
   EXPECT_DOUBLE_EQ(m.extruder.filament_diameter_mm, 1.75);

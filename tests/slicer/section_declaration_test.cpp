@@ -30,8 +30,8 @@ SectionParams base_section(const Param<SectionParams>& p) {
   return s;
 }
 
-// What the loader requires of the keys beside the one set (scenarios/section_block.cpp): a bead at least
-// as wide as it is thick, a maximum overlap at least the overlap, the section two layers high.
+// What the loader requires of the keys beside the one set (scenarios/input/section_block.cpp): a bead at
+// least as wide as it is thick, a maximum overlap at least the overlap, the section two layers high.
 void keep_consistent(SectionParams& s, std::string_view key) {
   if (key == "bead_width")
     s.layer_height_mm = std::min(s.layer_height_mm, s.bead_width_mm);

@@ -277,8 +277,9 @@ TEST(Cli, ScenarioInTheWorkingDirectoryFindsItsMachines) {
   const auto dir = std::filesystem::temp_directory_path() / "bt_cli_cwd";
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir / "machines");
-  std::filesystem::copy_file(std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios/machines/lsam-ph15.yaml",
-                             dir / "machines/my-gantry.yaml");
+  std::filesystem::copy_file(
+      std::filesystem::path(BEADTWIN_SOURCE_DIR) / "scenarios/data/machines/lsam-ph15.yaml",
+      dir / "machines/my-gantry.yaml");
   std::ofstream(dir / "s.yaml") << "name: cwd\nunits: {length: mm}\nmachine: my-gantry\nmaterial: cf-abs-20\n"
                                    "part:\n  box: {size: [200, 150, 10]}\nsections:\n"
                                    "  - {name: all, z: part, layer_height: 5, bead_width: 20}\n";

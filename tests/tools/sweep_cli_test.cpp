@@ -152,7 +152,8 @@ TEST(Sweep, AnEditedMaterialFileBesideTheScenarioStartsItAfresh) {
   const fs::path dir = fs::temp_directory_path() / "bt_sweep_inputs";
   fs::remove_all(dir);
   fs::create_directories(dir / "materials");
-  const std::string shipped = read_file(fs::path(BEADTWIN_SOURCE_DIR) / "scenarios/materials/cf-abs-20.yaml");
+  const std::string shipped =
+      read_file(fs::path(BEADTWIN_SOURCE_DIR) / "scenarios/data/materials/cf-abs-20.yaml");
   std::ofstream(dir / "materials/mine.yaml") << shipped;
   std::string text = read_file(tiny_scenario());
   text.replace(text.find("material: cf-abs-20"), 19, "material: mine");

@@ -1,4 +1,4 @@
-#include "scenarios/yaml_reader.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 
 #include <algorithm>
 #include <cmath>

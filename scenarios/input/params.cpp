@@ -1,4 +1,4 @@
-#include "scenarios/params.hpp"
+#include "scenarios/input/params.hpp"
 
 #include <cmath>
 

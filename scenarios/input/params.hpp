@@ -9,12 +9,12 @@
 
 #include "core/material.hpp"
 #include "core/param.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 namespace beadtwin::scenarios {
 
 // The keys of each block of a scenario and of the machine and material files. Declarations without a
-// member are read by their block's own code (scenarios/scenario.cpp), which says how.
+// member are read by their block's own code (scenarios/input/scenario.cpp), which says how.
 std::span<const Param<Scenario>> scenario_params();  // the top level of a scenario file
 std::span<const Param<Machine>> machine_params();
 std::span<const Param<Material>> material_params();

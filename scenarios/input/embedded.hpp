@@ -1,5 +1,6 @@
 // Files shipped with beadtwin and embedded in the binary at build time: the default scenario and the
-// machine and material library (scenarios/*.yaml, scenarios/machines/*.yaml, scenarios/materials/*.yaml).
+// machine and material library (scenarios/data/*.yaml, scenarios/data/machines/*.yaml,
+// scenarios/data/materials/*.yaml).
 #pragma once
 
 #include <map>

@@ -2,7 +2,7 @@
 // them in a scenario).
 #include <limits>
 
-#include "scenarios/params.hpp"
+#include "scenarios/input/params.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "gcode/program_reader.hpp"
 #include "gcode/reader_options.hpp"
-#include "scenarios/embedded.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/scenario_blocks.hpp"
-#include "scenarios/yaml_reader.hpp"
+#include "scenarios/input/embedded.hpp"
+#include "scenarios/input/scenario.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 
 namespace beadtwin::scenarios {
 

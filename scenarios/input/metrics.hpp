@@ -1,8 +1,8 @@
-// The metrics a run measures, each declared once (scenarios/metrics.cpp): its dotted name, its unit, which
-// way is better, whether gates may use it, how it is read from the run's figures (scenarios/result.hpp),
-// and what it means. Everything that names a metric reads this list: Metrics::get and Metrics::values,
-// report.json's "metrics" object and "values", the reports' tables, the sweep's table, the gate parser's
-// list of known metrics, and `beadtwin metrics` (docs/metrics.md).
+// The metrics a run measures, each declared once (scenarios/input/metrics.cpp): its dotted name, its unit,
+// which way is better, whether gates may use it, how it is read from the run's figures
+// (scenarios/input/result.hpp), and what it means. Everything that names a metric reads this list:
+// Metrics::get and Metrics::values, report.json's "metrics" object and "values", the reports' tables, the
+// sweep's table, the gate parser's list of known metrics, and `beadtwin metrics` (docs/metrics.md).
 //
 // A part-wide metric is named as report.json nests it ("interfaces.too_cold_fraction" is
 // metrics.interfaces.too_cold_fraction there); a section's figure is named sections.NAME.FIGURE by gates and

@@ -3,8 +3,8 @@
 
 #include <fmt/format.h>
 
-#include "scenarios/params.hpp"
-#include "scenarios/scenario_blocks.hpp"
+#include "scenarios/input/params.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

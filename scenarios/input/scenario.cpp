@@ -1,4 +1,4 @@
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -8,10 +8,10 @@
 #include "core/hash.hpp"
 #include "gcode/program_reader.hpp"
 #include "gcode/reader_options.hpp"
-#include "scenarios/embedded.hpp"
-#include "scenarios/params.hpp"
-#include "scenarios/scenario_blocks.hpp"
-#include "scenarios/yaml_reader.hpp"
+#include "scenarios/input/embedded.hpp"
+#include "scenarios/input/params.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

@@ -1,5 +1,5 @@
-// The metrics, each declared once (scenarios/metrics.hpp), and what reads them by name.
-#include "scenarios/metrics.hpp"
+// The metrics, each declared once (scenarios/input/metrics.hpp), and what reads them by name.
+#include "scenarios/input/metrics.hpp"
 
 #include <algorithm>
 #include <string_view>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "scenarios/result.hpp"
+#include "scenarios/input/result.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

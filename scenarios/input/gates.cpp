@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "scenarios/metrics.hpp"
-#include "scenarios/scenario.hpp"
-#include "scenarios/scenario_blocks.hpp"
+#include "scenarios/input/metrics.hpp"
+#include "scenarios/input/scenario.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
 
 namespace beadtwin::scenarios {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 
 namespace beadtwin::scenarios {
 

@@ -9,9 +9,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
-#include "scenarios/metrics.hpp"
-#include "scenarios/sweep_spec.hpp"
-#include "scenarios/yaml_reader.hpp"
+#include "scenarios/input/metrics.hpp"
+#include "scenarios/input/sweep_spec.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 
 namespace beadtwin::scenarios {
 namespace {

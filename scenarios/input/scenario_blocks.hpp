@@ -1,5 +1,5 @@
 // Readers of a scenario's blocks, internal to the scenario input library. Each reads its block through the
-// block's declarations (scenarios/params.hpp, slicer/section_params.hpp), then checks what no single
+// block's declarations (scenarios/input/params.hpp, slicer/section_params.hpp), then checks what no single
 // declaration can state (keys that depend on one another) and refuses keys nobody declared.
 #pragma once
 
@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "scenarios/scenario.hpp"
-#include "scenarios/yaml_reader.hpp"
+#include "scenarios/input/scenario.hpp"
+#include "scenarios/input/yaml_reader.hpp"
 
 namespace beadtwin::scenarios {
 

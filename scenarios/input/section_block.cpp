@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/bead.hpp"
-#include "scenarios/scenario_blocks.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
 #include "slicer/section_params.hpp"
 
 namespace beadtwin::scenarios {

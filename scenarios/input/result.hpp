@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/stages.hpp"
-#include "scenarios/scenario.hpp"
+#include "scenarios/input/scenario.hpp"
 #include "sim/deposit.hpp"
 #include "thermal/fusion.hpp"
 
@@ -104,7 +104,7 @@ struct Metrics {
   // Per section, in the toolpath's order.
   std::vector<SectionRow> sections;
 
-  // The value of a declared metric (scenarios/metrics.hpp) by its dotted name, a section's figure as
+  // The value of a declared metric (scenarios/input/metrics.hpp) by its dotted name, a section's figure as
   // sections.NAME.FIGURE; nullopt when not measured (or no section has that name). Throws InternalError on
   // a name not declared.
   std::optional<double> get(const std::string& name) const;

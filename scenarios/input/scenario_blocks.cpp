@@ -1,11 +1,11 @@
-#include "scenarios/scenario_blocks.hpp"
+#include "scenarios/input/scenario_blocks.hpp"
 
 #include <cmath>
 #include <limits>
 
 #include <fmt/format.h>
 
-#include "scenarios/params.hpp"
+#include "scenarios/input/params.hpp"
 
 namespace beadtwin::scenarios {
 

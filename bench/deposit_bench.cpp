@@ -35,6 +35,7 @@
 #include "core/units.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/variant_stages.hpp"
 #include "sim/bead_section.hpp"
 #include "sim/deposit.hpp"
 #include "sim/skin.hpp"

@@ -28,6 +28,7 @@
 #include "render/surface.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/variant_stages.hpp"
 #include "sim/deposit.hpp"
 #include "sim/deposit_files.hpp"
 

@@ -27,6 +27,7 @@
 #include "bench/bench_common.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/variant_stages.hpp"
 #include "sim/deposit.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"

@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -26,29 +28,46 @@ class Stages {
   template <class F>
   auto run(const std::string& name, F&& work) {
     if (on_start_) on_start_(name);
-    const auto t0 = std::chrono::steady_clock::now();
-    struct Finish {
-      Stages* self;
-      const std::string* name;
-      std::chrono::steady_clock::time_point t0;
-      ~Finish() {
-        self->finish(*name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      }
-    } finish{this, &name, t0};
+    const Timer timer{this, &name, &Stages::finish};
     return work();
   }
 
   // Records a stage run elsewhere (before this object existed) as if run here.
   void record(const std::string& name, double seconds) { finish(name, seconds); }
 
+  // Runs `work` as a go of the stage `name` on any thread, without a word (unless `announce`: then the
+  // start is heard as run() does): its time adds up with the stage's other goes until record_aside(name)
+  // records them here, so the stages keep one order whichever thread ran them.
+  template <class F>
+  auto run_aside(const std::string& name, F&& work, bool announce = false) {
+    if (announce && on_start_) on_start_(name);
+    const Timer timer{this, &name, &Stages::add_aside};
+    return work();
+  }
+  // Records the stage `name` run aside, its goes added up; nothing when it never ran.
+  void record_aside(const std::string& name);
+
   const std::vector<StageTime>& times() const { return times_; }
 
  private:
+  // Hands the seconds from its making to its end (a stage's work done or thrown) to `done`.
+  struct Timer {
+    Stages* self;
+    const std::string* name;
+    void (Stages::*done)(const std::string&, double);
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    ~Timer() {
+      (self->*done)(*name, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+  };
   void finish(const std::string& name, double seconds);
+  void add_aside(const std::string& name, double seconds);
 
   std::function<void(const std::string&)> log_;
   std::function<void(const std::string&)> on_start_;
   std::vector<StageTime> times_;
+  std::mutex aside_mutex_;
+  std::map<std::string, double> aside_;  // seconds of the stages run aside, not yet recorded
 };
 
 }  // namespace beadtwin

@@ -10,6 +10,7 @@
 
 #include "render/colormap.hpp"
 #include "scenarios/colours.hpp"
+#include "scenarios/gate_results.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/report_columns.hpp"
 #include "scenarios/report_text.hpp"

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "scenarios/gate_results.hpp"
 #include "scenarios/report.hpp"
 #include "scenarios/report_columns.hpp"
 #include "scenarios/report_text.hpp"

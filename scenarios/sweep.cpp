@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "scenarios/gate_results.hpp"
 #include "scenarios/run.hpp"
 
 namespace beadtwin::scenarios {

@@ -19,6 +19,7 @@
 #include "scenarios/input/embedded.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/variant_stages.hpp"
 #include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"

@@ -14,6 +14,7 @@
 #include "core/toolpath.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/run.hpp"
+#include "scenarios/variant_stages.hpp"
 #include "tests/read_file.hpp"
 
 namespace beadtwin::scenarios {

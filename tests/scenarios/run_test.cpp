@@ -1,5 +1,7 @@
 // The whole pipeline on a small scenario: every stage runs for real and the reports hold the documented keys.
 #include "scenarios/run.hpp"
+#include "scenarios/run_memory.hpp"
+#include "scenarios/variant_stages.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "core/units.hpp"
+#include "scenarios/gate_results.hpp"
 #include "scenarios/run.hpp"
 #include "slicer/polygons.hpp"
 #include "tests/read_file.hpp"

@@ -268,6 +268,143 @@ int cmd_print(const std::string& text) {
   return kExitPass;
 }
 
+// Help texts that several subcommands share.
+constexpr const char* kThreadsHelp =
+    "Use at most N threads (default: every core); results do not depend on it";
+constexpr const char* kGateHelp =
+    "A gate over the report's metrics (beadtwin metrics lists them), absolute or relative to the baseline "
+    "variant: 'porosity < 0.03', 'print_time_s <= baseline * 1.05'; repeat for several";
+constexpr const char* kGatesHelp =
+    "A YAML file of gates (a list, or a scenario's gates:), added to the others";
+constexpr const char* kSetHelp =
+    "Set a parameter for every variant, after the variants' own settings: KEY=VALUE, KEY as a variant's "
+    "set: takes it (sections.walls.speed=1.2in/s, render.width=1920); repeat for several";
+
+// What the command line says, for whichever subcommand it names.
+struct CommandLine {
+  std::string scenario_path, out_dir = "beadtwin-out", variant, program_out;
+  std::vector<std::string> variants, sets;
+  ExtraGates gates;
+  bool quiet = false;
+  int threads = 0;
+  beadtwin::scenarios::ProgramCheck check;
+  std::string check_program, check_baseline, check_scenario;
+  beadtwin::tools::SweepCommand sweep;
+  CLI::App *run = nullptr, *slice = nullptr, *check_cmd = nullptr, *read_cmd = nullptr, *sweep_cmd = nullptr;
+  std::vector<TableCommand> tables;
+};
+
+// beadtwin run and beadtwin slice.
+void add_run_and_slice(CLI::App& app, CommandLine& c) {
+  c.run =
+      app.add_subcommand("run", "Run the whole pipeline on a scenario and write reports, images, programs.");
+  c.run->add_option("scenario", c.scenario_path,
+                    "Scenario YAML file (default: the built-in LSAM open-box scenario)");
+  c.run
+      ->add_option("-o,--out", c.out_dir,
+                   "Output directory (report.json, report.html, junit.xml, summary.md, per-variant files)")
+      ->capture_default_str();
+  c.run->add_option("--variant", c.variants, "Run only this variant (repeat for several)");
+  c.run->add_option("--set", c.sets, kSetHelp);
+  c.run->add_option("--gate", c.gates.exprs, kGateHelp);
+  c.run->add_option("--gates", c.gates.files, kGatesHelp);
+  c.run->add_flag("-q,--quiet", c.quiet, "Print only the verdict and the report path");
+  c.run->add_option("--threads", c.threads, kThreadsHelp)->check(CLI::Range(1, 1024));
+
+  c.slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
+  c.slice->add_option("scenario", c.scenario_path, "Scenario YAML file (default: the built-in scenario)");
+  c.slice->add_option("--variant", c.variant, "Variant to slice (default: the first)");
+  c.slice->add_option("--set", c.sets, kSetHelp);
+  c.slice->add_option("-o,--out", c.program_out, "Print program file to write, or - for standard output")
+      ->required();
+}
+
+// beadtwin check and beadtwin read.
+void add_check_and_read(CLI::App& app, CommandLine& c) {
+  c.check_cmd = app.add_subcommand(
+      "check", "Simulate a print program from any slicer (or a Fanuc macro program) as it is written.");
+  c.check_cmd->add_option("program", c.check_program, "G-code program to simulate")->required();
+  c.check_cmd->add_option(
+      "--machine", c.check.machine,
+      "Machine by name (machines/NAME.yaml or shipped); default: inferred from the program");
+  c.check_cmd->add_option("--material", c.check.material, "Material by name; default: cf-abs-20");
+  c.check_cmd->add_option("--scenario", c.check_scenario,
+                          "Take machine, material, units, output, thermal and gates from this scenario");
+  c.check_cmd->add_option("--baseline", c.check_baseline,
+                          "An older program: simulated beside this one, differences in the report");
+  c.check_cmd->add_option("--set", c.sets, kSetHelp);
+  c.check_cmd->add_option("--gate", c.gates.exprs, kGateHelp);
+  c.check_cmd->add_option("--gates", c.gates.files, kGatesHelp);
+  c.check_cmd->add_option("-o,--out", c.out_dir, "Output directory")->capture_default_str();
+  c.check_cmd->add_flag("-q,--quiet", c.quiet, "Print only the verdict and the report path");
+  c.check_cmd->add_option("--threads", c.threads, kThreadsHelp)->check(CLI::Range(1, 1024));
+
+  c.read_cmd = app.add_subcommand(
+      "read", "Read a print program and print what beadtwin sees in it (layers, moves, material, time).");
+  c.read_cmd->add_option("program", c.check_program, "G-code program to read")->required();
+  c.read_cmd->add_option("--machine", c.check.machine, "Machine by name; default: inferred from the program");
+}
+
+// beadtwin sweep.
+void add_sweep(CLI::App& app, CommandLine& c) {
+  c.sweep_cmd = app.add_subcommand(
+      "sweep",
+      "Run a scenario's variant over a grid of parameter values and report them side by side: a table "
+      "sorted by a metric, the Pareto front of two, the gates applied to each. Under mpirun, rank 0 hands "
+      "the variants out to the other ranks.");
+  c.sweep_cmd->add_option("scenario", c.sweep.scenario,
+                          "Scenario YAML file (default: the built-in scenario)");
+  c.sweep_cmd->add_option("--variant", c.sweep.base_variant,
+                          "The scenario's variant the settings change (default: the first)");
+  c.sweep_cmd->add_option(
+      "--set", c.sweep.sets,
+      "KEY=V1,V2,...: the values of one parameter; every combination of the --set options is a variant "
+      "(KEY as a variant's set: takes it; commas inside [] or {} do not split); repeat for each parameter");
+  c.sweep_cmd->add_option("--combinations", c.sweep.combinations,
+                          "A YAML file listing combinations, each a map {KEY: VALUE, ...}; with --set, each "
+                          "is crossed with the --set grid");
+  c.sweep_cmd->add_option("--sort", c.sweep.sort,
+                          "Sort the table by this metric, METRIC or METRIC:max when larger is better "
+                          "(default: the first --pareto metric, else print_time_s)");
+  c.sweep_cmd->add_option("--pareto", c.sweep.pareto,
+                          "Plot the Pareto front of two metrics X,Y (each METRIC or METRIC:max), such as "
+                          "print_time_s,interfaces.too_cold_fraction");
+  c.sweep_cmd->add_option("--gate", c.sweep.gate_exprs, kGateHelp);
+  c.sweep_cmd->add_option("--gates", c.sweep.gate_files, kGatesHelp);
+  c.sweep_cmd
+      ->add_option("-o,--out", c.sweep.out_dir,
+                   "Output directory: sweep.html, sweep.json, summary.md, junit.xml, and each variant's "
+                   "run in variants/NAME/; a sweep started again here keeps the variants that ran")
+      ->capture_default_str();
+  c.sweep_cmd
+      ->add_option("-j,--jobs", c.sweep.jobs,
+                   "Variants at once on this machine (default 1; under mpirun each rank runs one)")
+      ->check(CLI::Range(1, 1024));
+  c.sweep_cmd
+      ->add_option("--threads", c.sweep.threads,
+                   "Threads for each variant (default: the cores over the variants running at once)")
+      ->check(CLI::Range(1, 1024));
+  c.sweep_cmd->add_flag("-q,--quiet", c.sweep.quiet, "Print only the verdict and the report path");
+}
+
+// Runs the subcommand the command line named.
+int dispatch(CommandLine& c) {
+  if (*c.run) return cmd_run(c.scenario_path, c.sets, c.gates, c.out_dir, c.variants, c.quiet, c.threads);
+  if (*c.slice) return cmd_slice(c.scenario_path, c.sets, c.variant, c.program_out);
+  c.check.program = c.check_program;
+  if (*c.read_cmd) return cmd_read(c.check);
+  if (*c.check_cmd) {
+    c.check.baseline = c.check_baseline;
+    c.check.scenario = c.check_scenario;
+    c.check.settings = settings_of(c.sets);
+    return cmd_check(c.check, c.gates, c.out_dir, c.quiet);
+  }
+  if (*c.sweep_cmd) return beadtwin::tools::run_sweep(c.sweep);
+  for (const TableCommand& t : c.tables)
+    if (*t.command) return cmd_print(t.markdown());
+  return kExitBadInput;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -279,106 +416,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("beadtwin ") + BEADTWIN_VERSION);
 
-  std::string scenario_path, out_dir = "beadtwin-out", variant, program_out;
-  std::vector<std::string> variants, sets;
-  ExtraGates gates;
-  bool quiet = false;
-  int threads = 0;
-  const std::string threads_help = "Use at most N threads (default: every core); results do not depend on it";
-  const std::string gate_help =
-      "A gate over the report's metrics (beadtwin metrics lists them), absolute or relative to the baseline "
-      "variant: 'porosity < 0.03', 'print_time_s <= baseline * 1.05'; repeat for several";
-  const std::string gates_help = "A YAML file of gates (a list, or a scenario's gates:), added to the others";
-  const std::string set_help =
-      "Set a parameter for every variant, after the variants' own settings: KEY=VALUE, KEY as a variant's "
-      "set: takes it (sections.walls.speed=1.2in/s, render.width=1920); repeat for several";
-
-  CLI::App* run =
-      app.add_subcommand("run", "Run the whole pipeline on a scenario and write reports, images, programs.");
-  run->add_option("scenario", scenario_path,
-                  "Scenario YAML file (default: the built-in LSAM open-box scenario)");
-  run->add_option("-o,--out", out_dir,
-                  "Output directory (report.json, report.html, junit.xml, summary.md, per-variant files)")
-      ->capture_default_str();
-  run->add_option("--variant", variants, "Run only this variant (repeat for several)");
-  run->add_option("--set", sets, set_help);
-  run->add_option("--gate", gates.exprs, gate_help);
-  run->add_option("--gates", gates.files, gates_help);
-  run->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
-  run->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
-
-  CLI::App* slice = app.add_subcommand("slice", "Slice a scenario's part and write only the print program.");
-  slice->add_option("scenario", scenario_path, "Scenario YAML file (default: the built-in scenario)");
-  slice->add_option("--variant", variant, "Variant to slice (default: the first)");
-  slice->add_option("--set", sets, set_help);
-  slice->add_option("-o,--out", program_out, "Print program file to write, or - for standard output")
-      ->required();
-
-  beadtwin::scenarios::ProgramCheck check;
-  std::string check_program, check_baseline, check_scenario;
-  CLI::App* check_cmd = app.add_subcommand(
-      "check", "Simulate a print program from any slicer (or a Fanuc macro program) as it is written.");
-  check_cmd->add_option("program", check_program, "G-code program to simulate")->required();
-  check_cmd->add_option(
-      "--machine", check.machine,
-      "Machine by name (machines/NAME.yaml or shipped); default: inferred from the program");
-  check_cmd->add_option("--material", check.material, "Material by name; default: cf-abs-20");
-  check_cmd->add_option("--scenario", check_scenario,
-                        "Take machine, material, units, output, thermal and gates from this scenario");
-  check_cmd->add_option("--baseline", check_baseline,
-                        "An older program: simulated beside this one, differences in the report");
-  check_cmd->add_option("--set", sets, set_help);
-  check_cmd->add_option("--gate", gates.exprs, gate_help);
-  check_cmd->add_option("--gates", gates.files, gates_help);
-  check_cmd->add_option("-o,--out", out_dir, "Output directory")->capture_default_str();
-  check_cmd->add_flag("-q,--quiet", quiet, "Print only the verdict and the report path");
-  check_cmd->add_option("--threads", threads, threads_help)->check(CLI::Range(1, 1024));
-
-  CLI::App* read_cmd = app.add_subcommand(
-      "read", "Read a print program and print what beadtwin sees in it (layers, moves, material, time).");
-  read_cmd->add_option("program", check_program, "G-code program to read")->required();
-  read_cmd->add_option("--machine", check.machine, "Machine by name; default: inferred from the program");
-
-  beadtwin::tools::SweepCommand sweep;
-  CLI::App* sweep_cmd = app.add_subcommand(
-      "sweep",
-      "Run a scenario's variant over a grid of parameter values and report them side by side: a table "
-      "sorted by a metric, the Pareto front of two, the gates applied to each. Under mpirun, rank 0 hands "
-      "the variants out to the other ranks.");
-  sweep_cmd->add_option("scenario", sweep.scenario, "Scenario YAML file (default: the built-in scenario)");
-  sweep_cmd->add_option("--variant", sweep.base_variant,
-                        "The scenario's variant the settings change (default: the first)");
-  sweep_cmd->add_option(
-      "--set", sweep.sets,
-      "KEY=V1,V2,...: the values of one parameter; every combination of the --set options is a variant "
-      "(KEY as a variant's set: takes it; commas inside [] or {} do not split); repeat for each parameter");
-  sweep_cmd->add_option("--combinations", sweep.combinations,
-                        "A YAML file listing combinations, each a map {KEY: VALUE, ...}; with --set, each "
-                        "is crossed with the --set grid");
-  sweep_cmd->add_option("--sort", sweep.sort,
-                        "Sort the table by this metric, METRIC or METRIC:max when larger is better "
-                        "(default: the first --pareto metric, else print_time_s)");
-  sweep_cmd->add_option("--pareto", sweep.pareto,
-                        "Plot the Pareto front of two metrics X,Y (each METRIC or METRIC:max), such as "
-                        "print_time_s,interfaces.too_cold_fraction");
-  sweep_cmd->add_option("--gate", sweep.gate_exprs, gate_help);
-  sweep_cmd->add_option("--gates", sweep.gate_files, gates_help);
-  sweep_cmd
-      ->add_option("-o,--out", sweep.out_dir,
-                   "Output directory: sweep.html, sweep.json, summary.md, junit.xml, and each variant's "
-                   "run in variants/NAME/; a sweep started again here keeps the variants that ran")
-      ->capture_default_str();
-  sweep_cmd
-      ->add_option("-j,--jobs", sweep.jobs,
-                   "Variants at once on this machine (default 1; under mpirun each rank runs one)")
-      ->check(CLI::Range(1, 1024));
-  sweep_cmd
-      ->add_option("--threads", sweep.threads,
-                   "Threads for each variant (default: the cores over the variants running at once)")
-      ->check(CLI::Range(1, 1024));
-  sweep_cmd->add_flag("-q,--quiet", sweep.quiet, "Print only the verdict and the report path");
-
-  const std::vector<TableCommand> tables = add_table_commands(app);
+  CommandLine c;
+  add_run_and_slice(app, c);
+  add_check_and_read(app, c);
+  add_sweep(app, c);
+  c.tables = add_table_commands(app);
 
   try {
     app.parse(argc, argv);
@@ -397,25 +439,10 @@ int main(int argc, char** argv) {
   beadtwin::set_interrupt_context("loading the input");
   // The TBB thread pool's limit for the whole run (deposit, thermal vectors, rendering).
   std::optional<tbb::global_control> thread_limit;
-  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, threads);
+  if (c.threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, c.threads);
 
   try {
-    if (*run) return cmd_run(scenario_path, sets, gates, out_dir, variants, quiet, threads);
-    if (*slice) return cmd_slice(scenario_path, sets, variant, program_out);
-    if (*read_cmd) {
-      check.program = check_program;
-      return cmd_read(check);
-    }
-    if (*check_cmd) {
-      check.program = check_program;
-      check.baseline = check_baseline;
-      check.scenario = check_scenario;
-      check.settings = settings_of(sets);
-      return cmd_check(check, gates, out_dir, quiet);
-    }
-    if (*sweep_cmd) return beadtwin::tools::run_sweep(sweep);
-    for (const TableCommand& t : tables)
-      if (*t.command) return cmd_print(t.markdown());
+    return dispatch(c);
   } catch (const beadtwin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
@@ -426,5 +453,4 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "internal error: %s\n", e.what());
     return kExitInternal;
   }
-  return kExitBadInput;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Deposition benchmark (issue 6): the LSAM-scale hull-mould shell of bench/hull-mould.yaml (1.5 m x 0.6 m x
+# Deposition benchmark: the LSAM-scale hull-mould shell of bench/hull-mould.yaml (1.5 m x 0.6 m x
 # 0.5 m, two beads thick, 2 mm voxels) deposited by beadtwin, and in the same run the route a user would
 # take instead: the beads as a swept-tube surface mesh voxelised by OpenVDB's mesh-to-volume. Each route runs
 # RUNS times in a process of its own; prints the median time, the peak memory and the ratio.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Render benchmark (issue 8): the LSAM-scale hull-mould shell of bench/hull-mould.yaml (1.5 m x 0.6 m x
+# Render benchmark: the LSAM-scale hull-mould shell of bench/hull-mould.yaml (1.5 m x 0.6 m x
 # 0.5 m, two beads thick, 2 mm voxels) and the built-in default scenario, each sliced and deposited as a run
 # does, its surface extracted and its ray tracing structure built once, then FRAMES full-HD isometric
 # pictures rendered from it with soft shadows and ambient occlusion (the defaults), and FRAMES with both off

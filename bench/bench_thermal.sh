@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Thermal benchmark (issue 7): the LSAM-scale hull-mould shell of bench/hull-mould.yaml (the deposition
+# Thermal benchmark: the LSAM-scale hull-mould shell of bench/hull-mould.yaml (the deposition
 # benchmark's part: 1.5 m x 0.6 m x 0.5 m, two beads thick, 2 mm voxels) and the built-in default scenario,
 # each sliced and deposited as a run does, then the thermal mesh built and the heat transfer solved. The
 # reference is the print itself: the real-time factor is the simulated time (the print and its cooldown)

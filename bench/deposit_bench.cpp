@@ -1,4 +1,4 @@
-// The deposition benchmark (issue 6): one run of either route to a voxel model of a scenario's print, timed
+// The deposition benchmark: one run of either route to a voxel model of a scenario's print, timed
 // inside the process so the slicing before it is not counted. bench/bench_deposit.sh runs each route in a
 // process of its own (peak memory from /usr/bin/time) and reports the ratio.
 //

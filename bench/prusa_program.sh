@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A PrusaSlicer program of 100 MB and more (issue 11): an 80 mm sphere sliced by Debian's prusa-slicer at
+# A PrusaSlicer program of 100 MB and more: an 80 mm sphere sliced by Debian's prusa-slicer at
 # 0.1 mm layers, 3 perimeters and 40 % gyroid fill (about 156 MB, 5.4 million lines, a 16-hour desktop
 # print). `beadtwin read` against `wc -l` on it (medians of RUNS), then `beadtwin check` end to end once,
 # stopped after LIMIT seconds: prints its time, peak memory and the print's own time, or how far it got.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reading benchmark (issue 5): a G-code program of at least 100 MB read by `beadtwin read` (lexer, reader
+# Reading benchmark: a G-code program of at least 100 MB read by `beadtwin read` (lexer, reader
 # and motion timing, one thread) and counted by `wc -l`, on the same file in the same run. Prints the
 # median wall time of each over RUNS runs and their ratio, and three floors, measured in the same run: the
 # binary starting (`beadtwin --version`), writing one Move per line into the Toolpath with nothing parsed

@@ -1,4 +1,4 @@
-// The render benchmark (issue 8): a scenario's first variant sliced and deposited as a run does, its surface
+// The render benchmark: a scenario's first variant sliced and deposited as a run does, its surface
 // extracted and its ray tracing structure built once, then full-HD isometric pictures rendered from it
 // several times — with soft shadows and ambient occlusion (the defaults), and, in the same run, with both
 // off as the reference — each timed inside the process. Prints the surface and structure times, the median

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The benchmark suite (issue 11): every workload, each against its reference measured in the same run on the
+# The benchmark suite: every workload, each against its reference measured in the same run on the
 # same machine, written into docs/PERFORMANCE.md between the "bench:begin" and "bench:end" markers (the
 # sections below them keep the history and the analysis). One command:
 #
 #   bash bench/run_all.sh [BUILD_DIR] [RUNS]      RUNS (default 3) of each short workload; the LSAM-scale
 #                                                 mould and the PrusaSlicer program's check run once
-#                                                 (about 40 min in all here)
+#                                                 (about 40 min in all on two cores)
 #
 # Workloads and their references:
 #   default scenario end to end   `beadtwin run` with no scenario            the print time (real-time factor)
@@ -55,7 +55,7 @@ stages=$(json "$work/mould/report.json" \
   "' · '.join(f'{k} {v:.1f} s' for k, v in sorted(r['variants'][0]['stage_seconds'].items(), key=lambda kv: -kv[1]))")
 
 # 3. Slicing against PrusaSlicer, 4. reading against wc -l, 5. deposition against mesh-to-volume,
-# 6. rendering: the scripts of the earlier issues, their summary lines kept.
+# 6. rendering: each workload's own script or program, its summary lines kept.
 say "slicing against prusa-slicer"
 bash "$root/bench/slice_vs_prusa.sh" "$build" "$runs" > "$work/slice.txt"
 say "reading a 100 MB program against wc -l"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How a run grows with the part and the voxel size (issue 11, item 5), so a user can predict a run before
+# How a run grows with the part and the voxel size, so a user can predict a run before
 # starting it: the LSAM hull-mould shell (bench/make_hull_mould.py, the wall kept at 41 mm) scaled to half,
 # 0.71 and full size at 2 mm voxels, and the full size at 4 and 3 mm voxels, each run end to end once
 # (`beadtwin run`, wall time and peak memory from /usr/bin/time, bench/common.sh's timed). Writes the table into docs/PERFORMANCE.md

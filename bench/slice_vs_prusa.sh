@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Slicing benchmark (issue 3): the same STL sliced by beadtwin and by PrusaSlicer (Debian's prusa-slicer) at
+# Slicing benchmark: the same STL sliced by beadtwin and by PrusaSlicer (Debian's prusa-slicer) at
 # comparable settings — 5 mm layers, 21 mm extrusion width, 2 perimeters, solid rectilinear fill — in one run
 # on one machine. Prints the median wall time of each over RUNS runs and their ratio.
 # Usage: bench/slice_vs_prusa.sh [BUILD_DIR] [RUNS]

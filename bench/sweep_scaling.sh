@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How a parameter sweep scales (issue 12, docs/scaling.md): the same sweep of the built-in default scenario
+# How a parameter sweep scales (docs/scaling.md): the same sweep of the built-in default scenario
 # (the LSAM open box, its wall speed at six values: six variants) run plainly with one and two variants at
 # once, and under mpirun with one rank (which runs the sweep plainly), and two and three ranks (rank 0
 # hands out, the others run: one and two workers), each from an empty output folder, timed end to end. The

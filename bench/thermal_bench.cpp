@@ -1,4 +1,4 @@
-// The thermal benchmark (issue 7): a scenario's first variant sliced and deposited as a run does, then its
+// The thermal benchmark: a scenario's first variant sliced and deposited as a run does, then its
 // thermal mesh built and the heat transfer solved, each timed inside the process. Prints the mesh, the
 // integrator's work, the energy balance, the verdicts and the real-time factor (simulated print time over
 // the solve's wall time). bench/bench_thermal.sh runs it with /usr/bin/time for the peak memory.

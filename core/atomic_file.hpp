@@ -27,8 +27,11 @@ class AtomicPath {
   AtomicPath(const AtomicPath&) = delete;
   AtomicPath& operator=(const AtomicPath&) = delete;
 
+  // The name to write to: beside the target, with the target's extension last (image writers choose the
+  // format from it).
   const std::filesystem::path& temp() const { return temp_; }
   const std::filesystem::path& target() const { return target_; }
+  // Renames temp() to target(). Throws std::runtime_error naming both when it cannot.
   void commit();
 
  private:

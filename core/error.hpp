@@ -1,4 +1,4 @@
-// Errors: one small hierarchy (STYLE.md rule 6).
+// Errors: one small hierarchy, the user's apart from ours.
 //
 // InputError is the user's: a scenario, mesh or program that cannot be used. It carries where the problem
 // is (file, line, column, key) and what was expected; `beadtwin` prints it and exits with code 2.
@@ -43,7 +43,7 @@ std::string format_input_error(const SourceLocation& where, const std::string& k
 
 }  // namespace beadtwin
 
-// Invariant checks that print both operands (STYLE.md rule 8). Always on: they guard cheap facts.
+// Invariant checks that print both operands. Always on: they guard cheap facts.
 #define BT_CHECK(cond)                                                                         \
   do {                                                                                         \
     if (!(cond))                                                                               \

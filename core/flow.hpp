@@ -105,6 +105,7 @@ struct FlowExcess {
   bool exceeded() const { return ratio > 1.0; }
 };
 
+// How far a demand of `flow_mm3_s` (mm³/s) is above `extruder`'s limits.
 FlowExcess flow_excess(const Extruder& extruder, double flow_mm3_s);
 
 // The flow a move commands, mm³/s: a moving move's volume per length at its commanded feed (what the pump

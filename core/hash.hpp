@@ -13,6 +13,7 @@
 
 namespace beadtwin {
 
+// The hash of everything added so far, in order: h.add(a).add(b) hashes the bytes of a then b.
 class Fnv1a {
  public:
   Fnv1a& add(std::string_view bytes) {

@@ -9,6 +9,7 @@
 
 namespace beadtwin {
 
+// A print material's thermal and fusion properties, SI with temperatures in °C.
 struct Material {
   std::string name;
   std::string description = "-";
@@ -18,7 +19,7 @@ struct Material {
   // When not empty, the specific heat by temperature instead: (°C, J/kg·K) points in increasing temperature,
   // linear between them and constant beyond the first and the last.
   std::vector<std::pair<double, double>> specific_heat_by_temp;
-  double specific_heat_at(double temp_c) const;
+  double specific_heat_at(double temp_c) const;  // c_p at `temp_c` (°C), J/kg·K
   // ∫ c_p dT from `from_c` to `to_c`, J/kg.
   double enthalpy_J_kg(double from_c, double to_c) const;
   // Orthotropic conductivity: along the bead, across it (in the layer plane), through the layer thickness.
@@ -38,17 +39,18 @@ struct Material {
   double price_per_kg = 0.0;
 };
 
+// What surrounds the print: the air and the build table.
 struct Environment {
-  double ambient_c = 18.0;
-  double bed_temp_c = 65.0;
+  double ambient_c = 18.0;        // the air's temperature
+  double bed_temp_c = 65.0;       // the table's temperature, held
   bool bed_insulated = false;     // true: adiabatic table instead of one held at bed_temp_c
   double convection_W_m2K = 7.0;  // natural convection on free faces
   // When not empty, the convection coefficient by height above the table instead: (height mm, W/m²K)
   // points in increasing height, linear between them and constant beyond the first and the last (a part in
   // an enclosure whose air is stiller, or a fan, at some heights).
   std::vector<std::pair<double, double>> convection_by_height;
-  double convection_at(double height_mm) const;
-  double bed_contact_W_m2K = 100.0;  // contact conductance between the first layer and the table
+  double convection_at(double height_mm) const;  // at `height_mm` above the table, W/m²K
+  double bed_contact_W_m2K = 100.0;              // contact conductance between the first layer and the table
 };
 
 }  // namespace beadtwin

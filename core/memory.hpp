@@ -18,7 +18,7 @@ double memory_budget_bytes(double asked_bytes = 0.0);
 // Asks the kernel to back the whole 2 MiB pages inside [data, data + bytes) with transparent huge pages
 // when they are first touched (madvise MADV_HUGEPAGE; nothing where the system has no such pages, or for
 // less than one). Each 4 kB page of fresh memory costs a fault when first written, and in a virtual machine
-// a fault is dear: filling a few hundred MB of moves page by page took longer than reading the program
+// a fault is dear: filling a few hundred MB of moves page by page can take longer than reading the program
 // they came from. Advice only: the memory and its contents are the same either way.
 void advise_huge_pages(const void* data, std::size_t bytes);
 

@@ -1,4 +1,4 @@
-// Parameters declared once (STYLE.md rule 4). Each parameter a user can set is one declaration: its key,
+// Parameters declared once. Each parameter a user can set is one declaration: its key,
 // the typed struct member it sets, its dimension (so its unit), its default as a user writes it, its range,
 // its meaning and the source it comes from. Reading a file, defaults, range checks, unknown-key errors,
 // `beadtwin params`, docs/parameters.md and the report's parameter list all go through the declarations,
@@ -116,6 +116,7 @@ struct MemberOps {
   std::vector<std::string_view> (*spellings)();  // kChoice: the enumeration's
 };
 
+// How a member of type T is written: its shape, and its value to and from a ParamValue.
 template <class T>
 struct Traits;
 
@@ -335,6 +336,7 @@ struct ParamInfo {
   bool required() const { return default_text.empty() && !derived; }
 };
 
+// One declaration in a table for block `B`: what it says, and the member of `B` it sets.
 template <class B>
 struct Param : ParamInfo {
   ParamMember<B> member;

@@ -1,4 +1,4 @@
-// Named, timed pipeline stages (STYLE.md rule 3). One place prints progress and keeps per-stage timing,
+// Named, timed pipeline stages. One place prints progress and keeps per-stage timing,
 // so the runner reads like the pipeline and the report can say where the time went.
 #pragma once
 
@@ -11,11 +11,13 @@
 
 namespace beadtwin {
 
+// A finished stage and its wall time, s.
 struct StageTime {
   std::string name;
   double seconds = 0.0;
 };
 
+// Runs the stages of one run by name, times each and keeps the times in the order the stages finished.
 class Stages {
  public:
   // `log` receives one line per finished stage; pass an empty function to stay quiet. `on_start`, when

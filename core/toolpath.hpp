@@ -53,6 +53,7 @@ std::string_view to_string(MoveKind kind);
 std::string_view to_string(Feature feature);
 std::string_view to_string(ExtruderEvent event);
 
+// One straight move of the head, with what it lays and where it came from.
 struct Move {
   Eigen::Vector3d start = Eigen::Vector3d::Zero();  // mm; z is the top of the bead being laid
   Eigen::Vector3d end = Eigen::Vector3d::Zero();    // mm
@@ -77,6 +78,7 @@ struct Move {
   bool deposits() const { return volume_mm3 > 0.0; }
 };
 
+// One layer of a toolpath: its height and the range of moves and time it spans.
 struct ToolpathLayer {
   double z_mm = 0.0;       // top of the layer
   double height_mm = 0.0;  // nominal layer height
@@ -91,18 +93,20 @@ struct ToolpathLayer {
   double duration_s() const { return end_s - start_s; }
 };
 
+// A whole print's moves in order, with its layers and the names of its sections.
 struct Toolpath {
   std::vector<std::string> sections;
   std::vector<ToolpathLayer> layers;
   std::vector<Move> moves;
   // Rotary axes A, B, C (degrees) at the end of each move, parallel to `moves`; empty when no rotary axis
-  // moves (a 3-axis program). Read from programs and kept; multi-axis kinematics come later.
+  // moves (a 3-axis program). Read from programs and kept with the moves; timing and deposition follow the
+  // tool's X, Y, Z alone.
   std::vector<Eigen::Vector3f> rotary_deg;
 
-  double commanded_volume_mm3() const;
-  double print_length_mm() const;
-  double travel_length_mm() const;
-  double total_time_s() const;
+  double commanded_volume_mm3() const;  // material of every move, mm³
+  double print_length_mm() const;       // path length of the print moves, mm
+  double travel_length_mm() const;      // path length of the travel moves, mm
+  double total_time_s() const;          // end of the last move, s (0 without moves); once timed
 
   // Fills layers[].first_move/end_move/start_s/end_s from the moves' layer indices and times.
   // Moves must be ordered so that each layer's moves are contiguous. Throws InternalError otherwise.

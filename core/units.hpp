@@ -12,6 +12,7 @@
 
 namespace beadtwin {
 
+// What a quantity measures, and so its internal unit (beside each).
 enum class Dimension {
   kLength,             // mm
   kArea,               // mm²

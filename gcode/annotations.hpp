@@ -24,9 +24,10 @@
 
 namespace beadtwin::gcode {
 
+// What one comment says.
 struct Annotation {
   bool layer_marker = false;
-  std::optional<double> height;          // layer height
+  std::optional<double> height;          // layer height, mm or program units (below)
   bool height_in_program_units = false;  // beadtwin's comments are written in the program's units
   std::optional<double> width_mm;        // extrusion width
   std::optional<Feature> feature;        // what the moves after it are for

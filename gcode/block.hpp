@@ -9,6 +9,7 @@
 
 namespace beadtwin::gcode {
 
+// A letter and its number.
 struct Word {
   char letter = 0;   // 'G', 'X', 'M', ... (upper case)
   double value = 0;  // the number, as written or as a macro expression evaluated

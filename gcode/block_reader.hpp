@@ -69,6 +69,7 @@
 
 namespace beadtwin::gcode {
 
+// What reading a program met, for the user: counts and the warnings by kind.
 struct ReadStats {
   std::size_t lines = 0;                        // lines read (read_gcode)
   std::size_t blocks = 0;                       // blocks fed to the reader
@@ -80,10 +81,11 @@ struct ReadStats {
   std::map<std::string, std::size_t> warnings;  // how often each kind of warning came up
   std::vector<std::string> messages;  // the first warning of each kind, "file:line:column: gcode: ..."
 
-  std::size_t warning_count() const;
-  std::size_t count(const std::string& kind) const;
+  std::size_t warning_count() const;                 // warnings of every kind
+  std::size_t count(const std::string& kind) const;  // warnings of `kind`; 0 when there were none
 };
 
+// The block reader: blocks in program order in, a Toolpath out.
 class GcodeReader {
  public:
   // Validates the options first (validate(ReaderOptions)). `file_name` goes into messages.
@@ -98,7 +100,7 @@ class GcodeReader {
   void reserve(std::size_t moves);
   // True once M2 or M30 has ended the program.
   bool ended() const;
-  const ReadStats& stats() const;
+  const ReadStats& stats() const;  // what the blocks fed so far met
   // The toolpath read, layers indexed (Toolpath::index_layers). The reader is spent afterwards.
   Toolpath finish();
 

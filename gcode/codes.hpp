@@ -29,17 +29,19 @@ inline int code_tenths(double value) {
   return static_cast<int>(whole);
 }
 
+// One machine code: M23 is {'M', 230}.
 struct MachineCode {
   char letter = 0;
   int tenths = 0;
 };
 
+// A set of machine codes, as one ReaderOptions entry names them ("M23", "M101.1").
 class CodeSet {
  public:
   CodeSet() = default;
   // Throws InputError (key `key`) for a text that is not a letter and a non-negative number.
   CodeSet(const std::vector<std::string>& codes, const std::string& key);
-  bool matches(const Word& w) const;
+  bool matches(const Word& w) const;  // whether `w` is one of the codes
   bool empty() const { return codes_.empty(); }
 
  private:
@@ -60,6 +62,7 @@ struct CodeSets {
 // Letters A to Z are found through a table, others by search.
 class Params {
  public:
+  // Adds a parameter word; a letter already there is kept as repeated (reported unused).
   void add(const Word& w) {
     if (find(w.letter)) {
       repeated_.push_back(w);
@@ -68,6 +71,7 @@ class Params {
     if (const int k = slot(w.letter); k >= 0) index_[static_cast<std::size_t>(k)] = entries_.size() + 1;
     entries_.push_back({w, false});
   }
+  // The value of `letter`, marked used; nullopt when the block has none.
   std::optional<double> take(char letter) {
     Entry* e = find(letter);
     if (!e) return std::nullopt;
@@ -85,9 +89,11 @@ class Params {
     entries_.clear();
     repeated_.clear();
   }
+  // Marks every word used (a code that consumes whatever parameters it has).
   void take_all() {
     for (Entry& e : entries_) e.used = true;
   }
+  // The words no code took, repeated letters first.
   std::vector<Word> unused() const {
     std::vector<Word> out = repeated_;
     for (const Entry& e : entries_)

@@ -30,6 +30,7 @@ enum class LineKind : std::uint8_t {
   kMacro,  // macro syntax (variables, expressions, branches): block holds only the line number
 };
 
+// A lexed line: its kind, and its block when it is plain.
 struct LexedLine {
   LineKind kind = LineKind::kPlain;
   Block block;

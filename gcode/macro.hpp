@@ -54,6 +54,7 @@ namespace macro {
 struct Parsed;
 }
 
+// How a macro program is run.
 struct MacroOptions {
   long max_steps = 10'000'000;  // lines executed before a run is stopped as endless
   std::string file_name;        // named in errors

@@ -14,6 +14,7 @@
 
 namespace beadtwin::gcode::macro {
 
+// What an expression node computes; operands are nodes a and b.
 enum class Op {
   kNumber,    // `number`
   kVariable,  // #`a` (a: the index expression)
@@ -56,6 +57,7 @@ enum class Function {
 // The name a program writes for `f` (ATAN for both arities).
 const char* function_name(Function f);
 
+// One node of an expression, in the arena Parsed::nodes.
 struct Node {
   Op op = Op::kNumber;
   double number = 0;  // kNumber
@@ -72,6 +74,7 @@ struct AddressWord {
   int value = -1;  // node
 };
 
+// What a line's statement is.
 enum class Kind {
   kEmpty,    // blank, comment only, `%`, or a label alone
   kProgram,  // `O<number>`: starts a program
@@ -84,6 +87,7 @@ enum class Kind {
   kWords,    // address words: a block for the machine, or M98/M99/M02/M30 for the interpreter
 };
 
+// One line of the text, parsed; expression fields are node indices (-1: none).
 struct Line {
   int line = 0;               // 1-based line in the text
   bool block_delete = false;  // starts with `/`
@@ -110,6 +114,7 @@ struct Program {
   std::map<long, std::vector<int>> labels;  // N number -> line indices
 };
 
+// A whole file, parsed.
 struct Parsed {
   std::string file;
   std::vector<Node> nodes;

@@ -12,8 +12,10 @@
 
 namespace beadtwin::gcode {
 
+// What the program's opening comments name: the scenario with its variant, the machine with its material
+// (an empty scenario or machine leaves that line out).
 struct GcodeHeader {
-  std::string program_name;
+  std::string program_name;  // in the O line; empty: BEADTWIN
   std::string scenario;
   std::string variant;
   std::string machine;

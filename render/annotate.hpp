@@ -19,6 +19,7 @@
 
 namespace beadtwin::render {
 
+// The unit a scale bar is labelled in.
 enum class LengthUnit {
   kMetric,  // scale bar in mm, or in m from 1 m up
   kInch,    // scale bar in inches
@@ -49,6 +50,7 @@ struct AnnotationStyle {
   std::vector<std::filesystem::path> bold_fonts = default_font_paths(FontWeight::kBold);
 };
 
+// What is drawn on a picture.
 struct Annotation {
   std::string title;     // UTF-8; empty: no title
   std::string subtitle;  // a second, smaller line under the title; empty: none

@@ -20,6 +20,7 @@
 
 namespace beadtwin::render {
 
+// Where the camera looks from: the standard views, or one the user places or aims.
 enum class View { kIsometric, kTop, kFront, kSide, kUser };
 inline constexpr EnumName<View> kViewNames[] = {{View::kIsometric, "isometric"},
                                                 {View::kTop, "top"},
@@ -55,11 +56,13 @@ struct Margins {
   static Margins uniform(double m) { return {m, m, m, m}; }
 };
 
+// A ray in the world frame.
 struct Ray {
   Eigen::Vector3f origin = Eigen::Vector3f::Zero();      // mm
   Eigen::Vector3f direction = Eigen::Vector3f::UnitZ();  // unit length
 };
 
+// A camera framed on a part: orthographic or perspective, mapping image positions to rays and back.
 class Camera {
  public:
   // A camera for `view` that frames `bounds` (world, mm; non-empty) in an image of width x height pixels,

@@ -165,7 +165,7 @@ std::string write_png_rows(std::FILE* file, int width, int height, const std::ve
 }  // namespace
 
 // PNG through libpng itself rather than the codec module: the pictures of a run are PNGs, and loading the
-// module (OpenImageIO and the 260 libraries it brings) cost 0.4 s of CPU time, 4 % of the default scenario.
+// module (OpenImageIO and the 260 libraries it brings) is a noticeable part of a short run's CPU time.
 void write_png(const Image& image, const std::filesystem::path& path) {
   check_not_empty(image, path);
   std::vector<std::uint8_t> bytes(image.pixels.size());

@@ -19,6 +19,7 @@ struct Rgb {
   friend bool operator==(const Rgb&, const Rgb&) = default;
 };
 
+// An image in display sRGB (the values a PNG stores).
 struct Image {
   int width = 0, height = 0;
   std::vector<float> pixels;  // display sRGB, RGB interleaved, row 0 at the top; width * height * 3 values
@@ -29,7 +30,7 @@ struct Image {
 
   // Pixel (x, y), x to the right, y down from the top row. Throws InternalError outside the image.
   Rgb at(int x, int y) const;
-  void set(int x, int y, Rgb colour);
+  void set(int x, int y, Rgb colour);  // sets pixel (x, y); throws as at() outside the image
 
   friend bool operator==(const Image&, const Image&) = default;
 };

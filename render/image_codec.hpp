@@ -2,10 +2,9 @@
 // time an EXR is written or an image is read (PNGs are written with libpng: render/image.cpp).
 //
 // Why a module: OpenImageIO as Debian builds it brings 260 shared libraries (OpenCV, FFmpeg, GStreamer,
-// DCMTK, ...). Linked into beadtwin, the dynamic loader bound them all at every start, 0.2 s before any
-// work, even for `beadtwin check` of a program that draws nothing (measured: a program that links only
-// OpenImageIO and prints a word takes as long to start as beadtwin). Loaded on demand, only runs that
-// write pictures pay for it, once.
+// DCMTK, ...). Linked into beadtwin, the dynamic loader would bind them all at every start, before any work,
+// even for `beadtwin check` of a program that draws nothing (docs/PERFORMANCE.md). Loaded on demand, only
+// runs that write pictures pay for it, once.
 #pragma once
 
 #include <string>

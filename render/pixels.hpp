@@ -120,6 +120,7 @@ inline std::optional<Eigen::AlignedBox3f> with_ground_shadow(const Eigen::Aligne
   return grown;
 }
 
+// Every pixel of a width x height image, as screen_reach gives a part of it.
 inline Eigen::AlignedBox2f whole_image(int width, int height) {
   return {Eigen::Vector2f::Zero(), Eigen::Vector2f(static_cast<float>(width), static_cast<float>(height))};
 }

@@ -80,7 +80,7 @@ PreparedScene build_scene(const SurfaceMesh& mesh) {
 
   embree::Scene scene(device);
   // Robust: no cracks along shared edges, where a sparkle of background would show through the part. It
-  // costs about 3 % of a frame; the build quality changes frame times by less than that
+  // costs a few per cent of a frame; the build quality changes frame times by less than that
   // (docs/PERFORMANCE.md).
   scene.set_flags(RTC_SCENE_FLAG_ROBUST);
   scene.set_build_quality(RTC_BUILD_QUALITY_MEDIUM);

@@ -49,6 +49,7 @@ struct Cutaway {
   Eigen::Vector3f normal = -Eigen::Vector3f::UnitY();
 };
 
+// How a picture is rendered: its size, camera, light, shadows and sampling.
 struct RenderOptions {
   int width = 1280;  // pixels, 1..16384
   int height = 800;  // pixels, 1..16384
@@ -198,7 +199,7 @@ class TracedPicture {
   // smoothed across it.
   FieldPicture colour(const SurfaceField& field) const;
 
-  std::size_t memory_bytes() const;
+  std::size_t memory_bytes() const;  // what it holds, bytes
 
  private:
   struct Traced;

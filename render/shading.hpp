@@ -37,6 +37,7 @@ using Vec3 = Eigen::Vector3f;
 
 inline constexpr long kMaxLayers = 1L << 24;  // a palette's span of layer indices
 
+// A display sRGB colour in linear light.
 inline Vec3 to_linear(Rgb c) {
   return {srgb_to_linear(c.r), srgb_to_linear(c.g), srgb_to_linear(c.b)};
 }
@@ -76,8 +77,7 @@ class Palette {
 
  private:
   // Calls `f` with every active value of `grid`: leaf by leaf, then the active tiles above the leaves.
-  // The tree's value iterator visits the same values several times slower, and a deposit holds millions:
-  // with it, the palette took half of a full-HD frame's time.
+  // The tree's value iterator visits the same values several times slower, and a deposit holds millions.
   template <class F>
   static void for_each_active(const openvdb::Int32Grid& grid, F&& f) {
     for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf)
@@ -94,7 +94,7 @@ class Palette {
 
 // A field's values in linear light, through its colour function (display sRGB), the last value's colour kept
 // (by its bits, so that NaN is a value too): the samples of a pixel, and the pixels along a bead, mostly show
-// the same voxel's value, and the colour function and the sRGB decoding were a large part of a sample's
+// the same voxel's value, and the colour function and the sRGB decoding are a large part of a sample's
 // cost. One per thread.
 class ValueColours {
  public:
@@ -273,8 +273,8 @@ inline Eigen::Vector2f concentric_disc(const Eigen::Vector2f& u) {
   return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-// x^n for a whole n >= 0, by repeated squaring: a few multiplications where std::pow, once a sample, was
-// 2 % of the default scenario's CPU time.
+// x^n for a whole n >= 0, by repeated squaring: a few multiplications where std::pow, once a sample, is a
+// measurable part of a run's CPU time.
 inline float whole_power(float x, int n) {
   float result = 1.0f;
   for (; n > 0; n >>= 1, x *= x)
@@ -294,6 +294,7 @@ inline void complete_basis(const Vec3& n, Vec3& t, Vec3& b) {
 
 // --- Rays ---
 
+// Ray `lane` of a packet: from `origin` along `direction`, up to `tfar` lengths of it.
 inline void set_lane(RTCRay16& rays, int lane, const Vec3& origin, const Vec3& direction, float tfar) {
   rays.org_x[lane] = origin.x();
   rays.org_y[lane] = origin.y();

@@ -13,6 +13,7 @@
 
 namespace beadtwin::render {
 
+// The deposit's surface as triangles, with a normal at every point.
 struct SurfaceMesh {
   std::vector<Eigen::Vector3f> points;   // world (machine frame), mm
   std::vector<Eigen::Vector3f> normals;  // per point, unit, area-weighted average of the faces around it;
@@ -20,9 +21,8 @@ struct SurfaceMesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   // The last 2 * quads triangles are the mesher's quads, each cut in two along its shorter diagonal and
   // written as Embree cuts a quad: a, b, c, d as (a, b, d), (c, d, b). The ray-tracing scene takes them as
-  // quads (half as many primitives to build its hierarchy over: the LSAM mould's 5.3 million triangles in
-  // 0.45 to 0.70 s instead of 0.95 to 1.24 s, render_bench), the triangles before them each as a quad of
-  // its own; primitive_hit gives the triangle a hit on a primitive lies on.
+  // quads (half as many primitives to build its hierarchy over), the triangles before them each as a quad
+  // of its own; primitive_hit gives the triangle a hit on a primitive lies on.
   std::size_t quads = 0;
   Eigen::AlignedBox3f bounds;  // of the points
 };
@@ -57,7 +57,7 @@ inline TriangleHit primitive_hit(const SurfaceMesh& mesh, std::uint32_t p, float
 
 // Finds the layer of the material just inside a surface point. One per thread (it caches grid nodes), and
 // only while the grid does not change: its accessor is not registered with the tree (a registration per
-// tile, in a table every thread shares, cost more than it saved, and trips UndefinedBehaviorSanitizer in
+// tile, in a table every thread shares, costs more than it saves, and trips UndefinedBehaviorSanitizer in
 // TBB's table when the tree goes).
 class LayerProbe {
  public:

@@ -16,6 +16,7 @@
 
 namespace beadtwin::render {
 
+// Which of the two fonts a text is drawn in.
 enum class FontWeight { kRegular, kBold };
 
 // The standard places of a sans-serif TrueType font on Debian, best first: DejaVu Sans (fonts-dejavu-core),

@@ -13,6 +13,7 @@
 
 namespace beadtwin::sim {
 
+// A bead's cross-section: a core segment and the radius around it.
 struct BeadProfile {
   double core_half_width_mm = 0.0;  // half-width of the flat part of the bead, >= 0
   double radius_mm = 0.0;           // radius of the rounded sides; half the bead's height, > 0

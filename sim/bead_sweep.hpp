@@ -24,6 +24,7 @@
 
 namespace beadtwin::sim {
 
+// One move's swept bead, as rasterize() takes it.
 struct BeadSweep {
   Eigen::Vector2d start_xy = Eigen::Vector2d::Zero();  // plan position of the move's start, mm
   Eigen::Vector2d end_xy = Eigen::Vector2d::Zero();    // equal to start_xy for a puddle
@@ -40,6 +41,7 @@ struct BeadSweep {
   double bounding_voxels(double voxel_size_mm) const;
 };
 
+// One voxel a sweep covers, and how much of it.
 struct CoverageCell {
   openvdb::Coord ijk;
   float fraction = 0.0f;  // part of the voxel inside the sweep, (0, 1]

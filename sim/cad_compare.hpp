@@ -36,6 +36,7 @@
 
 namespace beadtwin::sim {
 
+// How the print is compared with its CAD.
 struct CadCompareOptions {
   // Half-width of the CAD's narrow band and the reach of the stock, mm (> 0): stocks and deviations are
   // measured up to this far on either side of a surface. A few bead widths; at most 256 voxels.
@@ -50,6 +51,7 @@ struct CadCompareOptions {
   bool exclude_plate = true;
 };
 
+// What the comparison found.
 struct CadComparison {
   // Stock over the CAD surface (excluding the plate), mm: the least and the most anywhere on it (to within
   // a hundredth of a voxel; docs/physics.md) and the area-weighted mean.

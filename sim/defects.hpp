@@ -32,6 +32,7 @@ enum class DefectKind : std::uint8_t {
 };
 std::string_view to_string(DefectKind kind);
 
+// One defect, where it is and what caused it.
 struct Defect {
   DefectKind kind = DefectKind::kVoid;
   Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();  // where it starts (a void: its centre)
@@ -55,10 +56,10 @@ class DefectLog {
   // (volumes, lengths), to the larger of the two otherwise (depths).
   void note(DefectKind kind, std::size_t piece, std::size_t move_index, const Move& move,
             const Eigen::Vector3d& where, double size, bool add_up);
-  void add(Defect d) { defects_.push_back(std::move(d)); }
+  void add(Defect d) { defects_.push_back(std::move(d)); }  // as it is, merging nothing
   // The last defect added grows to `size` when that is larger. Precondition: one was added.
   void grow_last(double size) { defects_.back().size = std::max(defects_.back().size, size); }
-  std::vector<Defect> take() { return std::move(defects_); }
+  std::vector<Defect> take() { return std::move(defects_); }  // every defect logged; the log is spent
 
  private:
   std::vector<Defect> defects_;

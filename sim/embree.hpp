@@ -1,4 +1,4 @@
-// Embree 3, wrapped once (STYLE.md rule 9): RAII handles for a device, a scene and a geometry. The renderer
+// Embree 3, wrapped once: RAII handles for a device, a scene and a geometry. The renderer
 // traces rays with it; the comparison with the CAD asks it for nearest points (sim/nearest_triangles.hpp).
 //
 // The Device installs an error callback when it is created. Embree calls it on the thread whose call
@@ -24,6 +24,7 @@ namespace beadtwin::embree {
 // target lives as long as any handle that can trigger it.
 struct ErrorSlot;
 
+// An Embree device, with the error callback installed.
 class Device {
  public:
   // `config` is Embree's device configuration string ("" for the defaults; "verbose=1" etc.).
@@ -44,6 +45,8 @@ class Device {
   std::shared_ptr<ErrorSlot> errors_;
 };
 
+// A geometry of `type` (triangles, quads, user primitives) on a device: fill its buffers, commit it, attach
+// it to a scene.
 class Geometry {
  public:
   Geometry(const Device& device, RTCGeometryType type);
@@ -71,6 +74,7 @@ class Geometry {
   std::shared_ptr<ErrorSlot> errors_;
 };
 
+// A scene: committed geometries and the acceleration structure built over them for rays and point queries.
 class Scene {
  public:
   explicit Scene(const Device& device);

@@ -21,6 +21,7 @@
 
 namespace beadtwin::sim {
 
+// What a voxel is stamped with when a move puts material into it.
 struct MoveStamp {
   double start_s = 0.0;     // time the move starts
   double duration_s = 0.0;  // the voxel at `along` gets start_s + along · duration_s
@@ -28,6 +29,8 @@ struct MoveStamp {
   int move = -1;  // index into Toolpath::moves
 };
 
+// Writes moves' material into the deposit's four grids, conserving it. Not thread-safe: one writer, one
+// thread.
 class FillWriter {
  public:
   // The four grids share one active topology: a voxel is active iff it holds material.
@@ -67,9 +70,9 @@ class FillWriter {
     std::array<std::uint64_t, 8> full{}, gaps{};
   };
 
-  // The fill of one level around an overflowing voxel, read straight from its leaves' buffers. Most of a
-  // deposit's time went into spread()'s lookups: on the LSAM mould a third of its 9 million overflows read
-  // the 264 voxels of every gap ring before finding no room and going up. The window looks each leaf up once
+  // The fill of one level around an overflowing voxel, read straight from its leaves' buffers. spread()'s
+  // lookups are most of a deposit's work: on a large part many overflows read every voxel of every gap ring
+  // before finding no room and going up (docs/PERFORMANCE.md). The window looks each leaf up once
   // (an 8×8×8 block with no leaf holds one value throughout, its tile's or the background), so a read is an
   // index into a buffer, and it knows where the level's gaps are and which of its slices are full, so the
   // rings that hold no gap (or lie in full slices alone) are not read at all. Writes go through the accessor,

@@ -8,6 +8,7 @@
 
 namespace beadtwin::sim {
 
+// What measure_material_outside found.
 struct MaterialOutside {
   double volume_mm3 = 0.0;  // outside the CAD
   double fraction = 0.0;    // of all the material (0 without material)

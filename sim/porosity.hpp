@@ -1,5 +1,4 @@
-// Porosity of a deposit: the void fraction inside the printed envelope (docs/physics.md, deposition), first
-// cut.
+// Porosity of a deposit: the void fraction inside the printed envelope (docs/physics.md, deposition).
 //
 // The envelope is found slab by slab (one voxel layer of constant z), in plan:
 //  - a voxel at least half full is solid;
@@ -10,7 +9,7 @@
 //  - a solid voxel that is not quite full is void for its empty part when all four of its in-plane
 //    neighbours are in the envelope (solid or enclosed gap); at the envelope's edge its empty part is the
 //    outside air next to the bead's rounded flank.
-// porosity = void / (material + void). Limits of this first cut: enclosure is judged in plan only (a gap
+// porosity = void / (material + void). Its limits: enclosure is judged in plan only (a gap
 // open at the top or bottom of its slab still counts), and the under-filled top of an exposed slab whose
 // top does not fall on a voxel boundary counts as void.
 #pragma once
@@ -21,6 +20,7 @@
 
 namespace beadtwin::sim {
 
+// What measure_porosity found.
 struct Porosity {
   double material_voxels = 0.0;  // total fill, in voxel volumes
   double void_voxels = 0.0;      // empty volume inside the envelope, in voxel volumes
@@ -34,6 +34,7 @@ struct Porosity {
   }
 };
 
+// Measures the porosity of `fill` (fill fractions), gaps of at most `max_gap_voxels` counting as enclosed.
 // Deterministic whatever the number of threads. Precondition: max_gap_voxels >= 1. When `gaps` is given it
 // receives the enclosed gap voxels (the runs above), for locating the voids (sim/voids.hpp).
 Porosity measure_porosity(const openvdb::FloatGrid& fill, int max_gap_voxels,

@@ -100,22 +100,19 @@ void drop_void_shells(SkinMesh& mesh) {
 // A large mesh is simplified in slabs at once (up to kSimplifyPieces, one for every kTrianglesPerPiece
 // triangles), cut across its longest side by the triangles' centroids, each with the vertices on its cut
 // edges held where they are (so the slabs still meet): meshoptimizer's simplification runs on one thread,
-// and on the LSAM mould (3.3 million triangles) it was most of the skin's time. The cuts are at fixed
-// fractions of the box, so the result does not depend on the threads; a mesh below kTrianglesPerPiece is
-// simplified whole, as before. Each slab is simplified over its own vertices only: meshoptimizer 0.18 builds
-// its tables over every vertex it is given, so with the whole mesh's vertices each slab paid for all of them.
-// Eight slabs rather than four, which share out more evenly between the threads: with both changes the
-// mould's skin took 2.2-2.5 s instead of 2.4-2.65 s (4.0-4.5 core-seconds instead of 4.25-4.6, six runs
-// each), for 2 % fewer triangles. More slabs are cheaper still but hold more seams (32: 5 % more triangles).
+// and on a mesh of millions of triangles it is most of the skin's time. The cuts are at fixed fractions of
+// the box, so the result does not depend on the threads; a mesh below kTrianglesPerPiece is simplified
+// whole. Each slab is simplified over its own vertices only: meshoptimizer builds its tables over every
+// vertex it is given. Eight slabs share out evenly between the threads; more are cheaper still but hold
+// more seams fixed, and so more triangles (docs/PERFORMANCE.md, the skin's simplification).
 constexpr std::size_t kSimplifyPieces = 8;
 constexpr std::size_t kTrianglesPerPiece = 500'000;
 
 // Drops every pair of triangles on the same three corners wound opposite ways: a fold of no thickness, which
 // encloses nothing and makes each of its edges shared by four triangles. meshoptimizer's collapses leave such
-// pairs where two sheets of the surface close up and along the slabs' seams on flat faces (on the LSAM mould
-// 975 pairs in 1.1 million triangles, and with them 2,148 of its 2,472 edges shared by four triangles; the
-// other 324 are where two sheets touch along an edge, which is still a closed surface); the unsimplified
-// mesh has none.
+// pairs where two sheets of the surface close up and along the slabs' seams on flat faces (most of the edges
+// such a mesh shares between four triangles; the rest are where two sheets touch along an edge, which is
+// still a closed surface); the unsimplified mesh has none.
 void drop_folds(std::vector<openvdb::Vec3I>& triangles) {
   struct Key {
     std::array<unsigned, 3> corners;  // sorted

@@ -27,6 +27,7 @@
 
 namespace beadtwin::sim {
 
+// A triangle mesh of the skin, mm.
 struct SkinMesh {
   std::vector<openvdb::Vec3s> points_mm;  // machine frame; every point is used by a triangle
   std::vector<openvdb::Vec3I> triangles;  // indices into points_mm, counter-clockwise seen from outside
@@ -51,9 +52,8 @@ FillSurface mesh_fill(const Deposit& deposit, double adaptivity);
 // the mesh is then simplified by edge collapse (meshoptimizer's quadric simplifier) as long as the surface
 // moves less than that. The unsimplified mesh is closed and manifold; the simplified one is closed (every
 // edge met as often one way as the other) and its folds are dropped, but where two sheets of the surface
-// close up an edge may be shared by four triangles (466 of the LSAM mould's 1.7 million edges at 0.3 mm and
-// adaptivity 0) and a triangle may have no area (1,524 of its 1.1 million). Throws std::invalid_argument for
-// an adaptivity outside [0, 1].
+// close up an edge may be shared by four triangles and a triangle may have no area (rare: about one in a
+// thousand, docs/PERFORMANCE.md). Throws std::invalid_argument for an adaptivity outside [0, 1].
 SkinMesh extract_skin(const Deposit& deposit, double adaptivity, bool outer_only = true,
                       double tolerance_mm = 0.0);
 // The same from the fill grid's surface already meshed (mesh_fill).
@@ -77,6 +77,7 @@ void write_mesh(const SkinMesh& mesh, const std::filesystem::path& path, MeshFor
 // (Move::deposits) is one tube of `facets_around` flat sides around its section (2 triangles each) closed by
 // two flat end caps (a fan of facets_around - 2 triangles each), so 4 · facets_around - 4 triangles per move;
 // 50 bytes per triangle and an 84-byte header, as binary STL stores them. Nothing is shared between moves.
+// What bead_by_bead_stl estimates.
 struct BeadStlEstimate {
   std::size_t moves = 0;
   std::size_t triangles = 0;

@@ -30,6 +30,7 @@ struct SampledTriangle {
   bool on_plate = false;  // faces down and may touch the plate: its points at or below the plate are left out
 };
 
+// The stock at one sample and the area it stands for.
 struct StockSample {
   double stock_mm = 0.0;
   double area_mm2 = 0.0;
@@ -41,6 +42,7 @@ struct StockSample {
 // moves (1 mm per mm) and lie within ±band.
 using StockProbe = std::function<double(const Eigen::Vector3d& point_mm, double reach_mm)>;
 
+// How far the branch and bound searches.
 struct ExtremeSearch {
   double spacing_mm = 0.0;    // the samples' spacing (> 0)
   double band_mm = 0.0;       // no stock lies beyond ±band_mm (> 0)

@@ -29,6 +29,7 @@
 
 namespace beadtwin::sim {
 
+// What measure_substrate found in the voxel columns of a bead piece.
 struct Substrate {
   double gap_mm = 0.0;       // mean empty depth in the band below the nominal bottom
   double above_mm = 0.0;     // mean depth of material between the nominal bottom and top
@@ -39,10 +40,11 @@ struct Substrate {
   std::vector<CoverageCell> gap_cells;
 };
 
-// `sweep`: the piece with its nominal (flattened to the layer height) profile; `top_mm`, `height_mm`: its
-// nominal top and layer height at the middle. Reads `fill` only (thread-safe while nobody writes it).
-// Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along each axis. `highest_k`: no voxel above this index holds
-// material (FillWriter::highest_k), so the columns are not read above it; the default reads them all.
+// Measures what lies under and over one piece of a bead. `sweep`: the piece with its nominal (flattened to
+// the layer height) profile; `top_mm`, `height_mm`: its nominal top and layer height at the middle. Reads
+// `fill` only (thread-safe while nobody writes it). Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along each
+// axis. `highest_k`: no voxel above this index holds material (FillWriter::highest_k), so the columns are not
+// read above it; the default reads them all.
 Substrate measure_substrate(const BeadSweep& sweep, double top_mm, double height_mm, double reach_mm,
                             const openvdb::FloatGrid& fill, double voxel_size_mm, double table_z_mm,
                             int highest_k = std::numeric_limits<int>::max() - 1);

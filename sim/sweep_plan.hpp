@@ -36,6 +36,7 @@ struct PlannedSweep {
   bool ooze = false;  // material oozing from the nozzle after a melt off (see plan_sweeps)
 };
 
+// How plan_sweeps cuts and shapes the moves.
 struct SweepPlanOptions {
   bool round_free_ends = false;  // see DepositOptions::round_free_ends
   // Longest piece, mm (> 0): moves are cut into equal pieces no longer than this. Infinity keeps every move

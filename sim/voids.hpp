@@ -1,4 +1,4 @@
-// Voids located (issue 6, item 4): the enclosed gaps the porosity measure finds (sim/porosity.hpp), joined
+// Voids located: the enclosed gaps the porosity measure finds (sim/porosity.hpp), joined
 // into connected pieces, each reported where it is, in which layer, beside which beads, and what kind of
 // gap it is by the beads around it:
 //  - "at a zigzag turn": beside two consecutive moves of one path that turn by more than 90° (the corner
@@ -18,14 +18,16 @@
 
 namespace beadtwin::sim {
 
+// What locate_voids found.
 struct VoidsFound {
   std::vector<Defect> defects;           // the largest voids first, at most `max_listed`
   std::size_t count = 0;                 // every void of at least `min_volume_mm3`
   std::vector<double> layer_volume_mm3;  // void volume by the layer it lies in (parallel to Toolpath::layers)
 };
 
-// `gaps`: the enclosed gap voxels; `fill`, `layer`, `move`: the deposit's grids. Voids smaller than
-// `min_volume_mm3` count in the layers' volumes but are not listed. Deterministic.
+// Joins the gap voxels into voids, each listed as a defect. `gaps`: the enclosed gap voxels; `fill`, `layer`,
+// `move`: the deposit's grids. Voids smaller than `min_volume_mm3` count in the layers' volumes but are not
+// listed. Deterministic.
 VoidsFound locate_voids(const openvdb::MaskGrid& gaps, const Deposit& deposit, const Toolpath& toolpath,
                         double min_volume_mm3, std::size_t max_listed);
 

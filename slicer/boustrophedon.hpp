@@ -18,6 +18,7 @@ struct Span {
   double x1 = 0;
 };
 
+// The cells of one region, with the neighbours across each cell's ends.
 class BoustrophedonCells {
  public:
   // `region`: closed contours, outer counter-clockwise, holes clockwise, not self-intersecting (as Clipper

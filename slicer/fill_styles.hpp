@@ -12,6 +12,7 @@
 
 namespace beadtwin::slicer {
 
+// How the lines are laid and linked (FIGS. 15-19).
 enum class FillStyle : std::uint8_t {
   kOneWay,                      // FIG. 15: every line in the same direction, travel back after each
   kSimpleZigzag,                // FIG. 16: serpentine over the whole region, lifting over holes
@@ -20,6 +21,7 @@ enum class FillStyle : std::uint8_t {
   kSparseZigzag,                // FIG. 19: a sparse serpentine first, then serpentines filling its gaps
 };
 
+// What plan_fill lays: the style and its geometry.
 struct FillPattern {
   FillStyle style = FillStyle::kSmartZigzag;
   double angle_rad = 0;              // direction of the fill lines

@@ -12,6 +12,7 @@
 
 namespace beadtwin::slicer {
 
+// Lays one layer of one section; `head` (mm, in plan) follows the head from layer to layer.
 class LayerBuilder {
  public:
   // `role` marks every printed move of the layer (kRaft, kStockOnTop); kUnknown keeps each move's own.
@@ -21,6 +22,7 @@ class LayerBuilder {
     area_ = bead_area_mm2(s.bead_width_mm, s.layer_height_mm);
   }
 
+  // Travels to `p` (mm) at the layer's height: across at the head's height first when it is above the layer.
   void travel_to(const Eigen::Vector2d& p) {
     Move m = base(Feature::kTravel);
     m.kind = MoveKind::kTravel;
@@ -42,6 +44,7 @@ class LayerBuilder {
     tp_.moves.push_back(m);
   }
 
+  // An extruder event where the head stands, as a dwell (timed later by the melt settings).
   void event(ExtruderEvent e) {
     // A bead runs from melt on to melt off; its corners get the pull-back when it ends.
     if (e == ExtruderEvent::kMeltOff && s_.pull_back.length_mm + s_.pull_back.extension_mm > 0)
@@ -132,6 +135,7 @@ class LayerBuilder {
     if (tp_.moves.size() > before) tp_.moves.back().bead_width_mm = w;
   }
 
+  // A print move of the section's bead from the head to `to` (mm); none shorter than 1 µm.
   // `flow` scales the material (the melt setting's pump reduction where a bead is laid over another, or the
   // fill's corner reduction); `feed_mm_s` > 0 replaces the print speed (the fill's corner speed).
   void print_segment(const Eigen::Vector2d& to, Feature feature, int pass, double flow = 1.0,

@@ -16,6 +16,7 @@
 
 namespace beadtwin::slicer {
 
+// A part as triangles, each tagged with its body.
 struct TriangleMesh {
   std::vector<Eigen::Vector3d> vertices;      // mm, machine frame
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
@@ -24,7 +25,7 @@ struct TriangleMesh {
   std::vector<int> body;
   std::vector<std::string> body_names;  // one per body, unique
 
-  Eigen::Vector3d min_corner() const;
+  Eigen::Vector3d min_corner() const;  // of the bounding box, mm
   Eigen::Vector3d max_corner() const;
   // Enclosed volume (divergence theorem); meaningful for a closed, consistently oriented mesh.
   double volume_mm3() const;

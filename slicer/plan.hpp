@@ -18,6 +18,7 @@
 
 namespace beadtwin::slicer {
 
+// What plan_toolpath found while planning, for the report.
 struct PlanStats {
   int empty_layers = 0;  // layers whose slice was empty (nothing to print there)
   int open_chains = 0;   // slice loops that did not close (mesh holes), summed over layers

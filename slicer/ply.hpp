@@ -8,7 +8,7 @@
 // Why not assimp, which reads the other formats: assimp 5.2 (Debian 12) believes a PLY's counts before it
 // reads the data. A list that claims four billion entries makes it allocate 32 GB (the out-of-memory killer,
 // not a message), a header that does not end makes it read for ever, and a face of no corners aborts the
-// program. All were found by tests/fuzz. Here every count is checked against the bytes that follow it, and
+// program (tests/fuzz finds each). Here every count is checked against the bytes that follow it, and
 // every fault is a message with its line (text) or byte offset (binary).
 #pragma once
 
@@ -19,6 +19,7 @@
 
 namespace beadtwin::slicer {
 
+// What read_ply read.
 struct PlyMesh {
   TriangleMesh mesh;      // one body, unnamed; polygons cut into triangles; coordinates scaled
   int ignored_faces = 0;  // faces of fewer than three corners (points and lines bound no solid)

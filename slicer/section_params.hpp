@@ -10,13 +10,14 @@
 #include <vector>
 
 #include "core/enum_names.hpp"
-#include "core/param.hpp"
 #include "core/melt_settings.hpp"
+#include "core/param.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/polygons.hpp"
 
 namespace beadtwin::slicer {
 
+// Boundary passes (patent (49)-(50)): the beads laid along each contour of a layer.
 struct BoundaryParams {
   int passes = 1;         // beads laid along each contour, outermost first (patent (49))
   double overlap = 0.10;  // least overlap between neighbouring passes, fraction of the bead width
@@ -74,6 +75,7 @@ inline std::string_view to_string(FillStyleKind style) {
   return name_of(style);
 }
 
+// Fill passes (patent (56)-(65)): the beads inside the boundary passes.
 struct FillParams {
   bool enabled = false;
   FillStyleKind style = FillStyleKind::kSmartZigzag;
@@ -129,6 +131,7 @@ struct VoidParams {
   double min_width_mm = 0.0;  // narrower voids are left (the roller squeezes them shut); 0: w/4
 };
 
+// One section of a part: its Z range or body, and everything its layers are printed with.
 struct SectionParams {
   std::string name;
   std::string body;  // slice only this body of the part (patent (12), (35)); empty: the whole part

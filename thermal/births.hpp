@@ -23,6 +23,7 @@ struct BirthGroup {
   double time_s = 0.0;
 };
 
+// When every cell is born, in groups.
 struct BirthSchedule {
   double interval_s = 0.0;            // the birth interval used, s
   double automatic_interval_s = 0.0;  // a fifth of the median time constant, s (before any lengthening)

@@ -15,11 +15,12 @@
 
 namespace beadtwin::thermal {
 
+// The ranks' collective operations the solve needs.
 class Communicator {
  public:
   virtual ~Communicator() = default;
-  virtual int rank() const = 0;
-  virtual int size() const = 0;
+  virtual int rank() const = 0;  // this process's rank, 0..size() − 1
+  virtual int size() const = 0;  // how many ranks there are
   // Every rank's `mine` concatenated in rank order into `all` (MPI_Allgatherv): counts[r] values from rank r.
   virtual void all_gather(std::span<const double> mine, std::span<const int> counts,
                           std::span<double> all) = 0;

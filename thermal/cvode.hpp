@@ -1,6 +1,6 @@
 // A small RAII wrapper around SUNDIALS 6 CVODE (BDF, with a banded direct linear solver or preconditioned
 // GMRES), internal to the thermal library. It is the one place where SUNDIALS is called and where its return
-// codes become exceptions (STYLE.md rule 9): every handle (context, vectors, matrix, linear solver,
+// codes become exceptions: every handle (context, vectors, matrix, linear solver,
 // integrator memory) is owned here, CVODE's error handler is installed at creation, and an exception thrown
 // by a callback is carried across the C boundary and rethrown to the caller.
 #pragma once
@@ -41,6 +41,7 @@ class BandJacobian {
 class OdeSystem {
  public:
   virtual ~OdeSystem() = default;
+  // ydot = f(t, y); t in s.
   virtual void rhs(double t, std::span<const double> y, std::span<double> ydot) = 0;
   // Fills the nonzero entries of ∂f/∂y at (t, y); entries not set are zero.
   virtual void jacobian(double t, std::span<const double> y, BandJacobian& jacobian);
@@ -57,8 +58,10 @@ class OdeSystem {
   virtual void error_weights(std::span<const double> y, std::span<double> weights) = 0;
 };
 
+// The linear solver of CVODE's Newton iterations: banded direct, or GMRES preconditioned by the diagonal.
 enum class LinearSolver { kBand, kGmres };
 
+// How the integrator is set up.
 struct CvodeOptions {
   LinearSolver solver = LinearSolver::kBand;
   std::size_t upper_bandwidth = 0;  // kBand
@@ -70,6 +73,7 @@ struct CvodeOptions {
   Communicator* communicator = nullptr;
 };
 
+// CVODE's BDF integrator on one OdeSystem.
 class Cvode {
  public:
   // `system` must outlive the integrator. y0.size() sets the (fixed) state size: of this rank's part when

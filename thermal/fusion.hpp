@@ -16,6 +16,7 @@ namespace beadtwin::thermal {
 constexpr double kGasConstant_J_molK = 8.314462618;
 constexpr double kStefanBoltzmann_W_m2K4 = 5.670374419e-8;
 
+// The verdict on an interface (judge_interface); kNoInterface for a cell that has none.
 enum class Verdict { kOk, kTooHot, kTooCold, kNoInterface };
 std::string_view to_string(Verdict verdict);
 
@@ -23,10 +24,10 @@ std::string_view to_string(Verdict verdict);
 class Reptation {
  public:
   explicit Reptation(const Material& material);
-  double rate_per_s(double temp_c) const;
+  double rate_per_s(double temp_c) const;  // at `temp_c`, °C
   // d(rate)/dT, 1/(s·K); zero below the threshold (the step at the threshold has no derivative).
   double rate_derivative(double temp_c) const;
-  double min_temp_c() const { return min_temp_c_; }
+  double min_temp_c() const { return min_temp_c_; }  // the healing threshold, °C
 
  private:
   double min_temp_c_;

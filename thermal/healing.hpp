@@ -21,6 +21,7 @@
 
 namespace beadtwin::thermal {
 
+// Integrates ∫ dt / t_w(T) of every interface over the integrator's steps, lumped cells included.
 class HealingIntegrator {
  public:
   // For `index.size()` interfaces between `index.model_cells()` model cells, none healed yet.

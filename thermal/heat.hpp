@@ -34,6 +34,7 @@
 
 namespace beadtwin::thermal {
 
+// How solve_heat integrates: tolerances, births, lumping, what it records, progress and MPI ranks.
 struct HeatOptions {
   double rel_tol = 1e-3;    // CVODE relative tolerance
   double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
@@ -50,7 +51,7 @@ struct HeatOptions {
   // quarter of the model's) have been born since the last look, runs of consecutive born cells that touch
   // one another, lie more than lump_depth contacts below the top (cells with a neighbour not yet born) and
   // are within lump_tolerance_k of one another become one cell each, of at most 64 median cells' mass. A
-  // long print's cells far below the top then cost a fraction of what they did in every step.
+  // long print's cells far below the top then cost each step a fraction of what they would unlumped.
   bool lump = true;
   int lump_depth = 20;
   double lump_tolerance_k = 0.5;
@@ -76,6 +77,7 @@ struct TemperatureSnapshot {
   std::vector<float> temp_c;
 };
 
+// One interface between two cells: what its substrate was as it formed, how far it healed, the verdict.
 struct InterfaceResult {
   std::uint32_t older = 0, younger = 0;  // cells
   double area_mm2 = 0.0;
@@ -88,6 +90,7 @@ struct InterfaceResult {
   Verdict verdict = Verdict::kOk;
 };
 
+// What solve_heat found: every interface, the layers' history, snapshots, energy and the integrator's work.
 struct HeatResult {
   std::vector<InterfaceResult> interfaces;  // one per interface link, in link order
   double birth_interval_s = 0.0;            // the one used

@@ -14,6 +14,7 @@
 
 namespace beadtwin::thermal {
 
+// Records the layers' temperatures and the snapshots as the integrator's steps pass their times.
 class HistoryRecorder {
  public:
   // Samples of the `layer_count` toolpath layers from t0_s to t_end_s every options.sample_interval_s (> 0),

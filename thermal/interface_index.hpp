@@ -24,6 +24,7 @@ namespace beadtwin::thermal {
 // 60° of horizontal).
 std::vector<InterfaceResult> list_interfaces(const ThermalMesh& mesh);
 
+// The interfaces by younger mesh cell and by model cell, re-indexed when cells are lumped.
 class InterfaceIndex {
  public:
   // One of a model cell's interfaces with another model cell.
@@ -39,8 +40,8 @@ class InterfaceIndex {
   // model_of.back() the model's cell count.
   void index(std::span<const std::uint32_t> model_of);
 
-  std::size_t size() const { return cells_of_.size(); }
-  std::size_t model_cells() const { return cell_first_.size() - 1; }
+  std::size_t size() const { return cells_of_.size(); }               // interfaces
+  std::size_t model_cells() const { return cell_first_.size() - 1; }  // model cells indexed
   // The interfaces whose younger cell is mesh cell i, in interface order.
   std::span<const std::uint32_t> of_younger(std::size_t i) const {
     return {by_younger_.data() + younger_first_[i], by_younger_.data() + younger_first_[i + 1]};

@@ -28,6 +28,7 @@ std::uint32_t settled_runs(const PartModel& model, std::span<const double> state
                            std::span<const std::uint8_t> depth, double tolerance_k, double max_mass_kg,
                            std::vector<std::uint32_t>& to);
 
+// Decides when to look for settled cells and which runs of them to lump.
 class Lumper {
  public:
   // options' lump_check_cells, lump_depth, lump_tolerance_k and lump_max_cells (with `median_mass_kg`, the

@@ -35,6 +35,7 @@
 
 namespace beadtwin::thermal {
 
+// How the beads are cut into cells.
 struct MeshOptions {
   int cells_across = 3;         // strips across a bead, odd, 1..15
   int cells_through = 1;        // slices through a bead's height, 1..15
@@ -45,6 +46,7 @@ struct MeshOptions {
   std::size_t max_automatic_cells = 250'000;
 };
 
+// One control volume: a piece of one bead's material.
 struct ThermalCell {
   double volume_mm3 = 0.0;
   Eigen::Vector3d centroid_mm = Eigen::Vector3d::Zero();
@@ -57,6 +59,7 @@ struct ThermalCell {
   int layer = -1;               // that move's toolpath layer
 };
 
+// A contact between two cells through the voxel faces they share.
 struct ThermalLink {
   std::uint32_t a = 0, b = 0;  // cells; a < b, so a is born no later than b
   // Oriented area of the shared faces, from a towards b, mm² (length: the area, direction: the normal).
@@ -71,6 +74,7 @@ struct ThermalLink {
   bool interface = false;
 };
 
+// The cells, their contacts and the voxels each cell holds.
 struct ThermalMesh {
   double voxel_size_mm = 0.0;
   double table_z_mm = 0.0;            // the bottom of the deposit's lowest voxel row

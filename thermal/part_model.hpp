@@ -28,6 +28,7 @@
 
 namespace beadtwin::thermal {
 
+// The part's cells as the ODE system of the heat solve.
 class PartModel final : public OdeSystem {
  public:
   // The cells and contacts of `mesh`, none born yet: every contact is open surface until its neighbour is
@@ -49,7 +50,7 @@ class PartModel final : public OdeSystem {
   // The state of all cells from every rank's part (`local` is this rank's): in `buffer`, or `local` itself
   // on one rank.
   std::span<const double> gather(std::span<const double> local, std::vector<double>& buffer) const;
-  std::size_t born() const { return born_; }
+  std::size_t born() const { return born_; }  // cells born so far: [0, born())
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const;
 
@@ -58,7 +59,7 @@ class PartModel final : public OdeSystem {
 
   // The model's cells: the mesh's, less what lumping took.
   std::size_t size_of_model() const { return n_; }
-  double mass_kg(std::size_t i) const { return mass_kg_[i]; }
+  double mass_kg(std::size_t i) const { return mass_kg_[i]; }  // of model cell i
   // Whether cell i has a neighbour not yet born (neighbours are sorted, so the last tells).
   bool on_top(std::size_t i) const {
     return first_[i] != first_[i + 1] && nb_cell_[first_[i + 1] - 1] >= born_;

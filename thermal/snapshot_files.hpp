@@ -1,4 +1,4 @@
-// Temperature snapshots as files other programs open (issue 7, item 6):
+// Temperature snapshots as files other programs open:
 //  - OpenVDB (Blender, Houdini, ParaView with its VDB reader): grid `temperature_c`, °C, on the deposit's
 //    voxels (each voxel holds its thermal cell's temperature; voxels whose cell is not yet born are left
 //    out), file metadata time_s, length_unit = mm;
@@ -14,9 +14,11 @@
 
 namespace beadtwin::thermal {
 
+// Writes `snapshot` (one temperature per cell of `mesh`, NaN for a cell not yet born) on the voxels of
+// `mesh.cell_grid`, which must be set, to the OpenVDB file `path`.
 void write_temperature_vdb(const ThermalMesh& mesh, const TemperatureSnapshot& snapshot,
                            const std::filesystem::path& path);
-// Returns the number of points written.
+// Writes `snapshot` (as above) as the points of the VTK file `path`, one per born cell; returns how many.
 std::size_t write_temperature_vtp(const ThermalMesh& mesh, const TemperatureSnapshot& snapshot,
                                   const std::filesystem::path& path);
 

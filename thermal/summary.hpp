@@ -61,8 +61,11 @@ std::vector<FusionSummary> summarise_layers(const ThermalMesh& mesh, const HeatR
 struct LayerTimeWindow {
   double min_s = kNaN, max_s = kNaN;
 };
+// `landing`: the layer's interfaces where a bead lands on the layer below; `duration_s` its layer time as
+// printed, s; `ambient_c` the air's temperature, °C; `share` a fraction in (0, 1).
 LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
                                   const Material& material, double ambient_c, double share);
+// The whole part's summary: summarise_groups with every cell in one group.
 FusionSummary summarise_part(const HeatResult& heat);
 // One summary per group, by the group of the younger cell (`group_of_cell`, one entry per cell; a group
 // outside [0, group_count) is left out): the sections of a print, say.

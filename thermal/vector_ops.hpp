@@ -1,4 +1,4 @@
-// Faster vector operations for SUNDIALS' serial N_Vector, internal to the thermal library.
+// Blocked, vectorised operations for SUNDIALS' serial N_Vector, internal to the thermal library.
 //
 // In a step of the part's heat model most of the time goes into CVODE's and GMRES's vector operations over
 // every born cell: dot products, weighted norms, linear combinations. The serial vector's own loops add
@@ -7,12 +7,12 @@
 // kBlock elements, reduce each block with Eigen's vectorised kernels (several partial sums at once), run
 // the blocks on TBB's threads when the vector is long, and add the block results in block order. A result
 // therefore depends on the vector's length only, never on the number of threads or on how TBB schedules
-// the blocks (DESIGN §5: results independent of the thread count).
+// the blocks: a run's results do not depend on its thread count.
 //
 // The operations are installed in a vector's table of operations; the clones CVODE and GMRES make of it
 // copy the table, so installing them on the vector an integrator is created with is enough. An MPI-parallel
 // vector takes the same kernels for its rank's part; its global reductions add the ranks' blocked sums with
-// the vector's own all-reduce (its own reductions add one element at a time: 15 % of a rank's time).
+// the vector's own all-reduce (its own reductions add one element at a time).
 #pragma once
 
 #include <cstddef>

@@ -31,7 +31,7 @@ constexpr int kSubstratePointsPerStep = 4;
 // Guard against an output that cannot fit in memory (a tiny sample interval over a long print).
 constexpr double kMaxHistoryValues = 2e8;
 
-// Collects every problem with the inputs before any work (STYLE.md rule 7), then throws one InputError.
+// Collects every problem with the inputs before any work, then throws one InputError.
 class Problems {
  public:
   // The first problem's key is the error's key; the others are named in the message.

@@ -24,6 +24,7 @@
 
 namespace beadtwin::thermal {
 
+// One layer of the wall as deposited.
 struct Wall1dLayer {
   double z_top_mm = 0, height_mm = 0;
   double start_s = 0,
@@ -32,6 +33,7 @@ struct Wall1dLayer {
   double perimeter_mm = 0;  // length of the layer's exposed side edges (outer + inner contours), >= 0
 };
 
+// How solve_wall_1d integrates and samples.
 struct Wall1dOptions {
   double rel_tol = 1e-6;         // CVODE relative tolerance
   double abs_tol_k = 1e-4;       // CVODE absolute tolerance on temperatures, K
@@ -40,6 +42,7 @@ struct Wall1dOptions {
   double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
 };
 
+// What one layer's interface (with the layer below) went through.
 struct Wall1dLayerResult {
   // Temperature of the layer below (its top node) while this layer is laid, over [start_s, end_s]: minimum,
   // time average and maximum, °C. Because the whole layer is born at start_s, this includes the reheating
@@ -56,6 +59,7 @@ struct Wall1dLayerResult {
   Verdict verdict = Verdict::kNoInterface;
 };
 
+// What solve_wall_1d found.
 struct Wall1dResult {
   std::vector<Wall1dLayerResult> layers;
   std::vector<double> sample_times_s;  // from the first layer's start to the end, every interval

@@ -32,13 +32,16 @@ class Wall1dModel final : public OdeSystem {
   Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material, const Environment& env,
               int nodes_per_layer);
 
+  // The state's size and the Jacobian's bandwidths (for the banded solver).
   std::size_t size() const { return layers_.size() * block_; }
   std::size_t upper_bandwidth() const { return 3; }
   std::size_t lower_bandwidth() const { return n_ > 3 ? n_ : 3; }
+  // Where in the state a layer's node temperature (°C), healing integral and energy lost (J) are.
   std::size_t temp_index(std::size_t layer, std::size_t node) const { return layer * block_ + 1 + node; }
   std::size_t healing_index(std::size_t layer) const { return layer * block_; }
   std::size_t loss_index(std::size_t layer) const { return layer * block_ + 1 + n_; }
 
+  // The state before any birth: every temperature at the deposition temperature, nothing healed or lost.
   std::vector<double> initial_state() const;
   // Error control (see error_weights): relative tolerance, absolute tolerance on temperatures (K) and on
   // the healing integral H (dimensionless).
@@ -48,6 +51,7 @@ class Wall1dModel final : public OdeSystem {
   void birth(std::size_t layer, std::span<double> y);
   std::size_t born_count() const { return born_; }
 
+  // The mean of the layer's node temperatures in state y, °C.
   double layer_mean_temp_c(std::size_t layer, std::span<const double> y) const;
   // Top node of the layer under `layer` (layer >= 1).
   double substrate_temp_c(std::size_t layer, std::span<const double> y) const;

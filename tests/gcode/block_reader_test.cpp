@@ -483,7 +483,7 @@ TEST(GcodeReaderBadInput, UnknownWordsAreCountedWarningsNeverSpam) {
   const Toolpath tp = read(program, o, &st);
   EXPECT_EQ(st.count("unknown code M999"), 50u);
   EXPECT_EQ(st.count("unused word Q"), 50u);
-  EXPECT_EQ(st.count("rotary axis A"), 0u);  // rotary axes are kept now, not warned about
+  EXPECT_EQ(st.count("rotary axis A"), 0u);  // rotary axes are kept, not warned about
   EXPECT_EQ(st.count("tool change"), 1u);
   EXPECT_EQ(st.count("unknown code G93"), 1u);
   EXPECT_EQ(st.messages.size(), 3u);
@@ -519,7 +519,7 @@ TEST(GcodeReaderBadInput, ProgramEndAndBlockDelete) {
   EXPECT_EQ(macro.lines, 7u);
 }
 
-// Issue 5 item 3: rotary axes B and C (seed 002's 5-axis machine) are parsed and kept with the moves,
+// Rotary axes B and C (seed 002's 5-axis machine) are parsed and kept with the moves,
 // absolute or relative like the linear axes; a program without them keeps no rotary column at all.
 TEST(GcodeReader, RotaryAxesAreKeptWithTheMoves) {
   const Toolpath tp =

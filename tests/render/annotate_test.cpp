@@ -74,7 +74,7 @@ Bar find_colour_bar(const Image& image, int panel_px) {
   return bar;
 }
 
-// The test: a continuous legend drawn, written as PNG and read back shows a colour bar whose ends
+// A continuous legend drawn, written as PNG and read back shows a colour bar whose ends
 // are the map's ends, and labels its ticks.
 TEST_F(Annotate, ContinuousLegendShowsTheMapsEndsAndLabelledTicks) {
   Annotation a;

@@ -1,4 +1,4 @@
-// report.html as a browser shows it (issue 9): headless Chromium opens the report of a small two-variant
+// report.html as a browser shows it: headless Chromium opens the report of a small two-variant
 // run, and the page loads without console errors, shows the variants table and the pictures, and draws its
 // plots; a screenshot of the whole page, saved beside the report, shows them too.
 #include <algorithm>
@@ -346,7 +346,7 @@ throw new Error('deliberate exception');</script>
   EXPECT_EQ(inspection["table"]["rows"], json({"only"}));
 }
 
-// sweep.html (issue 12) as a browser shows it: the Pareto plot drawn, the variants table, no errors. The
+// sweep.html as a browser shows it: the Pareto plot drawn, the variants table, no errors. The
 // records are made up (twelve variants of a two-parameter grid, one failed to run), so no run is needed.
 TEST(ReportInBrowser, ShowsASweepsParetoPlotAndTable) {
   BEADTWIN_REQUIRE_CHROMIUM(exe);

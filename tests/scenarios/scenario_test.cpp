@@ -112,7 +112,7 @@ TEST(Scenario, UnknownKeyNamesFileLineAndKey) {
 
 TEST(Scenario, ASectionThatIsNotAMapIsAnInputErrorAtIt) {
   // A section written as a bare name: yaml-cpp throws its own exception when a scalar is asked for a key
-  // (found by tests/fuzz), which ended the program; now the loader checks the kind first.
+  // (found by tests/fuzz), which would end the program; the loader checks the kind first.
   const InputError e = load_error(replace(kGood, "  - name: walls\n", "  - walls\n  - name: other\n"));
   EXPECT_EQ(e.where().line, 14);
   EXPECT_EQ(e.key(), "sections[1]");
@@ -192,7 +192,7 @@ TEST(Scenario, OverriddenValueErrorsPointAtTheVariant) {
   EXPECT_EQ(e.key(), "machine.environment.bed_temp");
 }
 
-// The thermal keys of issue 7: convection by height (heights in the machine block's units unless given),
+// The thermal keys: convection by height (heights in the machine block's units unless given),
 // snapshot times with `end`, and an even number of cells across is an error at its line.
 TEST(Scenario, ThermalKeysAreReadAndCheckedWhereWritten) {
   const std::string with =
@@ -806,7 +806,7 @@ TEST(Scenario, PullBackWritesTheMachinesRollerCodes) {
 namespace beadtwin::scenarios {
 namespace {
 
-// Issue 5: a PrusaSlicer program timed by our motion model on the desktop machine agrees with
+// A PrusaSlicer program timed by our motion model on the desktop machine agrees with
 // PrusaSlicer's own estimate written in the program ("estimated printing time (normal mode)") within 10 %.
 TEST(ProgramCheck, TimingAgreesWithPrusaSlicersEstimate) {
   const std::filesystem::path sample =

@@ -1,4 +1,4 @@
-// Sweeps (issue 12): the --set grid and the combinations file expand to the variants a process engineer
+// Sweeps: the --set grid and the combinations file expand to the variants a process engineer
 // asked for, every input mistake stops with a message before anything runs, the Pareto front is the set no
 // variant beats, and the reports carry every variant (junit.xml valid JUnit).
 #include <cmath>

@@ -329,8 +329,8 @@ TEST(Skin, SimplifiedToAToleranceKeepsItsShape) {
 
 // A mesh of a million triangles or more is simplified in slabs side by side, each over its own vertices,
 // with the vertices on the cuts held: the slabs must still meet in one closed surface facing outwards, with
-// no folds (pairs of triangles on the same corners wound opposite ways: before they were dropped, this
-// plate's skin had 64 such triangles, along the cut). A plate of 520 x 520 voxels with ridges across it:
+// no folds (pairs of triangles on the same corners wound opposite ways, which the simplification leaves
+// along the cut on this plate unless they are dropped). A plate of 520 x 520 voxels with ridges across it:
 // 1.16 million triangles unsimplified, so two slabs.
 TEST(Skin, ALargeMeshIsSimplifiedInSlabsThatStillMeet) {
   Deposit d;

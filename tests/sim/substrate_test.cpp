@@ -1,5 +1,5 @@
-// The deposit following what is really under each bead (sim/substrate.hpp), and the defects it finds
-// (issue 6, items 1, 3 and 4).
+// The deposit following what is really under each bead (sim/substrate.hpp), the melt on and off it lays
+// (ooze, coast), and the defects it finds.
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -124,7 +124,7 @@ TEST(Substrate, LayersAtTheIdealPitchKeepTheirHeight) {
   EXPECT_LT(std::abs(d.deposited_volume_mm3 / d.commanded_volume_mm3 - 1.0), 0.005);
 }
 
-// Issue 6 test: an under-extruded layer makes the next layer's beads taller. Layer 0 at 70 % of the
+// An under-extruded layer makes the next layer's beads taller. Layer 0 at 70 % of the
 // material has the same beads at the same pitch, so it leaves gaps of 30 % of its volume between them;
 // layer 1 runs into them before it makes its own bead. Its material then reaches down into layer 0's band.
 TEST(Substrate, UnderExtrudedLayerMakesTheNextLayerTaller) {
@@ -262,7 +262,7 @@ TEST(Deposit, MemoryBudgetStopsWithAVoxelSizeThatFits) {
   EXPECT_LE(d.memory_estimate_bytes, 1e6);
 }
 
-// Ooze (issue 6, item 3): after a melt off with no coast or reverse, the melt under pressure flows on as
+// Ooze: after a melt off with no coast or reverse, the melt under pressure flows on as
 // Q0·exp(−t/τ). A 2 s dwell right after gets Q0·τ·(1 − e^(−2/τ)) as a puddle; the travel after it the
 // next share, as a string; the bead gives that material up, so the total stays the commanded volume. A
 // reverse after the melt off stops it.
@@ -336,7 +336,7 @@ TEST(Deposit, AutomaticVoxelSizeFitsTheMemoryBudget) {
   EXPECT_THROW((void)sim::deposit_voxel_size_mm(block(5, 2), o), InputError);
 }
 
-// Coast (issue 6, item 3): the planner writes a coast as steps whose material falls off linearly to zero
+// Coast: the planner writes a coast as steps whose material falls off linearly to zero
 // (slicer/melt_events.hpp); the deposit lays each step's material where it is, so the bead thins out.
 TEST(Deposit, CoastThinsTheBeadOut) {
   std::vector<Move> moves = {bead({0, 0, kH}, {100, 0, kH}, 0)};

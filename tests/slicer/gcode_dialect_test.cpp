@@ -1,4 +1,4 @@
-// Print-program dialects (issue 5 item 6): Marlin/RepRap E words, relative (M83) and absolute (M82), and
+// Print-program dialects: Marlin/RepRap E words, relative (M83) and absolute (M82), and
 // machines without melt codes.
 #include <algorithm>
 #include <regex>

@@ -1,4 +1,4 @@
-// Issue 5 item 7: every writer's program read back gives the planned Toolpath: positions within the
+// Every writer's program read back gives the planned Toolpath: positions within the
 // program's last decimal, material within 0.1 %, the same beads, and the same times once the read program
 // is timed by the same motion model.
 #include <cmath>

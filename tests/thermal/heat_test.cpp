@@ -1,7 +1,7 @@
-// Tests of the 3-D heat transfer on the thermal mesh (thermal/heat.hpp) against analytic solutions
-// (STYLE.md rule 12). The meshes are built by hand — a ThermalMesh is a plain struct — so that each test
-// checks the solver alone: cells of known capacity, links of known area and distance, open and table area
-// where the analytic problem has its boundaries.
+// Tests of the 3-D heat transfer on the thermal mesh (thermal/heat.hpp) against analytic solutions. The
+// meshes are built by hand — a ThermalMesh is a plain struct — so that each test checks the solver alone:
+// cells of known capacity, links of known area and distance, open and table area where the analytic problem
+// has its boundaries.
 #include "thermal/heat.hpp"
 
 #include <gtest/gtest.h>
@@ -578,8 +578,8 @@ TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {
 
 // ---- threads ---------------------------------------------------------------------------------------------
 
-// The same result, to the last bit, on 1 and 2 threads (DESIGN §5). The block is large enough (18,000
-// cells) that the model's loops and the vector operations of thermal/vector_ops.hpp both split into
+// The same result, to the last bit, on 1 and 2 threads, as every result must be. The block is large enough
+// (18,000 cells) that the model's loops and the vector operations of thermal/vector_ops.hpp both split into
 // parallel blocks; radiation on, so the right-hand side is nonlinear.
 TEST(HeatThreads, SameResultOnOneAndTwoThreads) {
   constexpr int kLayers = 20;

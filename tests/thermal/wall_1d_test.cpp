@@ -1,4 +1,4 @@
-// Tests of the 1-D stacked-layer thermal model against analytic solutions (STYLE.md rule 12).
+// Tests of the 1-D stacked-layer thermal model against analytic solutions.
 #include "thermal/wall_1d.hpp"
 
 #include <chrono>

@@ -41,7 +41,7 @@ TEST(Cli, HelpDocumentsTheCommands) {
 }
 
 TEST(Cli, TheProgramLoadsOpenImageIOOnlyToWritePictures) {
-  // OpenImageIO brings 260 shared libraries, 0.2 s of every start when linked (render/image_codec.hpp);
+  // OpenImageIO brings 260 shared libraries, bound at every start when linked (render/image_codec.hpp);
   // it lives in a module that the program loads when it writes an image.
   const Result libraries = beadtwin::testing::shell(std::string("ldd ") + BEADTWIN_BINARY + " 2>&1");
   ASSERT_EQ(libraries.code, 0) << libraries.output;
@@ -166,7 +166,7 @@ TEST(Cli, AbsurdResolutionsAreInputErrors) {
   EXPECT_NE(r2.output.find("150000 layers"), std::string::npos) << r2.output;
 }
 
-// `beadtwin check PROGRAM` (issue 5 item 5): a program from another slicer, simulated as written, with the
+// `beadtwin check PROGRAM`: a program from another slicer, simulated as written, with the
 // machine inferred and said so; with a baseline, both side by side; a program written as a Fanuc macro
 // program (our own macro dialect) simulated through the interpreter.
 TEST(Cli, CheckSimulatesAProgramAsItIsWritten) {
@@ -328,7 +328,7 @@ TEST(Cli, InterruptedRunKeepsThePreviousReport) {
   // A stale temporary, as a run killed while writing a picture leaves one (no process has this id).
   std::ofstream(out / "baseline" / ".tmp-4999999-fusion.png") << "half a picture";
 
-  // The default scenario takes about 12 s; stopped after 3.
+  // The default scenario takes several seconds; stopped after 3.
   const Result r =
       beadtwin::testing::shell(std::string(BEADTWIN_BINARY) + " run -q -o " + out.string() +
                                " 2>&1 & pid=$!; sleep 3; kill -INT $pid; wait $pid; echo \"exit=$?\"");

@@ -1,4 +1,4 @@
-// `beadtwin sweep` as a user runs it (issue 12): every combination runs as its own `beadtwin run` and
+// `beadtwin sweep` as a user runs it: every combination runs as its own `beadtwin run` and
 // measures what that run measures alone; a variant that fails is reported and the sweep goes on; a sweep
 // started again keeps what ran; bad input stops it before anything runs; under mpirun the ranks give the
 // same records as the plain run.

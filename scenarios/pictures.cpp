@@ -63,9 +63,9 @@ struct Field {
 
 // A value on every material voxel of `fill` (active on exactly its voxels, NaN elsewhere), leaf by leaf on
 // TBB's threads: read(voxel) of a reader each task makes with make_reader() (its accessors of the grids it
-// reads, unregistered with their trees, as the renderer's: render/surface.hpp). Made voxel by voxel through
-// the tree's iterator and one accessor, the three fields of the default scenario's pictures drawn after the
-// thermal stage took a third of what was left of the run then.
+// reads, unregistered with their trees, as the renderer's: render/surface.hpp). Leaf by leaf, because voxel
+// by voxel through one accessor the fields of the pictures drawn after the thermal stage were a large share
+// of a run's time (docs/PERFORMANCE.md).
 template <class MakeReader>
 openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const MakeReader& make_reader) {
   constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();

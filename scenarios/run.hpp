@@ -14,6 +14,7 @@
 
 namespace beadtwin::scenarios {
 
+// How a run is run: where it writes, which variants, who hears of its progress, and its MPI ranks.
 struct RunOptions {
   std::filesystem::path out_dir = "beadtwin-out";
   std::vector<std::string> variants;  // only these (all when empty); unknown names are an InputError

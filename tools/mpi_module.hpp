@@ -5,8 +5,8 @@
 // - `beadtwin run`: every rank takes its share of each variant's thermal solve (thermal/communicator.hpp).
 //
 // Why a module: Open MPI brings eight shared libraries more, which the dynamic loader would bind at every
-// start of beadtwin (measured: `beadtwin --version` 0.039 s without them, 0.085 s with them, on a day the
-// suite's references ran 1.3 times slower), for every command, most of which never meet MPI. The module
+// start of beadtwin, for every command, most of which never meet MPI (docs/PERFORMANCE.md measures the
+// cost). The module
 // knows nothing of scenarios: the work comes to it through the callbacks below.
 #pragma once
 

@@ -450,8 +450,8 @@ int run_plain(const SweepCommand& c) {
 
 // Lets the variants this rank starts use every core of the node. mpirun binds each rank to one core by
 // default when it starts two ranks or fewer (Open MPI's --bind-to core), and a rank's children inherit its
-// binding: a variant given two threads would run them both on one core (measured: 19.7 s a variant instead
-// of 12.7 s on this machine). The variants take their share of the node by their thread count instead.
+// binding: a variant given two threads would run them both on one core, at about one and a half times the
+// time (docs/PERFORMANCE.md). The variants take their share of the node by their thread count instead.
 void unbind_from_cores(int threads) {
   cpu_set_t mask;
   CPU_ZERO(&mask);

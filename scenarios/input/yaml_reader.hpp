@@ -1,5 +1,5 @@
 // Reading YAML blocks through the parameter declarations (core/param.hpp), with every problem reported as
-// an InputError that names the file, line, column and key (STYLE.md rule 6): unknown keys, missing required
+// an InputError that names the file, line, column and key : unknown keys, missing required
 // keys, wrong units, values of the wrong form and values out of range.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Parameter sweeps (`beadtwin sweep`, README "Sweeps"): the variants a sweep runs — the full factorial of
-// the values given with --set KEY=V1,V2,... and the explicit combinations of a file — and what each one
+// Parameter sweeps (`beadtwin sweep`, docs/usage.md "sweep"): the variants a sweep runs — the full factorial
+// of the values given with --set KEY=V1,V2,... and the explicit combinations of a file — and what each one
 // measured, gathered into one report: a table sorted by a chosen metric, the Pareto front of two chosen
 // metrics, and the gates applied to every variant.
 //

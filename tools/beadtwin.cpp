@@ -1,5 +1,5 @@
-// beadtwin: the command-line program (README, command line). A thin main: parse the command line, call the
-// scenario engine, print errors, map outcomes to exit codes:
+// beadtwin: the command-line program (docs/usage.md, "The command line"). A thin main: parse the command
+// line, call the scenario engine, print errors, map outcomes to exit codes:
 //   0 ran and every gate passed · 1 ran and a gate failed · 2 bad input or usage · 3 internal error.
 #include <algorithm>
 #include <chrono>
@@ -201,8 +201,8 @@ int cmd_run(const std::string& scenario_path, const std::vector<std::string>& se
 #endif
 }
 
-// A print program simulated as it is (README, command line): machine and material given, from a scenario,
-// or inferred from the program; with a baseline, both are simulated and compared in the report.
+// A print program simulated as it is (docs/usage.md, "The command line"): machine and material given, from a
+// scenario, or inferred from the program; with a baseline, both are simulated and compared in the report.
 int cmd_check(const beadtwin::scenarios::ProgramCheck& check, const ExtraGates& gates,
               const std::string& out_dir, bool quiet) {
   auto scenario = beadtwin::scenarios::load_program_check(check);

@@ -1,5 +1,5 @@
-// `beadtwin sweep` (README "Sweeps"): runs every variant of a sweep (scenarios/sweep.hpp) and writes the
-// one report. Each variant is its own `beadtwin run` process, its output in OUT/variants/NAME/, so a
+// `beadtwin sweep` (docs/usage.md "sweep"): runs every variant of a sweep (scenarios/sweep.hpp) and writes
+// the one report. Each variant is its own `beadtwin run` process, its output in OUT/variants/NAME/, so a
 // variant that fails — bad input found late, an internal error, a crash, the memory killer — is reported
 // and the sweep goes on.
 //

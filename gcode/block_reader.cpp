@@ -39,7 +39,8 @@ class GcodeReader::State {
         absolute_e_(o.absolute_e),
         volumetric_(o.volumetric_e),
         filament_area_mm2_(kPi * o.filament_diameter_mm * o.filament_diameter_mm / 4.0),
-        roller_(o.roller_down_at_start) {}
+        roller_(o.roller_down_at_start),
+        speed_(o.rpm_word.empty() ? '\0' : o.rpm_word.front()) {}
 
   bool ended() const { return ended_; }
   void reserve(std::size_t moves) { builder_.reserve(std::min(moves, opt_.max_moves)); }
@@ -121,7 +122,7 @@ class GcodeReader::State {
              fmt::format("{}{} is {:.4g} m away: farther than {:.4g} m, not a coordinate of this machine",
                          w.letter, w.value, std::abs(w.value) * scale() / 1000.0,
                          opt_.max_coordinate_mm / 1000.0));
-      if ((w.letter == 'F' || w.letter == 'S') && w.value < 0.0)
+      if ((w.letter == 'F' || w.letter == 'S' || w.letter == speed_) && w.value < 0.0)
         fail(w.column, fmt::format("{} must not be negative, got {}", w.letter, w.value));
     }
   }
@@ -197,11 +198,12 @@ class GcodeReader::State {
       s.params.take_all();
     } else {
       if (const auto f = s.params.take('F')) feed_mm_s_ = *f * scale() / 60.0;
-      const bool s_is_speed =
-          !s.dwell && !has_m(s, codes_.reverse_on) &&
+      // A dwell's S is its time, M200's S a switch, a reverse code's speed word the reverse speed.
+      const bool speed_word =
+          speed_ != '\0' && !s.dwell && !has_m(s, codes_.reverse_on) &&
           std::none_of(s.m.begin(), s.m.end(), [](const Word& w) { return is(w, 'M', 2000); });
-      if (const auto rpm = s_is_speed ? s.params.take('S') : std::nullopt)
-        set_rpm(*rpm, s.params.column('S'));
+      if (const auto rpm = speed_word ? s.params.take(speed_) : std::nullopt)
+        set_rpm(*rpm, s.params.column(speed_));
     }
     modes(s);
     events_before(s);
@@ -231,7 +233,8 @@ class GcodeReader::State {
   void set_rpm(double rpm, int column) {
     if (rpm > 0.0 && !(opt_.extruder && opt_.extruder->has_rpm()))
       warn("speed without extruder", column,
-           "S (pump speed) without an extruder in the reader options: its flow is not known");
+           fmt::format("{} (pump speed) without an extruder in the reader options: its flow is not known",
+                       speed_));
     rpm_ = rpm;
   }
 
@@ -292,7 +295,7 @@ class GcodeReader::State {
         flush_pending();
         reversing_ = true;
         reverse_pending_ = true;
-        s.params.take('S');  // the reverse speed: the pump draws back, nothing is laid
+        if (speed_ != '\0') s.params.take(speed_);  // the reverse speed: the pump draws back, nothing is laid
       }
       if (codes_.heat_off.matches(w)) event(ExtruderEvent::kHeatOff);
     }
@@ -602,6 +605,7 @@ class GcodeReader::State {
   bool prime_pending_ = false;
   bool reverse_pending_ = false;
   bool roller_;
+  const char speed_;  // the speed word's letter (ReaderOptions::rpm_word); '\0': none
 
   // What comments said.
   Feature feature_ = Feature::kUnknown;

@@ -9,8 +9,9 @@
 //   motion     G0 is travel, at ReaderOptions::rapid_feed_mm_s where the controller runs G0 at its rapid
 //              traverse (CNC controllers), else at the programmed F (Marlin). G1, G2 and G3 print when
 //              material flows: the E word grows (filament machines),
-//              or, without an E word, the melt is on and the pump turns (pump machines; the S word is its
-//              speed in rev/min, turned into flow by ReaderOptions::extruder; a filament drive with a
+//              or, without an E word, the melt is on and the pump turns (pump machines; the speed word,
+//              S or ReaderOptions::rpm_word, is its speed in rev/min, turned into flow by
+//              ReaderOptions::extruder; a filament drive with a
 //              constant feed, Extruder::constant_feed_mm_s, feeds Q = π d_f² v_e / 4 from melt on to melt
 //              off, as on the hybrid machine of seed 002). G2/G3 take I/J/K centre
 //              offsets (from the start) or R (negative: the longer arc) in the plane of G17 (XY), G18 (ZX)

@@ -25,7 +25,9 @@ struct GcodeDialect {
   bool arcs =
       false;  // the controller takes G2/G3 in the XY plane (G17) with I/J centre offsets from the start
   // Written only with an extruder (GcodeOptions::extruder):
-  std::string rpm_word = "S";    // pump or screw speed, rev/min; empty: never written
+  // Address of the pump or screw speed, rev/min: one of kSpeedWords (gcode/reader_options.hpp), the letters
+  // the reader gives no other meaning; empty: never written.
+  std::string rpm_word = "S";
   std::string prime_code = "";   // starts a prime (patent (51)); empty: a comment
   std::string reverse_on = "";   // pump or screw turns backwards (patent (52)); empty: a comment
   std::string reverse_off = "";  // it stops turning backwards; empty: a comment

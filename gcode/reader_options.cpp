@@ -1,8 +1,10 @@
 #include "gcode/reader_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/error.hpp"
 #include "gcode/codes.hpp"
@@ -48,6 +50,11 @@ void validate(const ReaderOptions& o) {
         fmt::format("reader.default_layer_height_mm ({}) must not exceed default_bead_width_mm ({})",
                     o.default_layer_height_mm, o.default_bead_width_mm));
   if (o.max_moves == 0) problems.push_back("reader.max_moves must be positive");
+  if (!o.rpm_word.empty() &&
+      std::find(kSpeedWords.begin(), kSpeedWords.end(), o.rpm_word) == kSpeedWords.end())
+    problems.push_back(fmt::format(
+        "reader.rpm_word must be a letter the reader gives no other meaning ({}) or empty, got '{}'",
+        fmt::join(kSpeedWords, ", "), o.rpm_word));
   if (o.extruder) {
     try {
       beadtwin::validate(*o.extruder);
@@ -79,6 +86,7 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   o.prime = codes(d.prime_code);
   o.reverse_on = codes(d.reverse_on);
   o.reverse_off = codes(d.reverse_off);
+  o.rpm_word = d.rpm_word;
   o.inches = d.inches;
   o.rapid_feed_mm_s = d.rapid_feed_mm_s;
   o.dwell_p_seconds = false;  // write_gcode writes G4 P<milliseconds>

@@ -3,9 +3,11 @@
 // the options that read back a program written in a given dialect (gcode/dialect.hpp).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/flow.hpp"
@@ -16,6 +18,13 @@ namespace beadtwin::gcode {
 // Firmware and controller housekeeping that changes nothing the Toolpath records (temperatures, fans,
 // motors, acceleration limits, progress, bed levelling, work offset G54...): read silently.
 std::vector<std::string> default_ignored_codes();
+
+// The addresses a pump or screw speed may be written with (ReaderOptions::rpm_word, GcodeDialect::rpm_word):
+// the letters the reader gives no other meaning. G, M, N, O and T are codes, program and line numbers and
+// tools; X, Y, Z, A, B and C axes; E and F the filament and the feed; I, J, K, R and P an arc's centre,
+// radius and turns (P also a dwell's time); D M200's filament diameter; L a subprogram call's repeats. S is
+// also a dwell's time (G4 S) and M200's switch: in those blocks it is not the speed.
+inline constexpr std::array<std::string_view, 6> kSpeedWords = {"H", "Q", "S", "U", "V", "W"};
 
 // What a program's codes mean on the machine that runs it, and the modes it starts in. A code is a letter
 // and a number, "M23" or "M862.3".
@@ -33,6 +42,9 @@ struct ReaderOptions {
   std::vector<std::string> prime;        // a prime starts (its time: the G4 after it)
   std::vector<std::string> reverse_on;   // the pump turns backwards (its S is the reverse speed)
   std::vector<std::string> reverse_off;  // it stops turning backwards
+  // The address of the pump or screw speed (rev/min), one of kSpeedWords; empty: programs carry no speed
+  // word, and an S is a dwell's time or M200's switch only.
+  std::string rpm_word = "S";
   std::vector<std::string> ignored = default_ignored_codes();
 
   bool inches = false;                 // units before any G20/G21
@@ -63,13 +75,14 @@ struct ReaderOptions {
 };
 
 // Throws InputError (key "reader", the message naming each option "reader.<option>" at fault) for every
-// problem found: a code that is not a letter and a number, a filament diameter, chord tolerance or feed that
-// is not positive, negative defaults, an extruder that does not validate.
+// problem found: a code that is not a letter and a number, a speed word that is not one of kSpeedWords, a
+// filament diameter, chord tolerance or feed that is not positive, negative defaults, an extruder that does
+// not validate.
 void validate(const ReaderOptions& options);
 
 // The options that read back a program written by write_gcode with `dialect` and, if any, `extruder`:
-// its melt, roller, prime and reverse codes, G4 P in milliseconds, its units, the extruder's filament or
-// pump.
+// its heat, melt, roller, prime and reverse codes, its speed word, G4 P in milliseconds, its units and rapid
+// feed, the extruder's filament or pump.
 ReaderOptions reader_options_for(const GcodeDialect& dialect, const Extruder* extruder);
 
 }  // namespace beadtwin::gcode

@@ -1,7 +1,10 @@
 // The declarations of a machine file's and a material file's keys (or of the inline maps that stand for
 // them in a scenario).
+#include <algorithm>
+#include <array>
 #include <limits>
 
+#include "gcode/reader_options.hpp"
 #include "scenarios/input/params.hpp"
 
 namespace beadtwin::scenarios {
@@ -11,6 +14,13 @@ using D = Dimension;
 
 // gcode.units: millimetres (false) or inches (true).
 constexpr std::string_view kProgramUnits[] = {"mm", "in"};
+// gcode.rpm_word: a letter the G-code reader gives no other meaning, or none.
+constexpr auto kSpeedWords = [] {
+  std::array<std::string_view, gcode::kSpeedWords.size() + 1> out{};
+  std::copy(gcode::kSpeedWords.begin(), gcode::kSpeedWords.end(), out.begin());
+  out.back() = "none";
+  return out;
+}();
 
 const Param<Machine> kMachine[] = {
     {{.key = "name", .meaning = "machine name"}, BT_MEMBER(Machine, name)},
@@ -236,8 +246,11 @@ const Param<Machine> kMachine[] = {
      BT_MEMBER(Machine, dialect.heat_off)},
     {{.key = "gcode.rpm_word",
       .default_text = "S",
-      .meaning = "address of the pump or screw speed in the program (with a displacement)",
-      .source = "patent (51)"},
+      .meaning = "address of the pump or screw speed in the program (with a displacement): a letter the "
+                 "reader gives no other meaning (none: no speed words)",
+      .source = "patent (51)",
+      .choices = kSpeedWords,
+      .none_is_empty = true},
      BT_MEMBER(Machine, dialect.rpm_word)},
     {{.key = "gcode.prime_code",
       .default_text = "none",

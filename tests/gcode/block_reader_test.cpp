@@ -284,6 +284,56 @@ TEST(GcodeReaderPump, SpeedWordsGiveFlowAndEventsTheMeltState) {
   EXPECT_NEAR(read("G0 Z5\nM3 S30\nG1 X100 F3000\nM5\n", spindle).commanded_volume_mm3(), 10000.0, 1e-9);
 }
 
+// A machine whose speed word is another letter (ReaderOptions::rpm_word): that letter is the speed, on the
+// melt on, on print moves and on the reverse code; S keeps its other meanings (a dwell's seconds) and is no
+// speed on a move.
+TEST(GcodeReaderPump, TheSpeedWordIsTheConfiguredLetter) {
+  ReaderOptions o;
+  o.extruder = gear_pump();
+  o.rpm_word = "Q";
+  o.reverse_on = {"M71"};
+  o.reverse_off = {"M72"};
+  ReadStats st;
+  const std::string program =
+      "G0 X0 Y0 Z5 F6000\n"
+      "M23 Q30\n"        // 30 rpm: 5000 mm³/s
+      "G4 S1\n"          // S of G4 is its time: a 1 s prime blob
+      "G1 X100 F3000\n"  // 2 s at 50 mm/s
+      "G1 X200 Q60\n"    // twice the speed: twice the material
+      "M71 Q20\n"        // the reverse speed: nothing laid
+      "G4 P500\n"
+      "M72\n"
+      "M24\n";
+  const Toolpath tp = read(program, o, &st);
+  EXPECT_EQ(st.warning_count(), 0u) << (st.messages.empty() ? "" : st.messages[0]);
+  const std::vector<Move> blob = moves_of_line(tp, 3);
+  ASSERT_EQ(blob.size(), 1u);
+  EXPECT_NEAR(blob[0].duration_s, 1.0, 1e-12);
+  EXPECT_NEAR(blob[0].volume_mm3, 5000.0, 1e-9);
+  EXPECT_NEAR(moves_of_line(tp, 4).at(0).volume_mm3, 10000.0, 1e-9);
+  EXPECT_NEAR(moves_of_line(tp, 5).at(0).volume_mm3, 20000.0, 1e-9);
+  const std::vector<Move> reverse = moves_of_line(tp, 7);
+  ASSERT_EQ(reverse.size(), 1u);
+  EXPECT_EQ(reverse[0].event, ExtruderEvent::kReverse);
+  EXPECT_EQ(reverse[0].volume_mm3, 0.0);
+
+  // S on a move is no speed here: an unused word, the speed stays.
+  ReadStats s_stats;
+  const Toolpath s_move = read("G0 Z5\nM23 Q30\nG1 X100 F3000 S60\nM24\n", o, &s_stats);
+  EXPECT_NEAR(s_move.commanded_volume_mm3(), 10000.0, 1e-9);
+  EXPECT_EQ(s_stats.count("unused word S"), 1u);
+  EXPECT_THROW(read("M23 Q-5\n", o), InputError) << "a negative speed";
+
+  // No speed word at all: the pump's speed is never known, S is no speed either.
+  ReaderOptions none = o;
+  none.rpm_word.clear();
+  ReadStats none_stats;
+  const Toolpath unknown = read("G0 Z5\nM23 S30\nG1 X100 F3000\nM24\n", none, &none_stats);
+  EXPECT_EQ(unknown.commanded_volume_mm3(), 0.0);
+  EXPECT_EQ(none_stats.count("unused word S"), 1u);
+  EXPECT_EQ(none_stats.count("unknown flow"), 1u);
+}
+
 TEST(GcodeReaderPump, UnknownFlowTakesTheDefaultBeadOrWarns) {
   ReadStats st;
   const Toolpath none = read("G0 Z2 F600\nM23\nG1 X100\nG1 X200\nM24\n", {}, &st);

@@ -1,6 +1,8 @@
 #include "gcode/reader_options.hpp"
 
+#include <algorithm>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -45,6 +47,33 @@ TEST(ReaderOptions, ValidateNamesEveryOptionAtFault) {
   EXPECT_THROW(validate(constant_feed), InputError) << "a constant feed needs a melt-on code";
 }
 
+// The speed word is one of the letters the reader gives no other meaning, or none; every other letter (and
+// anything that is not one upper-case letter) is refused at reader.rpm_word.
+TEST(ReaderOptions, TheSpeedWordIsALetterWithNoOtherMeaning) {
+  ReaderOptions o;
+  for (const std::string_view free : kSpeedWords) {
+    o.rpm_word = free;
+    EXPECT_NO_THROW(validate(o)) << free;
+  }
+  o.rpm_word.clear();
+  EXPECT_NO_THROW(validate(o)) << "no speed word";
+  std::vector<std::string> refused = {"s", "SS", "S1", " ", "#"};
+  for (char c = 'A'; c <= 'Z'; ++c)
+    if (std::find(kSpeedWords.begin(), kSpeedWords.end(), std::string(1, c)) == kSpeedWords.end())
+      refused.emplace_back(1, c);
+  EXPECT_EQ(refused.size(), 5u + 26u - kSpeedWords.size());
+  for (const std::string& word : refused) {
+    o.rpm_word = word;
+    try {
+      validate(o);
+      ADD_FAILURE() << "speed word '" << word << "' taken";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "reader");
+      EXPECT_NE(e.message().find("reader.rpm_word"), std::string::npos) << e.message();
+    }
+  }
+}
+
 TEST(ReaderOptions, ReaderOptionsForTakesTheDialectsCodesUnitsAndRapidFeed) {
   GcodeDialect d;
   d.melt_on = "M3";
@@ -54,6 +83,9 @@ TEST(ReaderOptions, ReaderOptionsForTakesTheDialectsCodesUnitsAndRapidFeed) {
   d.prime_code = "M70";
   d.reverse_on = "M71";
   d.reverse_off = "M72";
+  d.heat_on = "M80";
+  d.heat_off = "M81";
+  d.rpm_word = "Q";
   d.inches = true;
   d.rapid_feed_mm_s = 500;
   const ReaderOptions o = reader_options_for(d, nullptr);
@@ -64,6 +96,9 @@ TEST(ReaderOptions, ReaderOptionsForTakesTheDialectsCodesUnitsAndRapidFeed) {
   EXPECT_EQ(o.prime, Codes{"M70"});
   EXPECT_EQ(o.reverse_on, Codes{"M71"});
   EXPECT_EQ(o.reverse_off, Codes{"M72"});
+  EXPECT_EQ(o.heat_on, Codes{"M80"});
+  EXPECT_EQ(o.heat_off, Codes{"M81"});
+  EXPECT_EQ(o.rpm_word, "Q");
   EXPECT_TRUE(o.inches);
   EXPECT_DOUBLE_EQ(o.rapid_feed_mm_s, 500);
   EXPECT_FALSE(o.dwell_p_seconds) << "the writer writes G4 P in milliseconds";
@@ -76,6 +111,9 @@ TEST(ReaderOptions, ReaderOptionsForTakesTheDialectsCodesUnitsAndRapidFeed) {
   ASSERT_TRUE(f.extruder.has_value());
   EXPECT_EQ(f.extruder->kind, ExtruderKind::kFilament);
   EXPECT_DOUBLE_EQ(f.filament_diameter_mm, 2.85);
+  GcodeDialect no_speed;
+  no_speed.rpm_word.clear();
+  EXPECT_TRUE(reader_options_for(no_speed, nullptr).rpm_word.empty()) << "no speed words written, none read";
 
   Extruder pump;
   pump.displacement_mm3_per_rev = 10000;

@@ -3,16 +3,23 @@
 // the struct's own, every range is enforced at its key, and every machine code a scenario sets reaches the
 // program writer and reader.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
+#include "core/flow.hpp"
+#include "core/melt_settings.hpp"
 #include "gcode/program_reader.hpp"
 #include "gcode/reader_options.hpp"
 #include "gcode/writer.hpp"
@@ -417,44 +424,154 @@ TEST(Declarations, EveryKeyWithoutAMemberIsReadByItsBlock) {
     if (!p.member) check("render", p.key);
 }
 
-// Every code a machine's gcode block sets is written where its event happens and read back as that event,
-// not as an unknown code.
+// The speed word is a letter the G-code reader gives no other meaning, or none: anything else is refused
+// at the key, where the machine file says it, not when a program is read.
+TEST(Declarations, TheSpeedWordIsRefusedAtItsKeyUnlessTheReaderTakesIt) {
+  const auto dir = std::filesystem::temp_directory_path() / "bt_declarations_speed_word";
+  std::filesystem::create_directories(dir / "machines");
+  const auto machine = dir / "machines" / "speed.yaml";
+  std::string scenario = kBase;
+  const std::string inline_machine = "{name: m, gcode: {melt_on: M23, melt_off: M24}}";
+  scenario.replace(scenario.find(inline_machine), inline_machine.size(), "speed");
+  const auto load = [&](std::string_view word) {
+    std::ofstream(machine) << fmt::format("name: speed\ngcode:\n  rpm_word: '{}'\n", word);
+    return load_scenario_text(scenario, (dir / "s.yaml").string()).variants.at(0).machine.dialect.rpm_word;
+  };
+  for (const std::string_view word : {"R", "E", "s", "SS", ""}) {
+    try {
+      (void)load(word);
+      ADD_FAILURE() << "speed word '" << word << "' taken";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key(), "machine.gcode.rpm_word") << e.what();
+      EXPECT_EQ(std::filesystem::path(e.where().file).filename(), "speed.yaml") << e.what();
+      EXPECT_EQ(e.where().line, 3) << e.what();
+      EXPECT_EQ(e.where().column, 13) << e.what();
+    }
+  }
+  EXPECT_EQ(load("none"), "");
+  for (const std::string_view word : gcode::kSpeedWords) EXPECT_EQ(load(word), word);
+  std::filesystem::remove_all(dir);
+}
+
+// A short print of the kind the planner makes: heaters on, travel, melt on with a prime at 24 rev/min, three
+// beads at 30, 60 and 45 rev/min (the roller down for the first two, up for the third), a reverse, melt off,
+// heaters off. A pump of 10 cm³/rev: 1000/6 mm³/s per rev/min.
+Toolpath short_print(const Extruder& pump) {
+  Toolpath tp;
+  const auto dwell = [&](ExtruderEvent e, double seconds, double rpm) {
+    Move m;
+    m.kind = MoveKind::kDwell;
+    m.event = e;
+    m.duration_s = seconds;
+    m.volume_mm3 = flow_for_rpm(pump, rpm) * seconds;
+    m.start = m.end = tp.moves.empty() ? Eigen::Vector3d::Zero() : tp.moves.back().end;
+    m.section = 0;
+    tp.moves.push_back(m);
+  };
+  const auto move = [&](MoveKind kind, const Eigen::Vector3d& to, double rpm, bool roller) {
+    Move m;
+    m.kind = kind;
+    m.start = tp.moves.empty() ? Eigen::Vector3d::Zero() : tp.moves.back().end;
+    m.end = to;
+    m.feed_mm_s = 50.0;
+    m.volume_mm3 = flow_for_rpm(pump, rpm) * m.length_mm() / m.feed_mm_s;
+    m.roller_down = roller;
+    m.feature = kind == MoveKind::kPrint ? Feature::kBoundary : Feature::kTravel;
+    m.section = 0;
+    m.pass = 0;
+    tp.moves.push_back(m);
+  };
+  dwell(ExtruderEvent::kHeatOn, 0, 0);
+  move(MoveKind::kTravel, {0, 0, 5}, 0, false);
+  dwell(ExtruderEvent::kMeltOn, 0, 0);
+  dwell(ExtruderEvent::kPrime, 1, 24);
+  for (const auto& [x, rpm, roller] :
+       {std::tuple{100.0, 30.0, true}, {200.0, 60.0, true}, {300.0, 45.0, false}})
+    move(MoveKind::kPrint, {x, 0, 5}, rpm, roller);
+  dwell(ExtruderEvent::kReverse, 0.5, 0);
+  dwell(ExtruderEvent::kMeltOff, 0, 0);
+  dwell(ExtruderEvent::kHeatOff, 0, 0);
+  tp.sections = {"walls"};
+  return tp;
+}
+
+// Every code a machine's gcode block sets, and its speed word, reaches the dialect and the reader's options;
+// a program written in that dialect reads back event for event (none an unknown code or an unused word),
+// with the pump's speeds in rev/min.
 TEST(Declarations, EveryMachineCodeReachesTheWriterAndTheReader) {
-  std::vector<Setting> settings;
-  int n = 900;
-  for (const Param<Machine>& p : machine_params())
-    if (p.none_is_empty) settings.push_back({"machine." + std::string(p.key), fmt::format("M{}", ++n)});
+  std::vector<Setting> settings = {{"machine.extruder.kind", "gear_pump"},
+                                   {"machine.extruder.displacement", "10000 mm3"}};
+  std::vector<const Param<Machine>*> codes;
+  int n = 0;
+  for (const Param<Machine>& p : machine_params()) {
+    if (!p.none_is_empty) continue;
+    codes.push_back(&p);
+    // Codes with a decimal, far from the usual M23/M24; a speed word other than S.
+    ++n;
+    std::string value = fmt::format("M{}.{}", 900 + n, n % 10);
+    for (const std::string_view choice : p.spellings())
+      if (choice != p.default_text && choice != "none") {
+        value = choice;
+        break;
+      }
+    settings.push_back({"machine." + std::string(p.key), value});
+  }
+  ASSERT_EQ(codes.size(), 10u) << "melt, heat, roller, prime and reverse codes, and the speed word";
   const Scenario sc = load_with(settings);
   const Machine& m = sc.variants.at(0).machine;
-  for (const Setting& s : settings) {
-    const std::string& code = s.value;
-    const std::string_view field = std::string_view(s.key).substr(std::string_view("machine.gcode.").size());
-    const std::string& set = field == "heat_on"       ? m.dialect.heat_on
-                             : field == "heat_off"    ? m.dialect.heat_off
-                             : field == "melt_on"     ? m.dialect.melt_on
-                             : field == "melt_off"    ? m.dialect.melt_off
-                             : field == "roller_down" ? m.dialect.roller_down
-                             : field == "roller_up"   ? m.dialect.roller_up
-                             : field == "prime_code"  ? m.dialect.prime_code
-                             : field == "reverse_on"  ? m.dialect.reverse_on
-                                                      : m.dialect.reverse_off;
-    EXPECT_EQ(set, code) << s.key;
-  }
-  const gcode::ReaderOptions reader = gcode::reader_options_for(m.dialect, nullptr);
-  const auto has = [](const std::vector<std::string>& codes, const std::string& c) {
-    return std::find(codes.begin(), codes.end(), c) != codes.end();
+  for (std::size_t i = 0; i < codes.size(); ++i)
+    EXPECT_EQ(codes[i]->get(m).text(), settings[i + 2].value) << codes[i]->key;
+  EXPECT_NE(m.dialect.rpm_word, "S");
+
+  const gcode::ReaderOptions reader = gcode::reader_options_for(m.dialect, &m.extruder);
+  const auto has = [](const std::vector<std::string>& list, const std::string& c) {
+    return std::find(list.begin(), list.end(), c) != list.end();
   };
   EXPECT_TRUE(has(reader.melt_on, m.dialect.melt_on));
   EXPECT_TRUE(has(reader.melt_off, m.dialect.melt_off));
-  EXPECT_TRUE(has(reader.heat_on, m.dialect.heat_on))
-      << "the reader expects heat on as " << fmt::format("{}", fmt::join(reader.heat_on, ", "));
-  EXPECT_TRUE(has(reader.heat_off, m.dialect.heat_off))
-      << "the reader expects heat off as " << fmt::format("{}", fmt::join(reader.heat_off, ", "));
+  EXPECT_TRUE(has(reader.heat_on, m.dialect.heat_on));
+  EXPECT_TRUE(has(reader.heat_off, m.dialect.heat_off));
   EXPECT_TRUE(has(reader.roller_down, m.dialect.roller_down));
   EXPECT_TRUE(has(reader.roller_up, m.dialect.roller_up));
   EXPECT_TRUE(has(reader.prime, m.dialect.prime_code));
   EXPECT_TRUE(has(reader.reverse_on, m.dialect.reverse_on));
   EXPECT_TRUE(has(reader.reverse_off, m.dialect.reverse_off));
+  EXPECT_EQ(reader.rpm_word, m.dialect.rpm_word);
+
+  const Toolpath written = short_print(m.extruder);
+  gcode::GcodeOptions options;
+  options.extruder = &m.extruder;
+  MeltSettings reverse;
+  reverse.reverse_rpm = 20;
+  options.melt = {reverse};
+  const std::string program = gcode::write_gcode(written, m.dialect, {}, options);
+  for (const Param<Machine>* p : codes) {  // the speed word shows in the speeds read back
+    if (!p->choices.empty()) continue;
+    EXPECT_NE(program.find(p->get(m).text()), std::string::npos) << p->key << " not written:\n" << program;
+  }
+  std::istringstream in(program);
+  gcode::ReadStats stats;
+  const Toolpath read = gcode::read_gcode(in, "codes.nc", reader, &stats);
+  EXPECT_EQ(stats.warning_count(), 0u) << fmt::format("{}", fmt::join(stats.messages, "\n")) << "\n"
+                                       << program;
+
+  std::vector<ExtruderEvent> events;
+  std::vector<double> rpm;  // of the prime and the beads
+  std::vector<bool> roller;
+  for (const Move& mv : read.moves) {
+    if (mv.kind == MoveKind::kDwell) events.push_back(mv.event);
+    if (mv.kind == MoveKind::kPrint || mv.event == ExtruderEvent::kPrime)
+      rpm.push_back(rpm_for_flow(m.extruder, commanded_flow_mm3_s(mv)));
+    if (mv.kind == MoveKind::kPrint) roller.push_back(mv.roller_down);
+  }
+  EXPECT_EQ(events, (std::vector<ExtruderEvent>{ExtruderEvent::kHeatOn, ExtruderEvent::kMeltOn,
+                                                ExtruderEvent::kPrime, ExtruderEvent::kReverse,
+                                                ExtruderEvent::kMeltOff, ExtruderEvent::kHeatOff}))
+      << program;
+  ASSERT_EQ(rpm.size(), 4u) << program;
+  for (std::size_t i = 0; i < rpm.size(); ++i)
+    EXPECT_NEAR(rpm[i], (std::array{24.0, 30.0, 60.0, 45.0})[i], 1e-9);
+  EXPECT_EQ(roller, (std::vector<bool>{true, true, false}));
 }
 
 }  // namespace

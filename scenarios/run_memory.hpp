@@ -4,6 +4,7 @@
 
 #include <functional>
 
+#include "core/memory.hpp"
 #include "core/toolpath.hpp"
 #include "scenarios/input/scenario.hpp"
 #include "sim/deposit.hpp"
@@ -14,27 +15,26 @@ namespace beadtwin::scenarios {
 // The memory the rest of a run needs once its deposit is made, against the budget (docs/RELIABILITY.md). The
 // estimate made before the deposit goes by the material's volume; a part that is mostly surface (a desktop
 // print's thin infill walls) needs far more for what is meshed from it than a part of the same volume that
-// is mostly solid. Once the deposit is made its surface is known. Estimated, each from what it grows with
-// (measured, docs/RELIABILITY.md), so that the same input on the same machine gets the same answer:
-//  - what the run holds: the moves with their motion plan, and the deposit's grids;
-//  - the thermal stage: its cells (planned from the toolpath) and its grid of the cell each voxel is in;
-//  - what is meshed from the surface (the pictures' surfaces and ray-tracing scenes, the skin, the
-//    comparison's print surface): the faces of the deposit's voxels on its surface;
+// is mostly solid. Once the deposit is made its surface is known. Each stage declares its own cost, from
+// what it grows with (measured), so that the same input on the same machine gets the same answer; this adds
+// them:
+//  - what the run holds: the moves with their motion plan, and the deposit's grids (sim::deposit_cost);
+//  - the thermal stage: its cells and its grid of the cell each voxel is in (thermal::thermal_cost);
+//  - what is meshed from the surface (sim::surface_cost);
 //  - a fixed allowance for the rest (the pictures' frames, the CAD's scene).
 // Side by side the pictures' surfaces and scenes are held through the thermal stage; in turn they are built
 // after it, and the peak is the larger of the two.
 struct RunMemory {
-  double program = 0.0;   // held: the moves with their motion plan, and the program's own, bytes
-  double deposit = 0.0;   // held: the deposit's grids and what its work left to the allocator, bytes
-  double cells = 0.0;     // the thermal cells, bytes
-  double grids = 0.0;     // the grids later stages make on the deposit's voxels, bytes
-  double surfaces = 0.0;  // what is meshed from the surface, bytes
-  double budget = 0.0;    // output.memory_budget, or three quarters of the machine's memory
+  MemoryCost program;   // held: the moves with their motion plan, and the program's own
+  MemoryCost deposit;   // held: the deposit's grids and what its work left to the allocator
+  MemoryCost thermal;   // the thermal cells and the grid of the cell each voxel is in
+  MemoryCost surfaces;  // what is meshed from the surface
+  MemoryCost rest;      // the pictures' frames, the CAD's scene
+  double budget = 0.0;  // output.memory_budget, or three quarters of the machine's memory, bytes
   // The run's peak, bytes, with the pictures' surfaces beside the thermal stage or after it.
   double side_by_side() const;
   double in_turn() const;
-  // The same at voxels 1/r times as large: the grids go as the inverse cube of the voxel size, the surface
-  // as its inverse square.
+  // The same at voxels 1/r times as large (MemoryCost::at_voxel_ratio).
   RunMemory at_voxel_ratio(double r) const;
   // What the run needs at any voxel size: the program, the thermal cells and what every run holds, bytes.
   double least() const;
@@ -45,6 +45,11 @@ struct RunMemory {
 };
 // The estimate for `variant` printing `toolpath` into `deposit`.
 RunMemory run_memory(const Variant& variant, const Toolpath& toolpath, const sim::Deposit& deposit);
+
+// What the stages after the deposit build from it while it is held, bytes per byte of the deposit's grids:
+// the run's share of the estimate made before the deposit
+// (sim::DepositOptions::later_bytes_per_deposit_byte).
+double later_bytes_per_deposit_byte();
 
 // Deposits the variant's toolpath and checks that the rest of the run fits the memory budget once the
 // deposit's surface is known (RunMemory). Over it, a voxel size the scenario set is an error naming one that

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "scenarios/pictures.hpp"
+#include "scenarios/run_memory.hpp"
 #include "slicer/mesh.hpp"
 
 namespace beadtwin::scenarios {
@@ -154,6 +155,7 @@ sim::DepositOptions deposit_options(const Variant& v) {
   o.nozzle_diameter_mm = v.machine.nozzle_diameter_mm;
   o.ooze_time_s = v.machine.ooze_time_s;
   o.memory_budget_bytes = v.output.memory_budget_gb * 1e9;
+  o.later_bytes_per_deposit_byte = later_bytes_per_deposit_byte();
   return o;
 }
 

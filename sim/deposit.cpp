@@ -400,35 +400,18 @@ double widest_nominal_bead(const Toolpath& toolpath) {
   return widest;
 }
 
-// Bytes per active voxel: four grids of four bytes in leaf nodes that a thin shell fills about half, the
-// tree above them, and the batches of coverage cells.
-constexpr double kBytesPerVoxel = 50.0;
-// The whole run's peak per byte of deposit: the stages after it build from the deposit (the CAD
-// comparison's distance grids, the thermal cell grid and mesh, the rendered surface) while it is held.
-// Measured (docs/RELIABILITY.md): 2.4 on the default scenario, 3.3 on the LSAM hull mould, at least 2.7 on
-// a 156 MB PrusaSlicer program; 3.5 covers them all.
-constexpr double kRunBytesPerDepositByte = 3.5;
 // Active voxels per voxel of material: the partly filled skin and the material pushed aside.
 constexpr double kActivePerMaterialVoxel = 1.3;
 
-// The memory a run will take at a voxel size (the deposit and what later stages build from it), against the
-// budget.
-struct MemoryCheck {
-  double estimate_bytes = 0.0, budget_bytes = 0.0, voxels = 0.0;
-  double fitting_voxel_mm = 0.0;  // the smallest size (to 0.1 mm, with some room) within the budget
-  bool fits() const { return estimate_bytes <= budget_bytes; }
-};
+// The active voxels the deposit of `toolpath` is expected to make at `voxel_size_mm`.
+double planned_voxels(const Toolpath& toolpath, double voxel_size_mm) {
+  return toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
+}
 
-MemoryCheck check_memory(const Toolpath& toolpath, const DepositOptions& options, double voxel_size_mm) {
-  MemoryCheck c;
-  c.voxels = toolpath.commanded_volume_mm3() * kActivePerMaterialVoxel / std::pow(voxel_size_mm, 3);
-  c.estimate_bytes = c.voxels * kBytesPerVoxel * kRunBytesPerDepositByte;
-  c.budget_bytes = memory_budget_bytes(options.memory_budget_bytes);
-  // Memory goes as the inverse cube of the voxel size.
-  c.fitting_voxel_mm =
-      c.fits() ? voxel_size_mm
-               : std::ceil(voxel_size_mm * std::cbrt(1.1 * c.estimate_bytes / c.budget_bytes) * 10.0) / 10.0;
-  return c;
+// The memory a run will take at a voxel size: the deposit's grids and what the stages after it build from
+// them while they are held.
+MemoryCost run_cost(const Toolpath& toolpath, const DepositOptions& options, double voxel_size_mm) {
+  return deposit_cost(toolpath, voxel_size_mm).scaled(1.0 + options.later_bytes_per_deposit_byte);
 }
 
 // The voxel size the deposit uses: the one asked for, which must fit the memory budget (checked before any
@@ -436,23 +419,22 @@ MemoryCheck check_memory(const Toolpath& toolpath, const DepositOptions& options
 // smallest layer height, made coarser when that would not fit.
 double settle_voxel_size(const Toolpath& toolpath, const DepositOptions& options, Deposit& out) {
   const double chosen = choose_voxel_size(toolpath, options);
-  MemoryCheck c = check_memory(toolpath, options, chosen);
-  if (!c.fits() && options.voxel_size_mm > 0.0)
+  const double budget = memory_budget_bytes(options.memory_budget_bytes);
+  const MemoryCost cost = run_cost(toolpath, options, chosen);
+  out.memory_estimate_bytes = cost.bytes();
+  if (cost.bytes() <= budget) return chosen;
+  const double size = fitting_voxel_mm(cost, chosen, budget);
+  if (options.voxel_size_mm > 0.0)
     throw InputError(
         {}, "voxel_size",
         fmt::format("voxel size {} mm needs about {:.1f} GB for this toolpath ({:.3g} voxels), over the "
                     "memory budget of {:.1f} GB; use a voxel size of {} mm or more, or raise the budget",
-                    chosen, c.estimate_bytes / 1e9, c.voxels, c.budget_bytes / 1e9, c.fitting_voxel_mm));
-  double size = chosen;
-  if (!c.fits()) {
-    size = c.fitting_voxel_mm;
-    out.notes.push_back(
-        fmt::format("voxel size {} mm (half the smallest layer height) would need about {:.1f} GB, "
-                    "over the memory budget of {:.1f} GB: {} mm used instead",
-                    chosen, c.estimate_bytes / 1e9, c.budget_bytes / 1e9, size));
-    c = check_memory(toolpath, options, size);
-  }
-  out.memory_estimate_bytes = c.estimate_bytes;
+                    chosen, cost.bytes() / 1e9, planned_voxels(toolpath, chosen), budget / 1e9, size));
+  out.notes.push_back(
+      fmt::format("voxel size {} mm (half the smallest layer height) would need about {:.1f} GB, "
+                  "over the memory budget of {:.1f} GB: {} mm used instead",
+                  chosen, cost.bytes() / 1e9, budget / 1e9, size));
+  out.memory_estimate_bytes = run_cost(toolpath, options, size).bytes();
   return size;
 }
 
@@ -505,6 +487,30 @@ Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm)
 
 int voxel_row_at_or_above(double z_mm, double voxel_size_mm) {
   return static_cast<int>(std::ceil(z_mm / voxel_size_mm - 0.5));
+}
+
+// Bytes per active voxel: four grids of four bytes in leaf nodes that a thin shell fills about half, the
+// tree above them, and the batches of coverage cells.
+constexpr double kBytesPerVoxel = 50.0;
+// Bytes a made deposit holds per byte of its grids (Grid::memUsage): what its work left to the allocator.
+// Bytes a face of its surface takes once meshed, in everything the run builds from it. Both measured on
+// whole runs (docs/RELIABILITY.md).
+constexpr double kHeldPerGridByte = 1.6;
+constexpr double kSurfaceBytesPerFace = 280.0;
+
+MemoryCost deposit_cost(const Toolpath& toolpath, double voxel_size_mm) {
+  return {.volume_bytes = planned_voxels(toolpath, voxel_size_mm) * kBytesPerVoxel};
+}
+
+MemoryCost deposit_cost(const Deposit& deposit) {
+  const auto bytes = [](const auto& grid) { return grid ? static_cast<double>(grid->memUsage()) : 0.0; };
+  return {.volume_bytes =
+              kHeldPerGridByte * (bytes(deposit.fill) + bytes(deposit.time) + bytes(deposit.layer) +
+                                  bytes(deposit.move) + bytes(deposit.gaps))};
+}
+
+MemoryCost surface_cost(const Deposit& deposit) {
+  return {.surface_bytes = kSurfaceBytesPerFace * static_cast<double>(deposit.surface_faces)};
 }
 
 double deposit_voxel_size_mm(const Toolpath& toolpath, const DepositOptions& options) {

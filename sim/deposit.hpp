@@ -34,6 +34,7 @@
 #include <openvdb/openvdb.h>
 #include <Eigen/Core>
 
+#include "core/memory.hpp"
 #include "core/toolpath.hpp"
 #include "sim/defects.hpp"
 
@@ -76,9 +77,15 @@ struct DepositOptions {
   // The build table's height, mm; NaN: the lowest nominal bead bottom of the toolpath.
   double table_z_mm = std::numeric_limits<double>::quiet_NaN();
   // Memory the run may use, bytes; 0: three quarters of the machine's physical memory. The estimate counts
-  // the deposit and what the later stages build from it (3.5 times the deposit's own grids); above it the
-  // run stops before any voxel is written, with a voxel size that would fit.
+  // the deposit's grids (deposit_cost) and what the stages after it build from them while they are held;
+  // above it the run stops before any voxel is written, with a voxel size that would fit, or an automatic
+  // voxel size is made coarser.
   double memory_budget_bytes = 0.0;
+  // What the stages after the deposit build from it while it is held, bytes per byte of its grids: the
+  // caller's stages, not the deposit's (the scenario runner supplies its own, scenarios/run_memory.hpp). The
+  // default is the runner's, so that the deposit used alone (benchmarks, tests) checks as within a run; 0
+  // counts the deposit alone.
+  double later_bytes_per_deposit_byte = 2.5;
   // Called on the calling thread as the layers are laid, with the fraction of the beads laid so far (0..1);
   // empty: no reports.
   std::function<void(double fraction)> progress;
@@ -139,6 +146,17 @@ Deposit deposit(const Toolpath& toolpath, const DepositOptions& options = {});
 // on the deposit's voxels can start beside it). Throws InputError as deposit() does for a toolpath that
 // cannot be deposited or a voxel size that does not fit the memory budget.
 double deposit_voxel_size_mm(const Toolpath& toolpath, const DepositOptions& options = {});
+
+// What the deposit of `toolpath` at `voxel_size_mm` will hold, bytes, estimated before any voxel is written
+// from the material the toolpath commands: its grids, all of it going as the inverse cube of the voxel size.
+MemoryCost deposit_cost(const Toolpath& toolpath, double voxel_size_mm);
+// What a made deposit holds while the stages after it run, bytes: its grids and what its work left to the
+// allocator (volume bytes at its voxel size).
+MemoryCost deposit_cost(const Deposit& deposit);
+// What the stages after the deposit mesh from its surface (the pictures' surfaces and ray-tracing scenes,
+// the skin, the CAD comparison's print surface), bytes: per voxel face on its surface (surface bytes at its
+// voxel size).
+MemoryCost surface_cost(const Deposit& deposit);
 
 // The grids' transform for voxels of `voxel_size_mm` (> 0): index (i,j,k) ↦ centre ((i+½)s, (j+½)s, (k+½)s).
 openvdb::math::Transform::Ptr deposit_transform(double voxel_size_mm);

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "core/enum_names.hpp"
+#include "core/memory.hpp"
 
 namespace beadtwin::slicer {
 
@@ -61,11 +62,15 @@ inline constexpr double kMaxPartSizeMm = 100'000.0;
 // Throws InputError naming the file when it cannot be read (with assimp's message), has a coordinate that
 // is not finite, is larger than 100 m, or has no triangles left after repair; and, before reading it, when
 // reading it would take more memory than `memory_budget_bytes` (core/memory.hpp; 0: three quarters of the
-// machine's). The estimate: 300 bytes a triangle for binary STL, whose header counts them (measured peak:
-// 232 for a 2-million-triangle sphere), else 24 bytes a byte of file (measured: 7.7 for the same sphere as
-// OBJ; denser files hold more triangles per byte).
+// machine's), as read_mesh_cost estimates it.
 TriangleMesh read_mesh(const std::filesystem::path& path, double unit_scale = 1.0,
                        MeshReport* report = nullptr, double memory_budget_bytes = 0.0);
+
+// The memory reading the mesh file `path` of `file_bytes` bytes takes, bytes, from its name and `head`, its
+// first bytes (binary STL's triangle count is in its first 84): 300 bytes a triangle for binary STL, else 24
+// bytes a byte of file. All of it is fixed: a mesh has no voxels.
+MemoryCost read_mesh_cost(const std::filesystem::path& path, std::uintmax_t file_bytes,
+                          const std::string& head);
 
 // Writes a binary STL of all bodies (used by tests and to hand generated parts to other slicers).
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& path);

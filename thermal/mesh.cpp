@@ -421,4 +421,13 @@ std::size_t planned_cell_count(const Toolpath& toolpath, const MeshOptions& opti
          static_cast<std::size_t>(options.cells_through);
 }
 
+// Bytes a thermal cell takes while the heat is solved: its links, the integrator's vectors, its history.
+// Measured on whole runs (docs/RELIABILITY.md).
+constexpr double kThermalBytesPerCell = 3000.0;
+
+MemoryCost thermal_cost(const Toolpath& toolpath, const sim::Deposit& deposit, const MeshOptions& options) {
+  return {.fixed_bytes = kThermalBytesPerCell * static_cast<double>(planned_cell_count(toolpath, options)),
+          .volume_bytes = deposit.layer ? static_cast<double>(deposit.layer->memUsage()) : 0.0};
+}
+
 }  // namespace beadtwin::thermal

@@ -30,6 +30,7 @@
 #include <openvdb/openvdb.h>
 #include <Eigen/Core>
 
+#include "core/memory.hpp"
 #include "core/toolpath.hpp"
 #include "sim/deposit.hpp"
 
@@ -95,5 +96,11 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
 // How many cells build_thermal_mesh would make for `toolpath` with `options` before any lumping, known
 // from the toolpath alone (a pass over its moves): what the thermal stage will hold grows with it.
 std::size_t planned_cell_count(const Toolpath& toolpath, const MeshOptions& options = {});
+
+// What the thermal stage holds for `deposit` made from `toolpath`, bytes: its cells while the heat is solved
+// (planned_cell_count, fixed bytes) and its grid of the cell each voxel is in (as large as the deposit's
+// layer grid: volume bytes at its voxel size).
+MemoryCost thermal_cost(const Toolpath& toolpath, const sim::Deposit& deposit,
+                        const MeshOptions& options = {});
 
 }  // namespace beadtwin::thermal

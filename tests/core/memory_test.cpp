@@ -1,5 +1,6 @@
 #include "core/memory.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <sstream>
@@ -15,6 +16,80 @@ TEST(MemoryBudget, AskedOrThreeQuartersOfTheMachine) {
   EXPECT_DOUBLE_EQ(memory_budget_bytes(5e9), 5e9);
   EXPECT_DOUBLE_EQ(memory_budget_bytes(), 0.75 * physical_memory_bytes());
   EXPECT_GT(physical_memory_bytes(), 0.0);
+}
+
+// Voxels r times smaller: r³ times as many, r² times as many faces on a surface, the rest the same.
+TEST(MemoryCost, ScalesWithTheVoxelSizeByPart) {
+  const MemoryCost c{.fixed_bytes = 100.0, .volume_bytes = 10.0, .surface_bytes = 1.0};
+  EXPECT_DOUBLE_EQ(c.bytes(), 111.0);
+  const MemoryCost half = c.at_voxel_ratio(2.0);  // voxels half as large
+  EXPECT_DOUBLE_EQ(half.fixed_bytes, 100.0);
+  EXPECT_DOUBLE_EQ(half.volume_bytes, 80.0);
+  EXPECT_DOUBLE_EQ(half.surface_bytes, 4.0);
+  const MemoryCost twice = c.at_voxel_ratio(0.5);
+  EXPECT_DOUBLE_EQ(twice.volume_bytes, 1.25);
+  EXPECT_DOUBLE_EQ(twice.surface_bytes, 0.25);
+  EXPECT_DOUBLE_EQ(twice.at_voxel_ratio(2.0).bytes(), c.bytes());
+  const MemoryCost tripled = c.scaled(3.0);
+  EXPECT_DOUBLE_EQ(tripled.fixed_bytes, 300.0);
+  EXPECT_DOUBLE_EQ(tripled.volume_bytes, 30.0);
+  EXPECT_DOUBLE_EQ(tripled.surface_bytes, 3.0);
+}
+
+TEST(MemoryCost, AddsPartByPart) {
+  const MemoryCost a{.fixed_bytes = 1.0, .volume_bytes = 2.0, .surface_bytes = 3.0};
+  const MemoryCost b{.fixed_bytes = 10.0, .volume_bytes = 20.0};
+  const MemoryCost sum = a + b;
+  EXPECT_DOUBLE_EQ(sum.fixed_bytes, 11.0);
+  EXPECT_DOUBLE_EQ(sum.volume_bytes, 22.0);
+  EXPECT_DOUBLE_EQ(sum.surface_bytes, 3.0);
+  MemoryCost c = a;
+  c += b;
+  EXPECT_DOUBLE_EQ(c.bytes(), a.bytes() + b.bytes());
+  // Added then scaled to other voxels, as scaled then added.
+  EXPECT_DOUBLE_EQ(sum.at_voxel_ratio(3.0).bytes(),
+                   a.at_voxel_ratio(3.0).bytes() + b.at_voxel_ratio(3.0).bytes());
+}
+
+// The first tenth of a millimetre above `voxel_mm` at which `bytes_at` fits a tenth below the budget, found
+// one tenth at a time.
+double fitting_by_steps(double voxel_mm, double budget, const std::function<double(double)>& bytes_at) {
+  for (double tenths = std::floor(voxel_mm * 10.0 + 1e-9) + 1.0;; tenths += 1.0)
+    if (bytes_at(tenths / 10.0) <= budget / 1.1) return tenths / 10.0;
+}
+
+TEST(FittingVoxel, TheSmallestTenthOfAMillimetreThatFitsWithATenthToSpare) {
+  // Volume alone: the size where the cost falls to the budget less a tenth, rounded up to a tenth.
+  const MemoryCost volume{.volume_bytes = 8e9};  // at 0.5 mm
+  const double size = fitting_voxel_mm(volume, 0.5, 1e9);
+  EXPECT_DOUBLE_EQ(size, std::ceil(0.5 * std::cbrt(8.0 * 1.1) * 10.0) / 10.0);
+  EXPECT_LE(volume.at_voxel_ratio(0.5 / size).bytes(), 1e9 / 1.1);
+  EXPECT_GT(volume.at_voxel_ratio(0.5 / (size - 0.1)).bytes(), 1e9 / 1.1);
+  // Above the voxel size even when that fits already.
+  EXPECT_DOUBLE_EQ(fitting_voxel_mm(volume, 0.5, 1e12), 0.6);
+  EXPECT_DOUBLE_EQ(fitting_voxel_mm(volume, 0.55, 1e12), 0.6);
+  // What no voxel size changes takes the budget with its tenth to spare: none fits.
+  EXPECT_EQ(fitting_voxel_mm({.fixed_bytes = 2e9, .volume_bytes = 1.0}, 0.5, 1.1e9), 0.0);
+  EXPECT_GT(fitting_voxel_mm({.fixed_bytes = 0.9e9, .volume_bytes = 1.0}, 0.5, 1.1e9), 0.5);
+  // Every mix of parts, over a wide range of sizes: the same tenth as stepping one at a time.
+  for (const double fixed : {0.0, 3e8, 8e8})
+    for (const double vol : {1e6, 5e9, 2e12})
+      for (const double surf : {0.0, 4e8, 9e10})
+        for (const double voxel : {0.1, 0.25, 2.54}) {
+          const MemoryCost c{.fixed_bytes = fixed, .volume_bytes = vol, .surface_bytes = surf};
+          const auto at = [&](double s) { return c.at_voxel_ratio(voxel / s).bytes(); };
+          EXPECT_DOUBLE_EQ(fitting_voxel_mm(c, voxel, 1e9), fitting_by_steps(voxel, 1e9, at))
+              << fixed << " " << vol << " " << surf << " " << voxel;
+        }
+  // Any measure that does not grow with the voxel size, with what it needs at any size given apart.
+  const auto peak = [](double s) { return 2e8 + std::max(5e9 / (s * s * s), 1e9 / (s * s)); };
+  EXPECT_DOUBLE_EQ(fitting_voxel_mm(0.3, 1e9, 2e8, peak), fitting_by_steps(0.3, 1e9, peak));
+}
+
+TEST(Gigabytes, TwoDecimalsBelowTenOneAbove) {
+  EXPECT_EQ(gigabytes(0.18e9), "0.18 GB");
+  EXPECT_EQ(gigabytes(3.4e9), "3.40 GB");
+  EXPECT_EQ(gigabytes(53393.04e9), "53393.0 GB");
 }
 
 // The mapping of /proc/self/smaps that holds `p`: its text, empty when none does.

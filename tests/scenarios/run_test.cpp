@@ -23,6 +23,7 @@
 #include "tests/read_file.hpp"
 #include "tests/scenarios/report_checks.hpp"
 #include "tests/scenarios/small_box.hpp"
+#include "thermal/mesh.hpp"
 
 namespace beadtwin::scenarios {
 namespace {
@@ -37,6 +38,30 @@ gates:
   - porosity < 0.5
   - interfaces.too_hot_fraction <= 0.5
 )";
+
+// The run's memory adds what each stage declares (the program and the rest the runner's own), and the
+// deposit's check before it is made counts the runner's later stages; used alone the deposit counts the same.
+TEST(RunMemory, AddsTheStagesCosts) {
+  const Scenario sc = load_scenario_text(testing::small_box("costs", "{voxel_size: 2.5 mm}"), "costs.yaml");
+  const Variant& v = sc.variants.front();
+  const Toolpath tp = variant_toolpath(v);
+  const sim::Deposit d = sim::deposit(tp, deposit_options(v));
+  const RunMemory need = run_memory(v, tp, d);
+  EXPECT_DOUBLE_EQ(need.deposit.bytes(), sim::deposit_cost(d).bytes());
+  EXPECT_DOUBLE_EQ(need.thermal.bytes(), thermal::thermal_cost(tp, d, thermal_mesh_options(v)).bytes());
+  EXPECT_DOUBLE_EQ(need.surfaces.bytes(), sim::surface_cost(d).bytes());
+  const double held = need.program.bytes() + need.deposit.bytes() + need.rest.bytes();
+  EXPECT_DOUBLE_EQ(need.side_by_side(), held + need.thermal.bytes() + need.surfaces.bytes());
+  EXPECT_DOUBLE_EQ(need.in_turn(), held + std::max(need.thermal.bytes(), need.surfaces.bytes()));
+  EXPECT_DOUBLE_EQ(need.least(), need.program.bytes() + need.rest.bytes() + need.thermal.fixed_bytes);
+  // Voxels twice as large: the grids an eighth, the surface a quarter.
+  const RunMemory coarser = need.at_voxel_ratio(0.5);
+  EXPECT_DOUBLE_EQ(coarser.deposit.bytes(), need.deposit.bytes() / 8.0);
+  EXPECT_DOUBLE_EQ(coarser.surfaces.bytes(), need.surfaces.bytes() / 4.0);
+  EXPECT_DOUBLE_EQ(coarser.least(), need.least());
+  EXPECT_EQ(deposit_options(v).later_bytes_per_deposit_byte, later_bytes_per_deposit_byte());
+  EXPECT_EQ(sim::DepositOptions{}.later_bytes_per_deposit_byte, later_bytes_per_deposit_byte());
+}
 
 // With too little memory to spare for the pictures' surfaces beside the thermal stage (a budget between the
 // run's peak estimated side by side and in turn, scenarios::RunMemory) the pictures and the deposit's files

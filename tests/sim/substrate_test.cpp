@@ -319,6 +319,31 @@ TEST(Deposit, OozeAfterMeltOffFollowsThePressureDecay) {
   EXPECT_EQ(sim::deposit(tp).ooze_volume_mm3, 0.0);
 }
 
+// The deposit's cost before it is made goes by the material's volume, as the inverse cube of the voxel size;
+// after, by its grids; what is meshed from its surface, by its surface's voxel faces. The check before the
+// deposit counts the later stages' share per deposit byte on top, as the caller gives it.
+TEST(Deposit, CostBeforeAndAfterAndOfTheSurface) {
+  const Toolpath tp = block(5, 2);
+  const MemoryCost fine = sim::deposit_cost(tp, 1.0), coarse = sim::deposit_cost(tp, 2.0);
+  EXPECT_GT(fine.volume_bytes, 0.0);
+  EXPECT_DOUBLE_EQ(fine.bytes(), fine.volume_bytes);
+  EXPECT_NEAR(coarse.volume_bytes, fine.volume_bytes / 8.0, 1e-9 * fine.volume_bytes);
+  sim::DepositOptions o;
+  o.voxel_size_mm = 1.0;
+  const sim::Deposit d = sim::deposit(tp, o);
+  EXPECT_DOUBLE_EQ(d.memory_estimate_bytes, fine.bytes() * (1.0 + o.later_bytes_per_deposit_byte));
+  o.later_bytes_per_deposit_byte = 0.0;
+  EXPECT_DOUBLE_EQ(sim::deposit(tp, o).memory_estimate_bytes, fine.bytes());
+  const MemoryCost held = sim::deposit_cost(d);
+  EXPECT_DOUBLE_EQ(held.volume_bytes,
+                   1.6 * static_cast<double>(d.fill->memUsage() + d.time->memUsage() + d.layer->memUsage() +
+                                             d.move->memUsage() + (d.gaps ? d.gaps->memUsage() : 0)));
+  EXPECT_EQ(held.fixed_bytes + held.surface_bytes, 0.0);
+  ASSERT_GT(d.surface_faces, 0u);
+  EXPECT_DOUBLE_EQ(sim::surface_cost(d).surface_bytes, 280.0 * static_cast<double>(d.surface_faces));
+  EXPECT_EQ(sim::surface_cost(d).fixed_bytes + sim::surface_cost(d).volume_bytes, 0.0);
+}
+
 // Without a voxel size asked for, one that would not fit the budget is made coarser, and the deposit says so.
 TEST(Deposit, AutomaticVoxelSizeFitsTheMemoryBudget) {
   sim::DepositOptions o;

@@ -510,6 +510,19 @@ TEST(Mesh, AMeshBeyondTheMemoryBudgetIsRefusedBeforeReading) {
   EXPECT_THROW((void)read_mesh(temp_file("box.obj"), 1.0, nullptr, 23 * bytes), InputError);
 }
 
+// The cost of reading a mesh is all fixed: 300 bytes a triangle binary STL's header counts, else 24 a byte.
+TEST(Mesh, ReadingCostsPerTriangleOfBinaryStlElsePerByte) {
+  write_stl(test_box(), temp_file("box.stl"));
+  const std::uintmax_t bytes = std::filesystem::file_size(temp_file("box.stl"));
+  std::string head(std::size_t{84}, '\0');
+  std::ifstream(temp_file("box.stl"), std::ios::binary).read(head.data(), 84);
+  const MemoryCost stl = read_mesh_cost(temp_file("box.stl"), bytes, head);
+  EXPECT_DOUBLE_EQ(stl.fixed_bytes, 12 * 300.0);
+  EXPECT_DOUBLE_EQ(stl.bytes(), stl.fixed_bytes);
+  EXPECT_DOUBLE_EQ(read_mesh_cost("box.obj", 1000, head).bytes(), 24'000.0);
+  EXPECT_DOUBLE_EQ(read_mesh_cost("box.stl", 1000, "solid box\n").bytes(), 24'000.0);  // ASCII STL
+}
+
 TEST(Mesh, ANestedShellInOneBodyIsACavity) {
   // The outer and the inner box in one object, both wound outward in the file: the inner one is a cavity.
   TriangleMesh both = make_box({100, 100, 50});

@@ -253,6 +253,18 @@ TEST(ThermalMeshTest, AnAutomaticCellLengthIsMadeLongerWhenItWouldMakeTooManyCel
   EXPECT_EQ(build_thermal_mesh(toolpath, deposit).cell_length_factor, 1.0);  // 21 cells are few
 }
 
+// What the thermal stage holds: 3,000 bytes a planned cell, and a grid as large as the deposit's layer grid.
+TEST(ThermalMeshTest, CostIsItsPlannedCellsAndACellGrid) {
+  const Toolpath toolpath = single_bead();
+  const sim::Deposit deposit = deposit_of(toolpath);
+  const MemoryCost cost = thermal_cost(toolpath, deposit);
+  EXPECT_DOUBLE_EQ(cost.fixed_bytes, 3000.0 * static_cast<double>(planned_cell_count(toolpath)));
+  EXPECT_GT(cost.fixed_bytes, 0.0);
+  EXPECT_DOUBLE_EQ(cost.volume_bytes, static_cast<double>(deposit.layer->memUsage()));
+  EXPECT_EQ(cost.surface_bytes, 0.0);
+  EXPECT_EQ(thermal_cost(toolpath, sim::Deposit{}).volume_bytes, 0.0);
+}
+
 TEST(ThermalMeshTest, SingleBeadOpenAreaIsItsFreePerimeterAndTableAreaItsFootprint) {
   const Toolpath toolpath = single_bead();
   const sim::Deposit deposit = deposit_of(toolpath);

@@ -19,6 +19,14 @@ Toolpath variant_toolpath(const Variant& v, slicer::PlanStats* stats) {
     if (tp.layers.empty())
       throw InputError({v.program_file.string(), 0, 0}, "program",
                        "the program deposits no material: there is nothing to simulate");
+    if (std::none_of(tp.moves.begin(), tp.moves.end(), [](const Move& m) { return m.deposits(); }))
+      throw InputError({v.program_file.string(), 0, 0}, "program",
+                       fmt::format("the program's print moves carry no material on machine '{}': the reader "
+                                   "found no flow for them (the warnings above say why); name the machine "
+                                   "that prints it (--machine, or the scenario's machine), whose extruder "
+                                   "gives the flow from a pump's speed words or a filament drive's constant "
+                                   "feed",
+                                   v.machine.name));
     time_toolpath(tp, v.machine.motion);
     return tp;
   }

@@ -174,78 +174,68 @@ sections:
   EXPECT_FALSE(std::filesystem::exists(out / "report.json"));
 }
 
-TEST(Run, SmallScenarioEndToEnd) {
-  const Scenario sc = load_scenario_text(kSmall, "small.yaml");
-  const auto out = std::filesystem::temp_directory_path() / "beadtwin_run_test";
-  std::filesystem::remove_all(out);
-  RunOptions o;
-  o.out_dir = out;
-  const RunResult r = run_scenario(sc, o);
-  ASSERT_EQ(r.variants.size(), 2u);
+// One variant of the small scenario's report.json: its metrics, layers, sections, pictures, defects and
+// temperature history, with the files they name in `out`.
+void expect_small_variant(const nlohmann::json& v, const std::filesystem::path& out) {
+  const auto& m = v["metrics"];
+  for (const char* key :
+       {"layers", "print_time_s", "print_length_mm", "travel_length_mm", "commanded_volume_mm3",
+        "deposited_volume_mm3", "mass_kg", "porosity", "min_stock_mm", "undercut_fraction"})
+    EXPECT_TRUE(m.contains(key)) << key;
+  for (const char* key : {"count", "too_hot_fraction", "too_cold_fraction", "min_healing", "mean_healing"})
+    EXPECT_TRUE(m["interfaces"].contains(key)) << key;
+  for (const char* key : {"min", "mean", "max"}) EXPECT_TRUE(m["layer_time_s"].contains(key)) << key;
+  EXPECT_EQ(m["layers"], 6);
+  // Interfaces: every contact where a bead landed on or against an older one; the layers' counts add up.
+  int per_layer = 0;
+  for (const auto& l : v["layers"]) per_layer += l["interfaces"].get<int>();
+  EXPECT_GT(m["interfaces"]["count"].get<int>(), 5);
+  EXPECT_EQ(m["interfaces"]["count"].get<int>(), per_layer);
+  // And so do the sections'.
+  ASSERT_EQ(v["sections"].size(), 2u);
+  EXPECT_EQ(v["sections"][0]["name"], "floor");
+  EXPECT_EQ(v["sections"][0]["interfaces"].get<int>() + v["sections"][1]["interfaces"].get<int>(), per_layer);
+  // Conservation: every commanded mm³ is in the voxel model.
+  EXPECT_NEAR(m["deposited_volume_mm3"].get<double>() / m["commanded_volume_mm3"].get<double>(), 1.0, 0.02);
+  ASSERT_EQ(v["layers"].size(), 6u);
+  for (const char* key : {"index", "z_mm", "section", "start_s", "duration_s", "substrate_temp_c",
+                          "healing_min", "too_hot", "too_cold"})
+    EXPECT_TRUE(v["layers"][0].contains(key)) << key;
+  EXPECT_EQ(v["layers"][0]["section"], "floor");
+  EXPECT_EQ(v["layers"][5]["section"], "walls");
+  EXPECT_EQ(v["gates"].size(), 2u);
+  // The default pictures: isometric and top views by fusion verdict, isometric by section, by substrate
+  // temperature and by stock against the CAD.
+  ASSERT_EQ(v["images"].size(), 5u);
+  for (const auto& img : v["images"])
+    EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
+  EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
+  EXPECT_TRUE(std::filesystem::exists(out / v["deposit"].get<std::string>()));
+  // The deposit's defects: counted in the metrics, listed with where they are. The box's square corners
+  // are tighter than the LSAM roller (1.5 in wide) follows, and no pull-back lifts it there.
+  for (const char* key : {"voids", "void_volume_mm3", "plough_volume_mm3", "unsupported_length_mm",
+                          "roller_corners", "collisions"})
+    EXPECT_TRUE(m["defects"].contains(key)) << key;
+  EXPECT_GE(m["defects"]["roller_corners"].get<int>(), 4 * 6);
+  ASSERT_FALSE(v["defects"].empty());
+  for (const char* key : {"kind", "position_mm", "layer", "move", "source_line", "size", "detail"})
+    EXPECT_TRUE(v["defects"][0].contains(key)) << key;
+  for (const char* key : {"fill_ratio", "bead_height_mm", "void_mm3", "plough_mm3", "unsupported_mm"})
+    EXPECT_TRUE(v["layers"][0].contains(key)) << key;
+  EXPECT_NEAR(v["layers"][0]["bead_height_mm"].get<double>(), 5.0, 0.5);
+  // The temperature history of the default layers (0, 14, 29) the print reaches: six layers, only layer 0.
+  const auto& history = v["temperature_history"];
+  ASSERT_EQ(history["layers"].size(), 1u);
+  EXPECT_EQ(history["layers"][0]["index"], 0);
+  ASSERT_GT(history["times_s"].size(), 10u);
+  EXPECT_EQ(history["layers"][0]["temp_c"].size(), history["times_s"].size());
+  EXPECT_LE(history["layers"][0]["temp_c"][0].get<double>(), 200.0 + 1e-6);
+  const double interval = history["times_s"][1].get<double>() - history["times_s"][0].get<double>();
+  EXPECT_NEAR(interval, 5.0, 0.011);  // thermal.sample_interval, rounded to 0.01 s
+}
 
-  const auto j = nlohmann::json::parse(read_file(out / "report.json"));
-  EXPECT_EQ(j["tool"], "beadtwin");
-  EXPECT_EQ(j["scenario"], "small-box");
-  EXPECT_EQ(j["passed"].get<bool>(), r.passed);
-  ASSERT_EQ(j["variants"].size(), 2u);
-  for (const auto& v : j["variants"]) {
-    const auto& m = v["metrics"];
-    for (const char* key :
-         {"layers", "print_time_s", "print_length_mm", "travel_length_mm", "commanded_volume_mm3",
-          "deposited_volume_mm3", "mass_kg", "porosity", "min_stock_mm", "undercut_fraction"})
-      EXPECT_TRUE(m.contains(key)) << key;
-    for (const char* key : {"count", "too_hot_fraction", "too_cold_fraction", "min_healing", "mean_healing"})
-      EXPECT_TRUE(m["interfaces"].contains(key)) << key;
-    for (const char* key : {"min", "mean", "max"}) EXPECT_TRUE(m["layer_time_s"].contains(key)) << key;
-    EXPECT_EQ(m["layers"], 6);
-    // Interfaces: every contact where a bead landed on or against an older one; the layers' counts add up.
-    int per_layer = 0;
-    for (const auto& l : v["layers"]) per_layer += l["interfaces"].get<int>();
-    EXPECT_GT(m["interfaces"]["count"].get<int>(), 5);
-    EXPECT_EQ(m["interfaces"]["count"].get<int>(), per_layer);
-    // And so do the sections'.
-    ASSERT_EQ(v["sections"].size(), 2u);
-    EXPECT_EQ(v["sections"][0]["name"], "floor");
-    EXPECT_EQ(v["sections"][0]["interfaces"].get<int>() + v["sections"][1]["interfaces"].get<int>(),
-              per_layer);
-    // Conservation: every commanded mm³ is in the voxel model.
-    EXPECT_NEAR(m["deposited_volume_mm3"].get<double>() / m["commanded_volume_mm3"].get<double>(), 1.0, 0.02);
-    ASSERT_EQ(v["layers"].size(), 6u);
-    for (const char* key : {"index", "z_mm", "section", "start_s", "duration_s", "substrate_temp_c",
-                            "healing_min", "too_hot", "too_cold"})
-      EXPECT_TRUE(v["layers"][0].contains(key)) << key;
-    EXPECT_EQ(v["layers"][0]["section"], "floor");
-    EXPECT_EQ(v["layers"][5]["section"], "walls");
-    EXPECT_EQ(v["gates"].size(), 2u);
-    // The default pictures: isometric and top views by fusion verdict, isometric by section, by substrate
-    // temperature and by stock against the CAD.
-    ASSERT_EQ(v["images"].size(), 5u);
-    for (const auto& img : v["images"])
-      EXPECT_GT(std::filesystem::file_size(out / img.get<std::string>()), 1000u);
-    EXPECT_GT(std::filesystem::file_size(out / v["program"].get<std::string>()), 1000u);
-    EXPECT_TRUE(std::filesystem::exists(out / v["deposit"].get<std::string>()));
-    // The deposit's defects: counted in the metrics, listed with where they are. The box's square corners
-    // are tighter than the LSAM roller (1.5 in wide) follows, and no pull-back lifts it there.
-    for (const char* key : {"voids", "void_volume_mm3", "plough_volume_mm3", "unsupported_length_mm",
-                            "roller_corners", "collisions"})
-      EXPECT_TRUE(m["defects"].contains(key)) << key;
-    EXPECT_GE(m["defects"]["roller_corners"].get<int>(), 4 * 6);
-    ASSERT_FALSE(v["defects"].empty());
-    for (const char* key : {"kind", "position_mm", "layer", "move", "source_line", "size", "detail"})
-      EXPECT_TRUE(v["defects"][0].contains(key)) << key;
-    for (const char* key : {"fill_ratio", "bead_height_mm", "void_mm3", "plough_mm3", "unsupported_mm"})
-      EXPECT_TRUE(v["layers"][0].contains(key)) << key;
-    EXPECT_NEAR(v["layers"][0]["bead_height_mm"].get<double>(), 5.0, 0.5);
-    // The temperature history of the default layers (0, 14, 29) the print reaches: six layers, only layer 0.
-    const auto& history = v["temperature_history"];
-    ASSERT_EQ(history["layers"].size(), 1u);
-    EXPECT_EQ(history["layers"][0]["index"], 0);
-    ASSERT_GT(history["times_s"].size(), 10u);
-    EXPECT_EQ(history["layers"][0]["temp_c"].size(), history["times_s"].size());
-    EXPECT_LE(history["layers"][0]["temp_c"][0].get<double>(), 200.0 + 1e-6);
-    const double interval = history["times_s"][1].get<double>() - history["times_s"][0].get<double>();
-    EXPECT_NEAR(interval, 5.0, 0.011);  // thermal.sample_interval, rounded to 0.01 s
-  }
+// The small scenario's files for other programs, as report.json, report.html and the stages list them.
+void expect_small_files(const nlohmann::json& j, const RunResult& r, const std::filesystem::path& out) {
   // Files for other programs: by default the skin as PLY, and here the fields as .vtu, beside deposit.vdb;
   // the slow variant asks for an STL skin and no fields.
   const auto& fast_files = j["variants"][0]["files"];
@@ -280,6 +270,24 @@ TEST(Run, SmallScenarioEndToEnd) {
     for (const auto& t : v.stage_times) skin_stage = skin_stage || t.name == "skin";
     EXPECT_TRUE(skin_stage) << v.name;
   }
+}
+
+TEST(Run, SmallScenarioEndToEnd) {
+  const Scenario sc = load_scenario_text(kSmall, "small.yaml");
+  const auto out = std::filesystem::temp_directory_path() / "beadtwin_run_test";
+  std::filesystem::remove_all(out);
+  RunOptions o;
+  o.out_dir = out;
+  const RunResult r = run_scenario(sc, o);
+  ASSERT_EQ(r.variants.size(), 2u);
+
+  const auto j = nlohmann::json::parse(read_file(out / "report.json"));
+  EXPECT_EQ(j["tool"], "beadtwin");
+  EXPECT_EQ(j["scenario"], "small-box");
+  EXPECT_EQ(j["passed"].get<bool>(), r.passed);
+  ASSERT_EQ(j["variants"].size(), 2u);
+  for (const auto& v : j["variants"]) expect_small_variant(v, out);
+  expect_small_files(j, r, out);
 
   // The part against its CAD: measured (a sliced part has one). The open box's walls are two passes of
   // 20 mm beads laid with their outer edges on the 40 mm wall's faces and no stock: at every layer's top and

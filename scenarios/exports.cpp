@@ -14,10 +14,14 @@
 
 namespace beadtwin::scenarios {
 
+std::string program_text(const Scenario& sc, const Variant& v, const Toolpath& tp) {
+  const gcode::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
+  return gcode::write_gcode(tp, v.machine.dialect, header, gcode_options(v));
+}
+
 std::string write_program(const Scenario& sc, const Variant& v, const Toolpath& tp,
                           const std::filesystem::path& dir) {
-  const gcode::GcodeHeader header{v.name, sc.name, v.name, v.machine.name, v.material.name};
-  write_file_atomic(dir / "program.nc", gcode::write_gcode(tp, v.machine.dialect, header, gcode_options(v)));
+  write_file_atomic(dir / "program.nc", program_text(sc, v, tp));
   return (std::filesystem::path(v.name) / "program.nc").string();
 }
 

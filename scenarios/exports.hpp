@@ -16,8 +16,11 @@
 
 namespace beadtwin::scenarios {
 
-// program.nc: `toolpath` in the machine's dialect, headed with the scenario's and the variant's names.
-// Returns its path relative to the run's folder.
+// `toolpath` as the variant's print program: in its machine's dialect, headed with the scenario's and the
+// variant's names.
+std::string program_text(const Scenario& scenario, const Variant& variant, const Toolpath& toolpath);
+
+// program.nc: program_text. Returns its path relative to the run's folder.
 std::string write_program(const Scenario& scenario, const Variant& variant, const Toolpath& toolpath,
                           const std::filesystem::path& dir);
 

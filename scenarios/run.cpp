@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
-#include "gcode/writer.hpp"
 #include "scenarios/beside.hpp"
 #include "scenarios/exports.hpp"
 #include "scenarios/gate_results.hpp"
@@ -151,9 +150,7 @@ VariantResult run_variant(const RunContext& run, const Variant& v, const Sliced&
 std::string slice_program(const Scenario& sc, const std::string& variant_name) {
   for (const Variant& v : sc.variants) {
     if (!variant_name.empty() && v.name != variant_name) continue;
-    const Toolpath tp = variant_toolpath(v);
-    return gcode::write_gcode(tp, v.machine.dialect,
-                              {v.name, sc.name, v.name, v.machine.name, v.material.name}, gcode_options(v));
+    return program_text(sc, v, variant_toolpath(v));
   }
   throw InputError({}, "--variant",
                    fmt::format("scenario '{}' has no variant named '{}'", sc.name, variant_name));

@@ -51,6 +51,9 @@ struct Environment {
   std::vector<std::pair<double, double>> convection_by_height;
   double convection_at(double height_mm) const;  // at `height_mm` above the table, W/m²K
   double bed_contact_W_m2K = 100.0;              // contact conductance between the first layer and the table
+  // Forced convection on free faces with the part-cooling fan (or air knife) at full output, W/m²K; at an
+  // output s (0..1) the faces lose by max(h, s · fan_convection_W_m2K). 0: the machine has none.
+  double fan_convection_W_m2K = 0.0;
 };
 
 }  // namespace beadtwin

@@ -60,7 +60,9 @@ struct Move {
   MoveKind kind = MoveKind::kTravel;
   ExtruderEvent event = ExtruderEvent::kNone;
   Feature feature = Feature::kUnknown;
-  bool roller_down = false;      // compression roller (or tamper) engaged
+  bool roller_down = false;  // compression roller (or tamper) engaged
+  float fan =
+      0.0f;  // the part-cooling fan's (or air knife's) output while the move runs, 0 (off) to 1 (full)
   double feed_mm_s = 0.0;        // commanded speed
   double volume_mm3 = 0.0;       // material the move extrudes (0 for travel): the commanded volume
   double bead_width_mm = 0.0;    // intended flattened width

@@ -200,7 +200,7 @@ class GcodeReader::State {
       if (const auto f = s.params.take('F')) feed_mm_s_ = *f * scale() / 60.0;
       // A dwell's S is its time, M200's S a switch, a reverse code's speed word the reverse speed.
       const bool speed_word =
-          speed_ != '\0' && !s.dwell && !has_m(s, codes_.reverse_on) &&
+          speed_ != '\0' && !s.dwell && !has_m(s, codes_.reverse_on) && !has_m(s, codes_.fan_on) &&
           std::none_of(s.m.begin(), s.m.end(), [](const Word& w) { return is(w, 'M', 2000); });
       if (const auto rpm = speed_word ? s.params.take(speed_) : std::nullopt)
         set_rpm(*rpm, s.params.column(speed_));
@@ -253,6 +253,15 @@ class GcodeReader::State {
     }
   }
 
+  // The fan-on code's output S (0 to ReaderOptions::fan_full; none: full) for the part-cooling fan: P0 or P1,
+  // or no P (another P is another fan, such as a chamber's, and changes nothing here).
+  void fan(Params& p) {
+    const std::optional<double> index = p.take('P');
+    const std::optional<double> output = p.take('S');
+    if (index && *index != 0.0 && *index != 1.0) return;
+    fan_ = output ? static_cast<float>(std::clamp(*output / opt_.fan_full, 0.0, 1.0)) : 1.0f;
+  }
+
   // M200 D<diameter> (D0: off), S0/S1 (Marlin 2: off/on).
   void volumetric_mode(Params& p) {
     if (const auto d = p.take('D')) {
@@ -262,11 +271,13 @@ class GcodeReader::State {
     if (const auto on = p.take('S')) volumetric_ = *on != 0.0;
   }
 
-  void events_before(const SortedBlock& s) {
+  void events_before(SortedBlock& s) {
     for (const Word& w : s.m) {
       if (codes_.heat_on.matches(w)) event(ExtruderEvent::kHeatOn);
       if (codes_.roller_down.matches(w)) roller_ = true;
       if (codes_.roller_up.matches(w)) roller_ = false;
+      if (codes_.fan_on.matches(w)) fan(s.params);
+      if (codes_.fan_off.matches(w)) fan_ = 0.0f;
       if (codes_.reverse_off.matches(w)) {
         flush_pending();
         reversing_ = false;
@@ -552,6 +563,7 @@ class GcodeReader::State {
     m.start = m.end = pos_;
     m.feature = Feature::kTravel;
     m.roller_down = roller_;
+    m.fan = fan_;
     m.source_line = line_;
     return m;
   }
@@ -605,6 +617,7 @@ class GcodeReader::State {
   bool prime_pending_ = false;
   bool reverse_pending_ = false;
   bool roller_;
+  float fan_ = 0.0f;  // the part-cooling fan's output, 0..1
   const char speed_;  // the speed word's letter (ReaderOptions::rpm_word); '\0': none
 
   // What comments said.

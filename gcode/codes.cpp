@@ -49,6 +49,8 @@ CodeSets::CodeSets(const ReaderOptions& o)
       heat_off(o.heat_off, "reader.heat_off"),
       roller_down(o.roller_down, "reader.roller_down"),
       roller_up(o.roller_up, "reader.roller_up"),
+      fan_on(o.fan_on, "reader.fan_on"),
+      fan_off(o.fan_off, "reader.fan_off"),
       prime(o.prime, "reader.prime"),
       reverse_on(o.reverse_on, "reader.reverse_on"),
       reverse_off(o.reverse_off, "reader.reverse_off"),
@@ -59,8 +61,8 @@ bool CodeSets::acts_on(const Word& w) const {
     const int t = code_tenths(w.value);
     if (t == 20 || t == 300 || t == 820 || t == 830 || t == 2000) return true;
   }
-  for (const CodeSet* s : {&melt_on, &melt_off, &heat_on, &heat_off, &roller_down, &roller_up, &prime,
-                           &reverse_on, &reverse_off})
+  for (const CodeSet* s : {&melt_on, &melt_off, &heat_on, &heat_off, &roller_down, &roller_up, &fan_on,
+                           &fan_off, &prime, &reverse_on, &reverse_off})
     if (s->matches(w)) return true;
   return false;
 }

@@ -54,8 +54,8 @@ struct CodeSets {
   // Whether the reader acts on M code `w`: a machine code of the options, M2, M30, M82, M83 or M200.
   bool acts_on(const Word& w) const;
 
-  CodeSet melt_on, melt_off, heat_on, heat_off, roller_down, roller_up, prime, reverse_on, reverse_off,
-      ignored;
+  CodeSet melt_on, melt_off, heat_on, heat_off, roller_down, roller_up, fan_on, fan_off, prime, reverse_on,
+      reverse_off, ignored;
 };
 
 // The parameter words of one block, each taken by the code that uses it; the rest are reported unused.

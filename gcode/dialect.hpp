@@ -15,6 +15,11 @@ struct GcodeDialect {
   std::string heat_off = "";     // heaters off (M28), at its end
   std::string roller_down = "";  // optional code to engage the compression roller
   std::string roller_up = "";
+  // Part-cooling fan (desktop printers) or air knife on, with its output in the S word (0 to fan_full:
+  // M106 S0-255 in Marlin, Klipper and Prusa firmware; no S: full), and off.
+  std::string fan_on = "M106";
+  std::string fan_off = "M107";
+  double fan_full = 255.0;
   int decimals = 3;
   // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
   // (gcode/macro_loops.hpp).

@@ -40,6 +40,7 @@ void validate(const ReaderOptions& o) {
   };
   if (!o.volumetric_e) positive(o.filament_diameter_mm, "filament_diameter_mm");
   positive(o.chord_tolerance_mm, "chord_tolerance_mm");
+  positive(o.fan_full, "fan_full");
   positive(o.default_feed_mm_s, "default_feed_mm_s");
   positive(o.max_coordinate_mm, "max_coordinate_mm");
   not_negative(o.rapid_feed_mm_s, "rapid_feed_mm_s");
@@ -83,6 +84,9 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   o.heat_off = codes(d.heat_off);
   o.roller_down = codes(d.roller_down);
   o.roller_up = codes(d.roller_up);
+  o.fan_on = codes(d.fan_on);
+  o.fan_off = codes(d.fan_off);
+  o.fan_full = d.fan_full;
   o.prime = codes(d.prime_code);
   o.reverse_on = codes(d.reverse_on);
   o.reverse_off = codes(d.reverse_off);

@@ -36,6 +36,11 @@ struct ReaderOptions {
   std::vector<std::string> heat_off = {"M28"};  // extruder heaters off
   std::vector<std::string> roller_down;         // compression roller engaged
   std::vector<std::string> roller_up;           // compression roller lifted
+  // Part-cooling fan (or air knife) on, its output S from 0 to fan_full (no S: full; a P word other than 0 or
+  // 1 names another fan, which is left alone), and off.
+  std::vector<std::string> fan_on = {"M106"};
+  std::vector<std::string> fan_off = {"M107"};
+  double fan_full = 255.0;
   // The roller is engaged from the start (until a roller-up code): a roller machine whose programs carry no
   // roller codes rolls every bead.
   bool roller_down_at_start = false;

@@ -96,7 +96,8 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
 FusionRow fusion_row(const thermal::FusionSummary& f) {
   FusionRow row;
   row.interfaces = static_cast<int>(f.interfaces);
-  row.substrate_temp_c = {f.substrate_min_c, f.substrate_mean_c, f.substrate_max_c};
+  row.substrate_temp_c = {f.substrate.min_c, f.substrate.mean_c, f.substrate.max_c};
+  row.surface_temp_c = {f.surface.min_c, f.surface.mean_c, f.surface.max_c};
   row.healing = f.healing_min;
   row.healing_mean = f.healing_mean;
   row.too_hot = static_cast<int>(f.too_hot);

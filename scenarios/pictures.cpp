@@ -246,6 +246,17 @@ Field make_field(Colouring colouring, const PictureInputs& in, const thermal::Th
       f.note = fmt::format("support limit {:.0f} °C; grey: on the table", material.support_limit_c);
       break;
     }
+    case Colouring::kSurface: {
+      const thermal::ThermalResult& th = *thermal;
+      f.heading = "Surface temperature before each bead landed";
+      f.title = "surface of what the bead landed on, as a thermal camera reads it (°C)";
+      f.voxels = values_by_label(
+          fill, *th.mesh.cell_grid,
+          thermal::cell_substrate_c(th.mesh, th.heat, &thermal::InterfaceResult::substrate_surface_c));
+      set_scale(f, range, frame.cold_c, frame.hot_c, render::ColourMap::inferno());
+      f.note = fmt::format("glass transition {:.0f} °C; grey: on the table", material.glass_transition_c);
+      break;
+    }
     case Colouring::kHealing: {
       const thermal::ThermalResult& th = *thermal;
       f.heading = "Degree of healing";
@@ -417,6 +428,7 @@ bool needs_thermal(Colouring colouring) {
   switch (colouring) {
     case Colouring::kFusion:
     case Colouring::kSubstrate:
+    case Colouring::kSurface:
     case Colouring::kHealing:
     case Colouring::kTemperature:
       return true;

@@ -102,6 +102,7 @@ json history_json(const TemperatureHistory& h) {
 // The numbers of a layer's or a section's interfaces.
 json fusion_json(const FusionRow& f) {
   return {{"substrate_temp_c", stats_json(f.substrate_temp_c)},
+          {"surface_temp_c", stats_json(f.surface_temp_c)},
           {"interfaces", f.interfaces},
           {"healing_min", number_or_null(f.healing)},
           {"healing_mean", number_or_null(f.healing_mean)},

@@ -74,6 +74,12 @@ void check_options(const HeatOptions& o) {
   if (!(o.lump_tolerance_k >= 0.0) || !std::isfinite(o.lump_tolerance_k))
     throw InputError({}, "thermal.lump_tolerance",
                      fmt::format("must be 0 or more, got {}", o.lump_tolerance_k));
+  for (std::size_t k = 0; k < o.fan.size(); ++k)
+    if (!(o.fan[k].output >= 0.0 && o.fan[k].output <= 1.0) || !std::isfinite(o.fan[k].time_s) ||
+        (k > 0 && o.fan[k].time_s < o.fan[k - 1].time_s))
+      throw InputError({}, "fan",
+                       fmt::format("setting {}: outputs must lie in 0..1 and times increase, got {} at {} s",
+                                   k, o.fan[k].output, o.fan[k].time_s));
   if (o.krylov_dimension < 1 || o.krylov_dimension > 200)
     throw InputError({}, "thermal.krylov_dimension",
                      fmt::format("must be 1..200, got {}", o.krylov_dimension));
@@ -103,6 +109,12 @@ class HeatSolve {
   void grow_state(std::size_t end);
   // A new integrator on the model as it is now (after growing or lumping), its work so far counted.
   void restart_integrator();
+  // The fan's output at time t (HeatOptions::fan): the last setting at or before it, 0 before any.
+  double fan_at(double t) const {
+    const auto after = std::upper_bound(options_.fan.begin(), options_.fan.end(), t,
+                                        [](double time, const FanSetting& f) { return time < f.time_s; });
+    return after == options_.fan.begin() ? 0.0 : std::prev(after)->output;
+  }
   // Integrates to `target`: the healing over each step, and the history in it.
   void advance(double target);
   void finish();
@@ -166,6 +178,7 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
   before_.assign(temps_.begin(), temps_.begin() + static_cast<std::ptrdiff_t>(cap_));
   before_.push_back(0.0);  // energy lost
   born_group(births_.groups.front(), before_);
+  model_.set_fan(fan_at(t0_));
   model_.set_capacity(cap_);
   cvode_options_.solver = LinearSolver::kGmres;
   cvode_options_.krylov_dimension = options.krylov_dimension;
@@ -188,6 +201,7 @@ HeatResult HeatSolve::run() {
     const bool grow = model_of_[groups[g].end] > cap_;
     if (grow) grow_state(groups[g].end);
     born_group(groups[g], before_);
+    model_.set_fan(fan_at(t_));
     if (grow || lumped) restart_integrator();
     // The first step tries to reach the next group at once: the temperatures move slowly against the birth
     // interval (it is a fifth of a cell's time constant), so CVODE usually takes it.
@@ -195,6 +209,13 @@ HeatResult HeatSolve::run() {
     const double gap = g + 1 < groups.size() ? groups[g + 1].time_s - t_ : interval;
     cvode_->reinit(t_, model_.local(before_), std::max(gap, 1e-3 * interval));
     if (options_.progress) options_.progress((t_ - t0_) / std::max(t_end_ - t0_, 1e-9));
+  }
+  // The fan's changes after the last birth (switched off at the end of the program, say), as they come.
+  for (const FanSetting& f : options_.fan) {
+    if (f.time_s <= t_ || f.time_s >= t_end_) continue;
+    advance(f.time_s);
+    model_.set_fan(f.output);
+    cvode_->reinit(t_, model_.local(before_), 1e-3 * births_.interval_s);
   }
   advance(t_end_);
   if (options_.progress) options_.progress(1.0);
@@ -208,10 +229,13 @@ void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
     for (const std::uint32_t k : index_.of_younger(i)) {
       InterfaceResult& r = interfaces_[k];
       r.substrate_c = material_.deposition_temp_c;
+      r.substrate_surface_c = r.substrate_c;
       if (r.older < mesh_born_) {
         double loss = 0.0;
-        r.substrate_c = state[model_of_[r.older]];
-        r.substrate_rate_K_s = model_.rate(model_of_[r.older], state.data(), loss);
+        const std::size_t older = model_of_[r.older];
+        r.substrate_c = state[older];
+        r.substrate_surface_c = model_.face_surface_c(older, model_of_[r.younger], r.substrate_c);
+        r.substrate_rate_K_s = model_.rate(older, state.data(), loss);
       }
     }
   model_.birth(model_of_[g.end], state);
@@ -312,6 +336,17 @@ void HeatSolve::finish() {
 }
 
 }  // namespace
+
+std::vector<FanSetting> fan_schedule(const Toolpath& toolpath) {
+  std::vector<FanSetting> out;
+  float last = 0.0f;
+  for (const Move& m : toolpath.moves) {
+    if (m.fan == last) continue;
+    out.push_back({.time_s = m.start_s, .output = m.fan});
+    last = m.fan;
+  }
+  return out;
+}
 
 HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double end_s,
                       const Material& material, const Environment& env, const HeatOptions& options) {

@@ -34,7 +34,13 @@
 
 namespace beadtwin::thermal {
 
-// How solve_heat integrates: tolerances, births, lumping, what it records, progress and MPI ranks.
+// The part-cooling fan's output (0 off, 1 full) from `time_s` on (Environment::fan_convection_W_m2K).
+struct FanSetting {
+  double time_s = 0.0;
+  double output = 0.0;
+};
+
+// How solve_heat integrates: tolerances, births, lumping, the fan, what it records, progress and MPI ranks.
 struct HeatOptions {
   double rel_tol = 1e-3;    // CVODE relative tolerance
   double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
@@ -44,7 +50,11 @@ struct HeatOptions {
   // integrator, and a long print of small beads (a desktop program) would be tens of thousands of them.
   double birth_interval_s = 0.0;
   std::size_t max_automatic_birth_events = 5000;
-  double cooldown_s = 600.0;       // simulated after the last birth (healing goes on), >= 0
+  double cooldown_s = 600.0;  // simulated after the last birth (healing goes on), >= 0
+  // The fan's output over time, in time order (fan_schedule of a toolpath); empty: off throughout. A change
+  // takes effect at the first birth group at or after it (within a birth interval), and during the cooldown
+  // when it comes.
+  std::vector<FanSetting> fan;
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
   // Settled cells lumped (docs/physics.md, settled cells): when at least lump_check_cells cells (and a
@@ -83,6 +93,10 @@ struct InterfaceResult {
   double area_mm2 = 0.0;
   bool on_top = false;       // the younger lands on the older (contact within 60° of horizontal)
   double substrate_c = 0.0;  // the older cell's temperature as the younger was born
+  // The temperature of the older cell's face where the younger lands, as the younger was born, °C: the
+  // surface a thermal camera reads just before the bead covers it (the cell's temperature less the drop
+  // through its half cell, thermal/surface.hpp).
+  double substrate_surface_c = 0.0;
   // How fast the older cell was cooling then, K/s (NaN when both were born together).
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
   double healing_integral = 0.0;  // ∫ dt / t_w over the interface's history, not capped at 1
@@ -113,6 +127,10 @@ struct HeatResult {
   int ranks = 1;  // the MPI ranks the solve was shared among
   double start_time_s = 0.0, end_time_s = 0.0;
 };
+
+// The fan's changes over a timed toolpath: its output from each move on where it differs from the move
+// before (the first setting at the first move's start when the fan is on there).
+std::vector<FanSetting> fan_schedule(const Toolpath& toolpath);
 
 // Solves the heat transfer on `mesh` from the first birth to the last birth + cooldown (at least to
 // `end_s`, the end of the print, + cooldown). `layer_count`: how many toolpath layers there are (the cells'

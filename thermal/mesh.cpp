@@ -267,7 +267,24 @@ openvdb::Int32Grid::Ptr make_cell_grid(const sim::Deposit& deposit, std::span<co
 struct Contact {
   Eigen::Vector3d vector = Eigen::Vector3d::Zero();
   double faces = 0.0;
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // Σ face area × face centre
 };
+
+// A voxel's open surface (the vector sum of its open faces, `open`, mm²) as the cell's half cell sees it
+// (ThermalCell::open_depth_mm3): the surface lies at the voxel's centre `centre` moved along the normal by
+// the voxel's fill less a half (material fills a voxel from its inner side), at least a quarter voxel from
+// the cell's centroid.
+Eigen::Vector3d open_depth(const ThermalCell& cell, const Eigen::Vector3d& centre,
+                           const Eigen::Vector3d& open, double fill, double vs) {
+  const double area = open.norm();
+  if (!(area > 0.0)) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d n = open / area;
+  const double depth = std::max((centre - cell.centroid_mm).dot(n) + (fill - 0.5) * vs, 0.25 * vs);
+  const Eigen::Vector3d along(cell.along.x(), cell.along.y(), 0.0);
+  const Eigen::Vector3d across(-cell.along.y(), cell.along.x(), 0.0);
+  const double a = n.dot(along), c = n.dot(across);
+  return area * depth * Eigen::Vector3d(a * a, c * c, n.z() * n.z());
+}
 // By the lower-numbered cell of each pair: the higher one and their contact. A cell touches a dozen others or
 // so, so a short list searched in order beats a hash map over all the pairs.
 using ContactLists = std::vector<std::vector<std::pair<std::uint32_t, Contact>>>;
@@ -326,8 +343,10 @@ ContactLists sum_faces(const sim::Deposit& deposit, ThermalMesh& mesh) {
             auto entry = std::find_if(list.begin(), list.end(), [b](const auto& e) { return e.first == b; });
             if (entry == list.end()) entry = list.insert(list.end(), {b, Contact{}});
             Contact& c = entry->second;
-            c.vector += sign * normal * (face_area * std::min(f, fq));
-            c.faces += face_area * std::min(f, fq);
+            const double shared = face_area * std::min(f, fq);
+            c.vector += sign * normal * shared;
+            c.faces += shared;
+            c.moment += shared * (sim::voxel_center_mm(ijk, vs) + 0.5 * vs * normal);
           }
           continue;
         }
@@ -338,7 +357,9 @@ ContactLists sum_faces(const sim::Deposit& deposit, ThermalMesh& mesh) {
         }
         open += normal * (face_area * f);
       }
-      mesh.cells[static_cast<std::size_t>(cell)].open_area_mm2 += open.norm();
+      ThermalCell& owner = mesh.cells[static_cast<std::size_t>(cell)];
+      owner.open_area_mm2 += open.norm();
+      owner.open_depth_mm3 += open_depth(owner, sim::voxel_center_mm(ijk, vs), open, f, vs);
     }
   }
   return contacts;
@@ -361,6 +382,7 @@ std::vector<ThermalLink> make_links(ContactLists& contacts, std::span<const Cell
       link.b = b;
       link.area_vector_mm2 = c.vector;
       link.faces_mm2 = c.faces;
+      if (c.faces > 0.0) link.face_centroid_mm = c.moment / c.faces;
       const CellKey ka = keys[link.a], kb = keys[link.b];
       const bool same_chain = key_chain(ka) == key_chain(kb);
       const std::uint32_t pa = key_piece(ka), pb = key_piece(kb);

@@ -24,6 +24,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,8 +55,14 @@ struct ThermalCell {
   double birth_s = 0.0;  // when its material landed
   // The bead's direction in plan, as an axis (its sign means nothing): the "along" of the conductivity.
   Eigen::Vector2d along = Eigen::Vector2d::UnitX();
-  double open_area_mm2 = 0.0;   // surface that faces the outside air for good
-  double table_area_mm2 = 0.0;  // surface resting on the table
+  double open_area_mm2 = 0.0;  // surface that faces the outside air for good
+  // The half cell behind that surface: over its open faces, the sum of area × depth (from the centroid to
+  // the face along its normal n) × the squares of n's components along the bead, across it in plan and
+  // through the layer, mm³. Divided by the conductivities in those directions and summed, it is the area
+  // times the conduction resistance between the centre and the surface (thermal/surface.hpp). Zero: the
+  // surface is at the cell's temperature.
+  Eigen::Vector3d open_depth_mm3 = Eigen::Vector3d::Zero();
+  double table_area_mm2 = 0.0;  // surface resting on the table, which lies under the centroid at table_z_mm
   std::size_t move = 0;         // the first move (index into Toolpath::moves) that laid its material
   int layer = -1;               // that move's toolpath layer
 };
@@ -66,6 +73,9 @@ struct ThermalLink {
   // Oriented area of the shared faces, from a towards b, mm² (length: the area, direction: the normal).
   Eigen::Vector3d area_vector_mm2 = Eigen::Vector3d::Zero();
   double faces_mm2 = 0.0;  // the voxel faces' total area (the staircase's, without orientation)
+  // The area-weighted centre of the shared faces, mm: where each cell's half of the contact ends (the face
+  // is open surface of a while b is not yet born). NaN: halfway between the centroids along the normal.
+  Eigen::Vector3d face_centroid_mm = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   // The contact's area: the area vector's length, or for a contact that wraps round a corner (whose faces
   // partly cancel in the sum) at least the faces' area over √3, which a planar staircase never falls below.
   double area_mm2() const;

@@ -21,6 +21,7 @@ struct Neighbour {
   std::uint32_t cell = 0;
   double conductance_W_K = 0.0;
   double area_m2 = 0.0;
+  double rarea = 0.0;  // area × this cell's half-cell resistance to the contact, m²·m²K/W
 };
 
 // The conductivity tensor of a cell whose bead runs along `along` (a unit vector in plan).
@@ -39,24 +40,37 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
       material_(material),
       deposition_c_(material.deposition_temp_c),
       ambient_c_(env.ambient_c),
-      ambient_k4_(std::pow(env.ambient_c + kKelvinOffset, 4)),
       bed_c_(env.bed_temp_c),
       eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
+  fan_full_h_ = env.fan_convection_W_m2K;
   mass_kg_.resize(n_);
   exposed_m2_.resize(n_);
+  exposed_rarea_.resize(n_);
   table_W_K_.resize(n_);
   h_.resize(n_);
+  const Eigen::Vector3d inverse_k(1.0 / material.conductivity_along_W_mK,
+                                  1.0 / material.conductivity_across_W_mK,
+                                  1.0 / material.conductivity_through_W_mK);
   for (std::size_t i = 0; i < n_; ++i) {
     const ThermalCell& c = mesh.cells[i];
     h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
     mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
     exposed_m2_[i] = c.open_area_mm2 * kM2PerMm2;
-    table_W_K_[i] = env.bed_insulated ? 0.0 : env.bed_contact_W_m2K * c.table_area_mm2 * kM2PerMm2;
+    exposed_rarea_[i] = c.open_depth_mm3.dot(inverse_k) * kM3PerMm3;
+    // The table's contact in series with the conduction from the centroid down to the table.
+    const double down_m = std::max(c.centroid_mm.z() - mesh.table_z_mm, 0.0) * kMPerMm;
+    table_W_K_[i] = env.bed_insulated || c.table_area_mm2 <= 0.0
+                        ? 0.0
+                        : c.table_area_mm2 * kM2PerMm2 /
+                              (1.0 / env.bed_contact_W_m2K + down_m / material.conductivity_through_W_mK);
   }
   list_neighbours(mesh, material);
   // Every contact is open surface until the neighbour is born.
   for (std::size_t i = 0; i < n_; ++i)
-    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) exposed_m2_[i] += nb_area_m2_[k];
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+      exposed_m2_[i] += nb_area_m2_[k];
+      exposed_rarea_[i] += nb_rarea_[k];
+    }
   loss_.assign(n_, 0.0);
   born_end_.assign(first_.begin(), first_.end() - 1);
   born_g_.assign(n_, 0.0);
@@ -80,12 +94,18 @@ void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& materia
     const double vector_length = l.area_vector_mm2.norm();
     const Eigen::Vector3d normal =
         vector_length > 0.0 ? Eigen::Vector3d(l.area_vector_mm2 / vector_length) : Eigen::Vector3d::UnitZ();
-    const Eigen::Matrix3d k = 0.5 * (conductivity(a.along, material) + conductivity(b.along, material));
-    const double k_n = normal.dot(k * normal);
+    const Eigen::Matrix3d k_a = conductivity(a.along, material), k_b = conductivity(b.along, material);
+    const double k_n = 0.5 * normal.dot((k_a + k_b) * normal);
     const double distance = std::max(std::abs((b.centroid_mm - a.centroid_mm).dot(normal)), half_voxel);
     const double g = k_n * area * kM2PerMm2 / (distance * kMPerMm);
-    neighbours[next[l.a]++] = {l.b, g, area * kM2PerMm2};
-    neighbours[next[l.b]++] = {l.a, g, area * kM2PerMm2};
+    // Each cell's half of the contact, from its centroid to the shared faces along the normal.
+    const double to_face = l.face_centroid_mm.allFinite()
+                               ? std::abs((l.face_centroid_mm - a.centroid_mm).dot(normal))
+                               : 0.5 * distance;
+    const double a_half = std::min(to_face, distance), b_half = distance - a_half;
+    const double area_m2 = area * kM2PerMm2;
+    neighbours[next[l.a]++] = {l.b, g, area_m2, area_m2 * a_half * kMPerMm / normal.dot(k_a * normal)};
+    neighbours[next[l.b]++] = {l.a, g, area_m2, area_m2 * b_half * kMPerMm / normal.dot(k_b * normal)};
   }
   // Sorted by neighbour, so the born ones come first; kept as three arrays, so that the integrator's
   // loops read 12 bytes a neighbour (who and the conductance) rather than a whole Neighbour.
@@ -96,10 +116,12 @@ void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& materia
   nb_cell_.reserve(neighbours.size());
   nb_g_.reserve(neighbours.size());
   nb_area_m2_.reserve(neighbours.size());
+  nb_rarea_.reserve(neighbours.size());
   for (const Neighbour& nb : neighbours) {
     nb_cell_.push_back(nb.cell);
     nb_g_.push_back(nb.conductance_W_K);
     nb_area_m2_.push_back(nb.area_m2);
+    nb_rarea_.push_back(nb.rarea);
   }
 }
 
@@ -146,8 +168,9 @@ void PartModel::birth(std::size_t end, std::span<double> y) {
   for (std::size_t i = born_; i < end; ++i) {
     y[i] = deposition_c_;
     for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
-      if (nb_cell_[k] < end) exposed_m2_[i] -= nb_area_m2_[k];
-      if (nb_cell_[k] < born_) exposed_m2_[nb_cell_[k]] -= nb_area_m2_[k];
+      const std::uint32_t j = nb_cell_[k];
+      if (j < end) close_face(i, k);
+      if (j < born_) close_face(j, face_towards(j, static_cast<std::uint32_t>(i)));
     }
     energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
   }
@@ -162,12 +185,13 @@ void PartModel::birth(std::size_t end, std::span<double> y) {
 
 void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
   const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
-  std::vector<double> mass(m, 0.0), exposed(m, 0.0), table(m, 0.0), h_area(m, 0.0), h_sum(m, 0.0),
-      count(m, 0.0), enthalpy(m, 0.0);
+  std::vector<double> mass(m, 0.0), exposed(m, 0.0), rarea(m, 0.0), table(m, 0.0), h_area(m, 0.0),
+      h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0);
   for (std::size_t i = 0; i < n_; ++i) {
     const std::size_t g = to[i];
     mass[g] += mass_kg_[i];
     exposed[g] += exposed_m2_[i];
+    rarea[g] += exposed_rarea_[i];
     table[g] += table_W_K_[i];
     h_area[g] += h_[i] * exposed_m2_[i];
     h_sum[g] += h_[i];
@@ -178,8 +202,8 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   for (std::size_t g = 0; g < m; ++g) h[g] = exposed[g] > 0.0 ? h_area[g] / exposed[g] : h_sum[g] / count[g];
   std::vector<std::size_t> first;
   std::vector<std::uint32_t> nb_cell;
-  std::vector<double> nb_g, nb_area;
-  merge_neighbours(to, m, first, nb_cell, nb_g, nb_area);
+  std::vector<double> nb_g, nb_area, nb_rarea;
+  merge_neighbours(to, m, first, nb_cell, nb_g, nb_area, nb_rarea);
   // The state: each new cell at the temperature that holds its enthalpy (Newton on m h(T) = H from the
   // mass-weighted mean; c_p changes slowly with T, so a few steps reach round-off).
   const std::size_t cap = cap_ == 0 ? 0 : std::size_t{to[cap_ - 1]} + 1;
@@ -200,12 +224,14 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   n_ = m;
   mass_kg_ = std::move(mass);
   exposed_m2_ = std::move(exposed);
+  exposed_rarea_ = std::move(rarea);
   table_W_K_ = std::move(table);
   h_ = std::move(h);
   first_ = std::move(first);
   nb_cell_ = std::move(nb_cell);
   nb_g_ = std::move(nb_g);
   nb_area_m2_ = std::move(nb_area);
+  nb_rarea_ = std::move(nb_rarea);
   loss_.assign(n_, 0.0);
   born_ = born;
   born_end_.resize(n_);
@@ -217,12 +243,14 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
 
 void PartModel::merge_neighbours(std::span<const std::uint32_t> to, std::size_t m,
                                  std::vector<std::size_t>& first, std::vector<std::uint32_t>& nb_cell,
-                                 std::vector<double>& nb_g, std::vector<double>& nb_area) const {
+                                 std::vector<double>& nb_g, std::vector<double>& nb_area,
+                                 std::vector<double>& nb_rarea) const {
   // The members' lists, renumbered (still in order, as `to` keeps order), merged per neighbour.
   first.assign(m + 1, 0);
   nb_cell.reserve(nb_cell_.size());
   nb_g.reserve(nb_cell_.size());
   nb_area.reserve(nb_cell_.size());
+  nb_rarea.reserve(nb_cell_.size());
   std::vector<std::pair<std::uint32_t, std::size_t>> entries;  // (new neighbour, old entry)
   for (std::size_t i = 0; i < n_;) {
     const std::uint32_t g = to[i];
@@ -237,9 +265,11 @@ void PartModel::merge_neighbours(std::span<const std::uint32_t> to, std::size_t 
         nb_cell.push_back(entries[e].first);
         nb_g.push_back(0.0);
         nb_area.push_back(0.0);
+        nb_rarea.push_back(0.0);
       }
       nb_g.back() += nb_g_[entries[e].second];
       nb_area.back() += nb_area_m2_[entries[e].second];
+      nb_rarea.back() += nb_rarea_[entries[e].second];
     }
     first[g + 1] = nb_cell.size();
     i = j;
@@ -321,6 +351,14 @@ void PartModel::find_born_end(std::size_t i) {
   for (; k < first_[i + 1] && nb_cell_[k] < born_; ++k) g += nb_g_[k];
   born_end_[i] = k;
   born_g_[i] = g;
+}
+
+std::size_t PartModel::face_towards(std::size_t i, std::uint32_t j) const {
+  const auto begin = nb_cell_.begin() + static_cast<std::ptrdiff_t>(first_[i]);
+  const auto end = nb_cell_.begin() + static_cast<std::ptrdiff_t>(first_[i + 1]);
+  const auto it = std::lower_bound(begin, end, j);
+  BT_CHECK(it != end && *it == j);
+  return static_cast<std::size_t>(it - nb_cell_.begin());
 }
 
 void PartModel::partition() {

@@ -25,6 +25,7 @@
 #include "thermal/cvode.hpp"
 #include "thermal/fusion.hpp"
 #include "thermal/mesh.hpp"
+#include "thermal/surface.hpp"
 
 namespace beadtwin::thermal {
 
@@ -91,11 +92,28 @@ class PartModel final : public OdeSystem {
     const double t = y[i];
     double flux = 0.0;
     for (std::size_t k = first_[i], e = born_end_[i]; k < e; ++k) flux += nb_g_[k] * (y[nb_cell_[k]] - t);
-    const double tk = t + kKelvinOffset;
-    loss = exposed_m2_[i] * (h_[i] * (t - ambient_c_) + eps_sigma_ * (tk * tk * tk * tk - ambient_k4_)) +
-           table_W_K_[i] * (t - bed_c_);
+    loss = table_W_K_[i] * (t - bed_c_);
+    if (exposed_m2_[i] > 0.0) loss += exposed_m2_[i] * open_face(i, t).flux_W_m2;
     return (flux - loss) / heat_capacity(i, t);
   }
+  // The open surface of model cell i when the cell is at `t` (°C): its flux, temperature and slope
+  // (thermal/surface.hpp), through the half cell of all its open faces together (their resistances averaged
+  // by area).
+  FaceFlux open_face(std::size_t i, double t) const {
+    return face_flux(air(i), t, exposed_m2_[i] > 0.0 ? exposed_rarea_[i] / exposed_m2_[i] : 0.0);
+  }
+  // The temperature of model cell i's open face towards cell j (a neighbour not yet born) when cell i is
+  // at `t`, °C: what a thermal camera sees there before j covers it.
+  double face_surface_c(std::size_t i, std::uint32_t j, double t) const {
+    const std::size_t k = face_towards(i, j);
+    return face_flux(air(i), t, nb_area_m2_[k] > 0.0 ? nb_rarea_[k] / nb_area_m2_[k] : 0.0).surface_c;
+  }
+  // The air side of model cell i's open faces.
+  AirSide air(std::size_t i) const {
+    return {.convection_W_m2K = std::max(h_[i], fan_h_), .eps_sigma = eps_sigma_, .ambient_c = ambient_c_};
+  }
+  // The part-cooling fan at `output` (0..1) of its full forced convection from now on.
+  void set_fan(double output) { fan_h_ = output * fan_full_h_; }
 
   // The vectors below are this rank's part of the state: cell i at [i − lo_], its share of Q last.
   void rhs(double t, std::span<const double> y, std::span<double> ydot) override;
@@ -115,8 +133,7 @@ class PartModel final : public OdeSystem {
 
   // d(loss)/dT of cell i at temperature t, W/K.
   double loss_derivative(std::size_t i, double t) const {
-    const double tk = t + kKelvinOffset;
-    return exposed_m2_[i] * (h_[i] + 4.0 * eps_sigma_ * tk * tk * tk) + table_W_K_[i];
+    return (exposed_m2_[i] > 0.0 ? exposed_m2_[i] * open_face(i, t).slope_W_m2K : 0.0) + table_W_K_[i];
   }
 
   // The contacts of `mesh` as neighbour lists (first_, nb_*), each sorted by neighbour.
@@ -125,8 +142,15 @@ class PartModel final : public OdeSystem {
   // into the neighbour lists of the m cells afterwards.
   void merge_neighbours(std::span<const std::uint32_t> to, std::size_t m, std::vector<std::size_t>& first,
                         std::vector<std::uint32_t>& nb_cell, std::vector<double>& nb_g,
-                        std::vector<double>& nb_area) const;
+                        std::vector<double>& nb_area, std::vector<double>& nb_rarea) const;
   void find_born_end(std::size_t i);
+  // Cell i's contact k (an index into its neighbour lists) is no longer open surface: its neighbour is born.
+  void close_face(std::size_t i, std::size_t k) {
+    exposed_m2_[i] -= nb_area_m2_[k];
+    exposed_rarea_[i] -= nb_rarea_[k];
+  }
+  // The index of neighbour `j` in cell i's neighbour lists (which hold it).
+  std::size_t face_towards(std::size_t i, std::uint32_t j) const;
 
   // The end of this rank's born cells: [lo_, owned_born()).
   std::size_t owned_born() const { return std::clamp(born_, lo_, hi_); }
@@ -146,12 +170,16 @@ class PartModel final : public OdeSystem {
   std::vector<double> mass_kg_;
   Material material_;
   std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
-  std::vector<double> table_W_K_;   // bed contact conductance
+  // Σ area × half-cell resistance of those faces, m²·m²K/W (thermal/surface.hpp)
+  std::vector<double> exposed_rarea_;
+  std::vector<double> table_W_K_;  // to the table: its contact in series with the half cell down to it
   std::vector<std::size_t> first_;
-  // Neighbours of cell i at [first_[i], first_[i + 1]), by index: who, the conductance, the contact area.
+  // Neighbours of cell i at [first_[i], first_[i + 1]), by index: who, the conductance, the contact area,
+  // and that area times cell i's half-cell resistance to it (m²·m²K/W, while the contact is open surface).
   std::vector<std::uint32_t> nb_cell_;
   std::vector<double> nb_g_;
   std::vector<double> nb_area_m2_;
+  std::vector<double> nb_rarea_;
   // Per cell: the end of its born neighbours, [first_[i], born_end_[i]) (kept for the born cells and their
   // neighbours at every birth), so the integrator's loops need not test each neighbour.
   std::vector<std::size_t> born_end_;
@@ -169,8 +197,9 @@ class PartModel final : public OdeSystem {
   std::vector<int> part_counts_, send_counts_, recv_counts_;
   std::vector<std::uint32_t> send_cells_, recv_cells_;
   mutable std::vector<double> send_buffer_, recv_buffer_, halo_y_, halo_v_, gathered_;
-  std::vector<double> h_;  // convection coefficient at the cell's height, W/m²K
-  double deposition_c_, ambient_c_, ambient_k4_, bed_c_, eps_sigma_;
+  std::vector<double> h_;                  // convection coefficient at the cell's height, W/m²K
+  double fan_full_h_ = 0.0, fan_h_ = 0.0;  // forced convection with the fan at full and now, W/m²K
+  double deposition_c_, ambient_c_, bed_c_, eps_sigma_;
   double energy_in_J_ = 0.0;
   double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
 };

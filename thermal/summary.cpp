@@ -10,17 +10,23 @@
 namespace beadtwin::thermal {
 namespace {
 
+// Adds `temp_c` over `area_mm2`; the mean is kept as the area-weighted sum until finish().
+void add(TemperatureStats& s, double temp_c, double area_mm2) {
+  s.min_c = std::isnan(s.min_c) ? temp_c : std::min(s.min_c, temp_c);
+  s.max_c = std::isnan(s.max_c) ? temp_c : std::max(s.max_c, temp_c);
+  s.mean_c = (std::isnan(s.mean_c) ? 0.0 : s.mean_c) + area_mm2 * temp_c;
+}
+
+void finish(TemperatureStats& s, double area_mm2) {
+  if (!std::isnan(s.mean_c)) s.mean_c = area_mm2 > 0.0 ? s.mean_c / area_mm2 : s.min_c;
+}
+
 void add(FusionSummary& s, const InterfaceResult& r) {
   ++s.interfaces;
   s.area_mm2 += r.area_mm2;
   if (r.on_top) {
-    s.substrate_min_c =
-        std::isnan(s.substrate_min_c) ? r.substrate_c : std::min(s.substrate_min_c, r.substrate_c);
-    s.substrate_max_c =
-        std::isnan(s.substrate_max_c) ? r.substrate_c : std::max(s.substrate_max_c, r.substrate_c);
-    // Kept as the area-weighted sum until finish().
-    s.substrate_mean_c =
-        (std::isnan(s.substrate_mean_c) ? 0.0 : s.substrate_mean_c) + r.area_mm2 * r.substrate_c;
+    add(s.substrate, r.substrate_c, r.area_mm2);
+    add(s.surface, r.substrate_surface_c, r.area_mm2);
   }
   s.healing_min = std::isnan(s.healing_min) ? r.healing : std::min(s.healing_min, r.healing);
   s.healing_mean = (std::isnan(s.healing_mean) ? 0.0 : s.healing_mean) + r.area_mm2 * r.healing;
@@ -34,8 +40,8 @@ void add(FusionSummary& s, const InterfaceResult& r) {
 }
 
 void finish(FusionSummary& s, double on_top_area_mm2) {
-  if (!std::isnan(s.substrate_mean_c))
-    s.substrate_mean_c = on_top_area_mm2 > 0.0 ? s.substrate_mean_c / on_top_area_mm2 : s.substrate_min_c;
+  finish(s.substrate, on_top_area_mm2);
+  finish(s.surface, on_top_area_mm2);
   if (!std::isnan(s.healing_mean))
     s.healing_mean = s.area_mm2 > 0.0 ? s.healing_mean / s.area_mm2 : s.healing_min;
 }
@@ -184,11 +190,12 @@ std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& he
   return out;
 }
 
-std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat) {
+std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat,
+                                     double InterfaceResult::*temperature) {
   std::vector<double> sum(mesh.cells.size(), 0.0), area(mesh.cells.size(), 0.0);
   for (const InterfaceResult& r : heat.interfaces) {
     if (!r.on_top) continue;
-    sum[r.younger] += r.area_mm2 * r.substrate_c;
+    sum[r.younger] += r.area_mm2 * r.*temperature;
     area[r.younger] += r.area_mm2;
   }
   std::vector<double> out(mesh.cells.size(), std::numeric_limits<double>::quiet_NaN());

@@ -16,13 +16,18 @@ namespace beadtwin::thermal {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// A temperature over interfaces, °C: least, area-weighted mean, most; NaN over none.
+struct TemperatureStats {
+  double min_c = kNaN, mean_c = kNaN, max_c = kNaN;
+};
+
 // The interfaces whose younger cell (the bead that landed) lies in one toolpath layer, or in the whole part.
 struct FusionSummary {
   std::size_t interfaces = 0;
   double area_mm2 = 0.0;
-  // The substrate's temperature where beads landed on top of it, °C: least, area-weighted mean, most; NaN
-  // where no bead landed on top of anything (the first layer).
-  double substrate_min_c = kNaN, substrate_mean_c = kNaN, substrate_max_c = kNaN;
+  // Where beads landed on top of something (NaN where none did, as on the first layer): the substrate's
+  // temperature (its cell's) and its surface's as the bead landed (InterfaceResult).
+  TemperatureStats substrate, surface;
   // Degree of healing min(1, D_h): least and area-weighted mean; NaN without interfaces.
   double healing_min = kNaN, healing_mean = kNaN;
   std::size_t too_hot = 0, too_cold = 0;  // interfaces
@@ -78,8 +83,10 @@ std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& he
 
 // Per cell, the temperature of what it landed on as it was born, °C: the area-weighted mean substrate
 // temperature of its interfaces as the younger cell that face up (HeatResult's on_top); NaN for a cell that
-// landed on nothing older (the first layer on the table, a bead beside older ones only).
-std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat);
+// landed on nothing older (the first layer on the table, a bead beside older ones only). `temperature`: the
+// substrate's cell temperature, or its surface's (&InterfaceResult::substrate_surface_c).
+std::vector<double> cell_substrate_c(const ThermalMesh& mesh, const HeatResult& heat,
+                                     double InterfaceResult::*temperature = &InterfaceResult::substrate_c);
 
 // Per cell, the least degree of healing of its interfaces as the younger cell (0..1); NaN for a cell with
 // none, as in cell_verdicts.

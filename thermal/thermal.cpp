@@ -6,8 +6,10 @@ ThermalResult solve_thermal(const ThermalInput& input) {
   const Toolpath& tp = input.toolpath;
   ThermalResult out;
   out.mesh = build_thermal_mesh(tp, input.deposit, input.mesh);
-  out.heat = solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), input.material, input.environment,
-                        input.heat);
+  HeatOptions heat = input.heat;
+  if (heat.fan.empty() && input.environment.fan_convection_W_m2K > 0.0) heat.fan = fan_schedule(tp);
+  out.heat =
+      solve_heat(out.mesh, tp.layers.size(), tp.total_time_s(), input.material, input.environment, heat);
   std::vector<double> durations;
   for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
   out.layers = summarise_layers(out.mesh, out.heat, durations, input.material, input.environment.ambient_c);

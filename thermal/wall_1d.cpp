@@ -135,7 +135,8 @@ std::vector<double> sample_times(double t0, double t_end, double interval_s) {
 struct SubstrateWindow {
   double end_s = 0;
   double at_start_c = 0, min_c = 0, max_c = 0;
-  double integral_cs = 0;  // ∫ T dt, °C·s
+  double surface_at_start_c = 0;  // its top face's, as the layer starts
+  double integral_cs = 0;         // ∫ T dt, °C·s
   double last_t = 0, last_c = 0;
   bool open = false;
 
@@ -168,7 +169,10 @@ class Recorder {
 
   // After layer `layer` is born at t with state y. Samples at exactly t see the new layer.
   void on_birth(std::size_t layer, double t, std::span<const double> y) {
-    if (layer > 0) windows_[layer].start(t, model_.substrate_temp_c(layer, y), layers_[layer].end_s);
+    if (layer > 0) {
+      windows_[layer].start(t, model_.substrate_temp_c(layer, y), layers_[layer].end_s);
+      windows_[layer].surface_at_start_c = model_.substrate_surface_c(layer, y);
+    }
     while (next_ < times_.size() && times_[next_] <= t) record(next_++, y);
   }
 
@@ -255,12 +259,14 @@ Wall1dLayerResult layer_result(std::size_t layer, std::span<const Wall1dLayer> l
   if (layer == 0) {
     const double table_c = env.bed_insulated ? env.ambient_c : env.bed_temp_c;
     r.substrate_min_c = r.substrate_mean_c = r.substrate_max_c = r.substrate_at_start_c = table_c;
+    r.surface_at_start_c = table_c;
     r.healing = kNaN;
     r.verdict = Verdict::kNoInterface;
     return r;
   }
   const SubstrateWindow& w = recorder.window(layer);
   r.substrate_at_start_c = w.at_start_c;
+  r.surface_at_start_c = w.surface_at_start_c;
   r.substrate_min_c = w.min_c;
   r.substrate_max_c = w.max_c;
   r.substrate_mean_c = w.mean_c(layers[layer].start_s);

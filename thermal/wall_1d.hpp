@@ -6,9 +6,12 @@
 // 17:77-86): each layer is `nodes_per_layer` control volumes through its thickness, with its footprint area
 // and the length of its exposed side edges. Heat is conducted through the stack (k through the layer
 // thickness), lost by convection and radiation from the sides and from the exposed part of each layer's
-// top, and exchanged with the table under layer 0. Layers appear by element birth: a whole layer is born at
-// once, at its start time and at the deposition temperature, so the time a bead really waits before being
-// covered is represented by the layer-to-layer period, not bead by bead.
+// top, and exchanged with the table under layer 0, each through the half node between the node's centre and
+// its face (thermal/surface.hpp): half a node's thickness (k through the layer) to the top and the table,
+// and area / perimeter across the layer (k across the bead) to the sides, half the width of a straight wall.
+// Layers appear by element birth: a whole layer is born at once, at its start time and at the deposition
+// temperature, so the time a bead really waits before being covered is represented by the layer-to-layer
+// period, not bead by bead.
 //
 // Integrated with SUNDIALS CVODE (BDF, banded direct solver), restarted at every birth. The healing of every
 // interface follows the non-isothermal reptation model of Yang & Pitchumani 2002 (docs/physics.md, fusion
@@ -52,6 +55,9 @@ struct Wall1dLayerResult {
   // Temperature of the layer below's top node just before this layer touches it (at start_s), °C: the
   // substrate temperature at deposition, not affected by the reheating. Bed/ambient for layer 0.
   double substrate_at_start_c = 0;
+  // The top face of the layer below at that moment, °C: what a thermal camera reads there
+  // (thermal/surface.hpp).
+  double surface_at_start_c = 0;
   // Degree of healing min(1, D_h) of the interface under this layer at the end of the simulation.
   // NaN for layer 0 (no interface).
   double healing = 0;

@@ -13,10 +13,6 @@ namespace {
 constexpr double kM2PerMm2 = 1e-6;
 constexpr double kMPerMm = 1e-3;
 
-double kelvin(double temp_c) {
-  return temp_c + kKelvinOffset;
-}
-
 }  // namespace
 
 Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material,
@@ -25,12 +21,11 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
       block_(n_ + 2),
       reptation_(material),
       deposition_temp_c_(material.deposition_temp_c),
-      ambient_c_(env.ambient_c),
-      ambient_k4_(std::pow(kelvin(env.ambient_c), 4)),
+      air_{.convection_W_m2K = env.convection_W_m2K,
+           .eps_sigma = material.emissivity * kStefanBoltzmann_W_m2K4,
+           .ambient_c = env.ambient_c},
       bed_temp_c_(env.bed_temp_c),
-      bed_conductance_W_K_(0.0),
-      convection_W_m2K_(env.convection_W_m2K),
-      emissivity_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
+      bed_conductance_W_K_(0.0) {
   BT_CHECK_OP(nodes_per_layer, >=, 1);
   BT_CHECK(!layers.empty());
   const double k = material.conductivity_through_W_mK;
@@ -46,6 +41,10 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
         material.density_kg_m3 * material.specific_heat_J_kgK * area_m2 * node_thickness_m;
     layer.inner_conductance_W_K = k * area_m2 / node_thickness_m;
     layer.side_area_node_m2 = in.perimeter_mm * kMPerMm * node_thickness_m;
+    layer.top_r_m2K_W = 0.5 * node_thickness_m / k;
+    layer.side_r_m2K_W = in.perimeter_mm > 0.0
+                             ? in.area_mm2 / in.perimeter_mm * kMPerMm / material.conductivity_across_W_mK
+                             : 0.0;
     if (i > 0) {
       // Series conduction from the centre of the lower node to the centre of the upper one through the
       // contact area both layers share.
@@ -58,7 +57,8 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
     }
     layers_.push_back(layer);
   }
-  if (!env.bed_insulated) bed_conductance_W_K_ = env.bed_contact_W_m2K * layers_[0].area_m2;
+  if (!env.bed_insulated)
+    bed_conductance_W_K_ = layers_[0].area_m2 / (1.0 / env.bed_contact_W_m2K + layers_[0].top_r_m2K_W);
 }
 
 std::vector<double> Wall1dModel::initial_state() const {
@@ -126,7 +126,7 @@ double Wall1dModel::interface_temp_c(std::size_t layer, std::span<const double> 
 double Wall1dModel::energy_in_J() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i)
-    sum += layers_[i].node_capacity_J_K * static_cast<double>(n_) * (deposition_temp_c_ - ambient_c_);
+    sum += layers_[i].node_capacity_J_K * static_cast<double>(n_) * (deposition_temp_c_ - air_.ambient_c);
   return sum;
 }
 
@@ -134,7 +134,7 @@ double Wall1dModel::energy_stored_J(std::span<const double> y) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i)
     for (std::size_t j = 0; j < n_; ++j)
-      sum += layers_[i].node_capacity_J_K * (y[temp_index(i, j)] - ambient_c_);
+      sum += layers_[i].node_capacity_J_K * (y[temp_index(i, j)] - air_.ambient_c);
   return sum;
 }
 
@@ -144,30 +144,31 @@ double Wall1dModel::energy_lost_J(std::span<const double> y) const {
   return sum;
 }
 
-double Wall1dModel::free_area_m2(std::size_t layer, std::size_t node) const {
-  double area = layers_[layer].side_area_node_m2;
-  if (node + 1 == n_) {
-    const bool topmost = layer + 1 >= born_;
-    area +=
-        topmost ? layers_[layer].area_m2 : std::max(0.0, layers_[layer].area_m2 - layers_[layer + 1].area_m2);
-  }
-  return area;
+double Wall1dModel::top_area_m2(std::size_t layer, std::size_t node) const {
+  if (node + 1 != n_) return 0.0;
+  const bool topmost = layer + 1 >= born_;
+  return topmost ? layers_[layer].area_m2
+                 : std::max(0.0, layers_[layer].area_m2 - layers_[layer + 1].area_m2);
 }
 
 double Wall1dModel::bed_conductance_W_K(std::size_t layer, std::size_t node) const {
   return layer == 0 && node == 0 ? bed_conductance_W_K_ : 0.0;
 }
 
-double Wall1dModel::loss_W(double temp_c, double area_m2, double bed_conductance) const {
-  const double t_k = kelvin(temp_c);
-  return area_m2 * (convection_W_m2K_ * (temp_c - ambient_c_) +
-                    emissivity_sigma_ * (t_k * t_k * t_k * t_k - ambient_k4_)) +
-         bed_conductance * (temp_c - bed_temp_c_);
-}
-
-double Wall1dModel::loss_derivative_W_K(double temp_c, double area_m2, double bed_conductance) const {
-  const double t_k = kelvin(temp_c);
-  return area_m2 * (convection_W_m2K_ + 4.0 * emissivity_sigma_ * t_k * t_k * t_k) + bed_conductance;
+Wall1dModel::Loss Wall1dModel::loss(std::size_t layer, std::size_t node, double temp_c) const {
+  const Layer& l = layers_[layer];
+  const double bed = bed_conductance_W_K(layer, node);
+  Loss out{.W = bed * (temp_c - bed_temp_c_), .W_K = bed};
+  const FaceFlux side = face_flux(air_, temp_c, l.side_r_m2K_W);
+  out.W += l.side_area_node_m2 * side.flux_W_m2;
+  out.W_K += l.side_area_node_m2 * side.slope_W_m2K;
+  const double top = top_area_m2(layer, node);
+  if (top > 0.0) {
+    const FaceFlux f = face_flux(air_, temp_c, l.top_r_m2K_W);
+    out.W += top * f.flux_W_m2;
+    out.W_K += top * f.slope_W_m2K;
+  }
+  return out;
 }
 
 void Wall1dModel::rhs(double /*t*/, std::span<const double> y, std::span<double> ydot) {
@@ -183,9 +184,9 @@ void Wall1dModel::rhs(double /*t*/, std::span<const double> y, std::span<double>
       if (j == 0 && i > 0) heat_W += layer.below_conductance_W_K * (y[temp_index(i - 1, n_ - 1)] - temp);
       if (j + 1 == n_ && i + 1 < born_)
         heat_W += layers_[i + 1].below_conductance_W_K * (y[temp_index(i + 1, 0)] - temp);
-      const double loss = loss_W(temp, free_area_m2(i, j), bed_conductance_W_K(i, j));
-      lost_W += loss;
-      ydot[temp_index(i, j)] = (heat_W - loss) / layer.node_capacity_J_K;
+      const double lost = loss(i, j, temp).W;
+      lost_W += lost;
+      ydot[temp_index(i, j)] = (heat_W - lost) / layer.node_capacity_J_K;
     }
     ydot[loss_index(i)] = lost_W;
     if (i > 0) ydot[healing_index(i)] = reptation_.rate_per_s(interface_temp_c(i, y));
@@ -207,7 +208,7 @@ void Wall1dModel::jacobian(double /*t*/, std::span<const double> y, BandJacobian
       if (j + 1 < n_) couple(temp_index(i, j + 1), layer.inner_conductance_W_K);
       if (j == 0 && i > 0) couple(temp_index(i - 1, n_ - 1), layer.below_conductance_W_K);
       if (j + 1 == n_ && i + 1 < born_) couple(temp_index(i + 1, 0), layers_[i + 1].below_conductance_W_K);
-      const double dloss = loss_derivative_W_K(y[row], free_area_m2(i, j), bed_conductance_W_K(i, j));
+      const double dloss = loss(i, j, y[row]).W_K;
       jac.set(row, row, (diagonal_W_K - dloss) * inv_c);
       jac.set(loss_index(i), row, dloss);
     }

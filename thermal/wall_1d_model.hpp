@@ -10,6 +10,7 @@
 #include "core/material.hpp"
 #include "thermal/cvode.hpp"
 #include "thermal/fusion.hpp"
+#include "thermal/surface.hpp"
 #include "thermal/wall_1d.hpp"
 
 namespace beadtwin::thermal {
@@ -55,6 +56,10 @@ class Wall1dModel final : public OdeSystem {
   double layer_mean_temp_c(std::size_t layer, std::span<const double> y) const;
   // Top node of the layer under `layer` (layer >= 1).
   double substrate_temp_c(std::size_t layer, std::span<const double> y) const;
+  // The top face of the layer under `layer` (layer >= 1) while open to the air, °C.
+  double substrate_surface_c(std::size_t layer, std::span<const double> y) const {
+    return face_flux(air_, substrate_temp_c(layer, y), layers_[layer - 1].top_r_m2K_W).surface_c;
+  }
   // Interface temperature under `layer` (layer >= 1): linear between the two adjacent node centres (the
   // mean of the two when the layers are equally thick).
   double interface_temp_c(std::size_t layer, std::span<const double> y) const;
@@ -76,13 +81,17 @@ class Wall1dModel final : public OdeSystem {
     double below_conductance_W_K = 0;  // to the layer below: k min(A) / (h_below/2n + h/2n)
     double below_weight = 0;           // weight of the lower node in the interface temperature
     double side_area_node_m2 = 0;      // perimeter · h/n
+    double side_r_m2K_W = 0;           // half node across the layer: (area / perimeter) / k_across
+    double top_r_m2K_W = 0;            // half node through it: (h/2n) / k_through
   };
-  // Boundary loss of one node at temperature temp_c through `area_m2` of free surface plus the bed
-  // conductance (0 except under layer 0), W; and its derivative with respect to the temperature, W/K.
-  double loss_W(double temp_c, double area_m2, double bed_conductance) const;
-  double loss_derivative_W_K(double temp_c, double area_m2, double bed_conductance) const;
-  // Free surface of node j of layer i in the current stack: sides, plus the uncovered top for top nodes.
-  double free_area_m2(std::size_t layer, std::size_t node) const;
+  // Boundary loss of node j of layer i at temperature temp_c through its free surface (sides, and the
+  // uncovered top for top nodes) and the bed (under layer 0), W, with its derivative with respect to the
+  // temperature, W/K.
+  struct Loss {
+    double W = 0.0, W_K = 0.0;
+  };
+  Loss loss(std::size_t layer, std::size_t node, double temp_c) const;
+  double top_area_m2(std::size_t layer, std::size_t node) const;
   double bed_conductance_W_K(std::size_t layer, std::size_t node) const;
 
   std::vector<Layer> layers_;
@@ -91,12 +100,9 @@ class Wall1dModel final : public OdeSystem {
   std::size_t born_ = 0;
   Reptation reptation_;
   double deposition_temp_c_;
-  double ambient_c_;
-  double ambient_k4_;
+  AirSide air_;
   double bed_temp_c_;
-  double bed_conductance_W_K_;  // h_bed · A_0, or 0 on an insulated table
-  double convection_W_m2K_;
-  double emissivity_sigma_;  // ε σ
+  double bed_conductance_W_K_;  // A_0 / (1/h_bed + half node), or 0 on an insulated table
   double rel_tol_ = 1e-6;
   double abs_tol_k_ = 1e-4;
   double healing_abs_tol_ = 1e-8;

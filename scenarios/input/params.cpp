@@ -334,10 +334,11 @@ const Param<ImageSpec> kImage[] = {
       .derived = true,
       .form = "text"}},
     {{.key = "colour",
-      .meaning =
-          "what colours the part: fusion (verdict), section, layer, time (of deposition), substrate "
-          "(temperature of what a bead landed on), healing (least degree of healing), deviation (stock over "
-          "the CAD), porosity (local void fraction) or temperature (at `time`)",
+      .meaning = "what colours the part: fusion (verdict), section, layer, time (of deposition), substrate "
+                 "(temperature of what a bead landed on), surface (its surface's, as a thermal camera reads "
+                 "it before "
+                 "the bead covers it), healing (least degree of healing), deviation (stock over "
+                 "the CAD), porosity (local void fraction) or temperature (at `time`)",
       .source = "docs/physics.md"},
      BT_MEMBER(ImageSpec, colour)},
     {{.key = "cut.point",

@@ -29,6 +29,7 @@ Dimension colouring_dimension(Colouring c) {
     case Colouring::kTime:
       return Dimension::kTime;
     case Colouring::kSubstrate:
+    case Colouring::kSurface:
     case Colouring::kTemperature:
       return Dimension::kTemperature;
     case Colouring::kHealing:

@@ -39,12 +39,13 @@ struct CadMetrics {
 };
 
 // What the interfaces where a layer's or a section's beads landed add up to (thermal/summary.hpp): the
-// substrate's temperature where they landed on top (NaN: on nothing but the table), the least and the mean
+// substrate's temperature where they landed on top and its surface's, as a thermal camera reads it just
+// before the bead covers it (NaN: on nothing but the table), the least and the mean
 // healing (NaN: no interface), how many interfaces were too hot or too cold and their share of the interface
 // area, the verdict.
 struct FusionRow {
   int interfaces = 0;
-  Stats3 substrate_temp_c;
+  Stats3 substrate_temp_c, surface_temp_c;
   double healing = 0, healing_mean = 0;
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;

@@ -92,21 +92,19 @@ enum class Colouring {
   kLayer,        // by toolpath layer
   kTime,         // by deposition time
   kSubstrate,    // by the temperature of what each bead piece landed on, as it landed
+  kSurface,      // by the surface temperature of what it landed on: a thermal camera's, just before covered
   kHealing,      // by each bead piece's least degree of healing
   kDeviation,    // by the stock over the CAD (needs a part mesh)
   kPorosity,     // by the local void fraction around the surface
   kTemperature,  // by the temperature at a moment (render.images[].time)
 };
 
-inline constexpr EnumName<Colouring> kColouringNames[] = {{Colouring::kFusion, "fusion"},
-                                                          {Colouring::kSection, "section"},
-                                                          {Colouring::kLayer, "layer"},
-                                                          {Colouring::kTime, "time"},
-                                                          {Colouring::kSubstrate, "substrate"},
-                                                          {Colouring::kHealing, "healing"},
-                                                          {Colouring::kDeviation, "deviation"},
-                                                          {Colouring::kPorosity, "porosity"},
-                                                          {Colouring::kTemperature, "temperature"}};
+inline constexpr EnumName<Colouring> kColouringNames[] = {
+    {Colouring::kFusion, "fusion"},       {Colouring::kSection, "section"},
+    {Colouring::kLayer, "layer"},         {Colouring::kTime, "time"},
+    {Colouring::kSubstrate, "substrate"}, {Colouring::kSurface, "surface"},
+    {Colouring::kHealing, "healing"},     {Colouring::kDeviation, "deviation"},
+    {Colouring::kPorosity, "porosity"},   {Colouring::kTemperature, "temperature"}};
 constexpr std::span<const EnumName<Colouring>> enum_names(Colouring) {
   return kColouringNames;
 }

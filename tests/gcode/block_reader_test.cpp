@@ -592,5 +592,33 @@ TEST(GcodeReader, RotaryAxesAreKeptWithTheMoves) {
   EXPECT_TRUE(read("G1 X10 F600\nG1 X20\n").rotary_deg.empty());
 }
 
+// The part-cooling fan (Marlin M106 S0-255 / M107): every move carries the fan's output from the line that
+// set it on, as a fraction of full; M106 without S is full; M106 with P2 is another fan and changes nothing
+// here; the speed word S of an M106 block is the fan's, never the pump's.
+TEST(GcodeReader, FanCodesSetTheFanOutputOfTheMovesAfterThem) {
+  ReaderOptions o;
+  o.rpm_word = "S";
+  const Toolpath tp =
+      read("G90\nG1 X10 F600\nM106 S128\nG1 X20\nM106 P2 S255\nG1 X30\nM106\nG1 X40\nM107\nG1 X50\n", o);
+  const auto fan_at = [&](double x) {
+    for (const Move& m : tp.moves)
+      if (std::abs(m.end.x() - x) < 1e-9) return m.fan;
+    ADD_FAILURE() << "no move to x = " << x;
+    return -1.0f;
+  };
+  EXPECT_FLOAT_EQ(fan_at(10), 0.0f);
+  EXPECT_FLOAT_EQ(fan_at(20), 128.0f / 255.0f);
+  EXPECT_FLOAT_EQ(fan_at(30), 128.0f / 255.0f);
+  EXPECT_FLOAT_EQ(fan_at(40), 1.0f);
+  EXPECT_FLOAT_EQ(fan_at(50), 0.0f);
+  // On a machine whose fan-on code is another one, M106 is housekeeping and the fan stays off.
+  ReaderOptions other;
+  other.fan_on = {"M300"};
+  other.fan_off = {"M301"};
+  const Toolpath off = read("G1 X10 F600\nM106 S255\nG1 X20\nM300 S51\nG1 X30\n", other);
+  EXPECT_FLOAT_EQ(off.moves.at(1).fan, 0.0f);
+  EXPECT_FLOAT_EQ(off.moves.at(2).fan, 0.2f);
+}
+
 }  // namespace
 }  // namespace beadtwin::gcode

@@ -306,6 +306,36 @@ TEST(ThermalMeshTest, SingleBeadOpenAreaIsItsFreePerimeterAndTableAreaItsFootpri
   }
 }
 
+// The half cell behind the open surface (ThermalCell::open_depth_mm3): the centre strip's top lies half the
+// bead's height above its centroid, through the layer; an edge strip's rounded flank lies, on average over
+// its area, about a third of the bead width out from the strip's centroid, across the bead, and nothing
+// faces along the bead away from the ends. Within a voxel (the surface is placed by the voxels' fill).
+TEST(ThermalMeshTest, SingleBeadHalfCellsReachFromTheCentroidToTheOpenFaces) {
+  const Toolpath toolpath = single_bead();
+  const sim::Deposit deposit = deposit_of(toolpath);
+  const ThermalMesh mesh = build_thermal_mesh(toolpath, deposit);
+  const double w = kBeadWidth, h = kBeadHeight, piece_mm = kLength / 7.0;
+  int centre = 0, edge = 0;
+  for (const ThermalCell& c : mesh.cells) {
+    if (c.centroid_mm.x() < piece_mm || c.centroid_mm.x() > kLength - piece_mm) continue;  // ends
+    const Eigen::Vector3d depth = c.open_depth_mm3 / c.open_area_mm2;  // area-weighted depth × n²
+    EXPECT_LT(depth.x(), 0.01) << "nothing open along the bead (mm)";
+    if (std::abs(c.centroid_mm.y()) < 0.25 * w) {
+      ++centre;
+      EXPECT_NEAR(depth.z(), h - c.centroid_mm.z(), 0.5 * kVoxel);
+      EXPECT_NEAR(c.centroid_mm.z(), 0.5 * h, 0.5 * kVoxel);
+      EXPECT_LT(depth.y(), 0.01);
+    } else {
+      ++edge;
+      const double across = depth.y() + depth.z();  // the flank faces sideways and up
+      EXPECT_GT(across, 0.1 * w / 3.0);
+      EXPECT_LT(across, w / 3.0);
+    }
+  }
+  EXPECT_EQ(centre, 5);
+  EXPECT_EQ(edge, 10);
+}
+
 // ---- two beads -------------------------------------------------------------------------------------------
 
 // The second bead lies on the first: every contact between them is an interface (another chain), from the
@@ -366,6 +396,12 @@ TEST(ThermalMeshTest, StackedBeadsMeetAtAnInterfaceFacingUp) {
   EXPECT_GT(interface_area, contact);
   // The tilts of the two sides cancel: as a whole the interface faces up.
   EXPECT_LT(interface_vector.head<2>().norm(), 1e-3 * interface_area);
+  // The shared faces lie at the top of the lower bead: that is where each cell's half of a contact ends.
+  for (const ThermalLink& l : mesh.links) {
+    if (l.interface && l.area_mm2() > face_mm2 && std::abs(mesh.cells[l.a].centroid_mm.y()) < 0.25 * w) {
+      EXPECT_NEAR(l.face_centroid_mm.z(), h, 1e-9);
+    }
+  }
 }
 
 // ---- options ---------------------------------------------------------------------------------------------

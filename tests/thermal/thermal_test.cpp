@@ -91,10 +91,10 @@ TEST(ThermalStage, GivesWhatItsStepsGiveWithTheInputsOptions) {
   ASSERT_EQ(result.layers.size(), toolpath.layers.size());
   EXPECT_EQ(result.layers[0].interfaces, 0u);  // the first bead lands on the table
   EXPECT_EQ(result.layers[1].interfaces, heat.interfaces.size());
-  EXPECT_EQ(result.layers[1].substrate_mean_c, layers[1].substrate_mean_c);
+  EXPECT_EQ(result.layers[1].substrate.mean_c, layers[1].substrate.mean_c);
   EXPECT_EQ(result.layers[1].layer_time_min_s, layers[1].layer_time_min_s);
   EXPECT_EQ(result.layers[1].layer_time_max_s, layers[1].layer_time_max_s);
-  EXPECT_LT(result.layers[1].substrate_mean_c, in.material.deposition_temp_c - 20.0);  // it cooled
+  EXPECT_LT(result.layers[1].substrate.mean_c, in.material.deposition_temp_c - 20.0);  // it cooled
   EXPECT_TRUE(std::isfinite(result.layers[1].layer_time_max_s));
   ASSERT_EQ(result.cells.size(), mesh.cells.size());
   EXPECT_EQ(result.cells, cell_verdicts(mesh, heat));

@@ -76,7 +76,14 @@ TEST(Wall1dTest, SingleLayerCoolsExponentially) {
                     .perimeter_mm = 2.0 * (21.0 + 1000.0)};
   const double side_m2 = layer.perimeter_mm * 1e-3 * layer.height_mm * 1e-3;
   const double top_m2 = layer.area_mm2 * 1e-6;
-  const double tau_s = layer_capacity_J_K(material, layer) / (env.convection_W_m2K * (side_m2 + top_m2));
+  // Each face through the half node behind it in series with the air (thermal/surface.hpp): area over
+  // perimeter across the layer to the sides, half the layer's height to the top.
+  const auto series = [&](double depth_mm, double k) {
+    return 1.0 / (depth_mm * 1e-3 / k + 1.0 / env.convection_W_m2K);
+  };
+  const double h_side = series(layer.area_mm2 / layer.perimeter_mm, material.conductivity_across_W_mK);
+  const double h_top = series(0.5 * layer.height_mm, material.conductivity_through_W_mK);
+  const double tau_s = layer_capacity_J_K(material, layer) / (h_side * side_m2 + h_top * top_m2);
 
   Wall1dOptions options;
   options.nodes_per_layer = 1;  // one control volume: exactly the lumped body
@@ -99,6 +106,7 @@ TEST(Wall1dTest, WellConductingLayerWithSeveralNodesCoolsLikeTheLumpedBody) {
   Material material;
   material.emissivity = 0.0;
   material.conductivity_through_W_mK = 1e4;
+  material.conductivity_across_W_mK = 1e4;  // the half nodes to the faces vanish too
   Environment env;
   env.bed_insulated = true;
   Wall1dLayer layer{.z_top_mm = 5,
@@ -198,6 +206,7 @@ TEST(Wall1dTest, NonIsothermalHealingMatchesQuadratureOfTheLumpedHistory) {
   Material material;
   material.emissivity = 0.0;
   material.conductivity_through_W_mK = 1e4;
+  material.conductivity_across_W_mK = 1e4;
   material.reptation_time_ref_s = 300.0;  // keeps D_h below 1 so that the comparison means something
   Environment env;
   env.bed_insulated = true;

@@ -120,7 +120,8 @@ class HeatSolve {
   PartModel model_;
   double median_tau_;
   BirthSchedule births_;
-  double t0_, t_end_, t_cap_;  // first birth, end of the cooldown, latest end of the healing
+  // First birth, end of the print (the last birth or end_s), end of the cooldown, latest end of the healing.
+  double t0_, t_print_, t_end_, t_cap_;
   std::vector<InterfaceResult> interfaces_;
   InterfaceIndex index_;
   HealingIntegrator healing_;
@@ -151,8 +152,9 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       median_tau_(median_time_constant_s(model_)),
       births_(plan_births(mesh.cells, median_tau_, options)),
       t0_(births_.groups.front().time_s),
-      t_end_(std::max(births_.groups.back().time_s, end_s) + options.cooldown_s),
-      t_cap_(std::max(t_end_, births_.groups.back().time_s + options.max_cooldown_s)),
+      t_print_(std::max(births_.groups.back().time_s, end_s)),
+      t_end_(t_print_ + options.cooldown_s),
+      t_cap_(t_print_ + std::max(options.cooldown_s, options.max_cooldown_s)),
       interfaces_(list_interfaces(mesh)),
       index_(interfaces_, n_),
       healing_(material, index_),
@@ -311,7 +313,7 @@ void HeatSolve::finish() {
     result_.notes.push_back(fmt::format(
         "thermal: {} interfaces were still at or above the healing threshold ({:g} C) {:g} s after the last "
         "layer (thermal.max_cooldown); their healing is what it had reached by then",
-        result_.still_warm, material_.healing_min_temp_c, t_cap_ - births_.groups.back().time_s));
+        result_.still_warm, material_.healing_min_temp_c, t_cap_ - t_print_));
   result_.interfaces = std::move(interfaces_);
   history_.take(result_);
 

@@ -18,8 +18,8 @@
 // Every link marked as an interface is judged (thermal/fusion.hpp): the substrate temperature is the older
 // cell's as the younger is born; the healing integral runs over the interface temperature (the mean of the
 // two cells') from then until every interface has cooled below the material's healing threshold (at least
-// to the end of the cooldown, at most to the last birth + max_cooldown_s, where those still above it are
-// reported), by two-point Gauss quadrature over each CVODE step on CVODE's own interpolant. The layers'
+// to the end of the cooldown, at most to the end of the print + max_cooldown_s, where those still above it
+// are reported), by two-point Gauss quadrature over each CVODE step on CVODE's own interpolant. The layers'
 // history, the final temperatures and the energy balance end with the cooldown.
 #pragma once
 
@@ -46,9 +46,9 @@ struct HeatOptions {
   // integrator, and a long print of small beads (a desktop program) would be tens of thousands of them.
   double birth_interval_s = 0.0;
   std::size_t max_automatic_birth_events = 5000;
-  double cooldown_s = 600.0;  // simulated after the last birth, >= 0
+  double cooldown_s = 600.0;  // simulated after the end of the print (its last birth, or end_s), >= 0
   // Healing goes on after the cooldown while an interface is at or above the healing threshold, up to this
-  // long after the last birth, s (>= 0; no longer than the cooldown when shorter than it).
+  // long after the end of the print, s (>= 0; the cooldown when shorter than it).
   double max_cooldown_s = 24.0 * 3600.0;
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
@@ -92,7 +92,7 @@ struct InterfaceResult {
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
   double healing_integral = 0.0;  // ∫ dt / t_w over the interface's history, not capped at 1
   double healing = 0.0;           // min(1, D_h) = min(1, healing_integral^¼)
-  // Still at or above the healing threshold when the healing integral ended (at the last birth +
+  // Still at or above the healing threshold when the healing integral ended (at the end of the print +
   // max_cooldown_s): its healing is what it had reached by then.
   bool still_warm = false;
   Verdict verdict = Verdict::kOk;

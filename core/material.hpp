@@ -3,11 +3,25 @@
 // scenarios/data/machines/*.yaml.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/enum_names.hpp"
+
 namespace beadtwin {
+
+// How the reptation (welding) time shifts with temperature (thermal/fusion.hpp, docs/physics.md fusion
+// window): WLF from the glass transition to a material's limit above it and Arrhenius beyond (amorphous
+// polymers), or Arrhenius throughout.
+enum class HealingLaw : std::uint8_t { kWlf, kArrhenius };
+inline constexpr EnumName<HealingLaw> kHealingLawNames[] = {{HealingLaw::kWlf, "wlf"},
+                                                            {HealingLaw::kArrhenius, "arrhenius"}};
+constexpr std::span<const EnumName<HealingLaw>> enum_names(HealingLaw) {
+  return kHealingLawNames;
+}
 
 // A print material's thermal and fusion properties, SI with temperatures in °C.
 struct Material {
@@ -30,10 +44,16 @@ struct Material {
   double deposition_temp_c = 200.0;  // temperature of the bead as it leaves the nozzle
   double glass_transition_c = 110.0;
   // Fusion window (docs/physics.md, fusion window).
-  double support_limit_c = 120.0;     // substrate hotter than this at deposition: too hot (slump, squash-out)
+  double support_limit_c = 120.0;  // substrate hotter than this at deposition: too hot (slump, squash-out)
+  HealingLaw healing_law = HealingLaw::kWlf;
   double healing_ref_temp_c = 200.0;  // T_ref of the reptation time
   double reptation_time_ref_s = 1.0;  // t_w at T_ref
-  double healing_activation_J_mol = 150e3;  // E_a of the Arrhenius shift
+  // WLF shift referred to the glass transition: log10 a(T) = −C1 (T − T_g) / (C2 + T − T_g), from T_g up to
+  // T_g + wlf_range_k; the universal constants of Williams, Landel and Ferry (1955) by default.
+  double wlf_c1 = 17.44;
+  double wlf_c2_k = 51.6;
+  double wlf_range_k = 100.0;
+  double healing_activation_J_mol = 150e3;  // E_a of the Arrhenius shift (above the WLF range, or throughout)
   double healing_min_temp_c = 110.0;        // below this the interface does not heal at all (glassy)
   double required_healing = 0.9;            // degree of healing D_h below which the interface is too cold
   double price_per_kg = 0.0;

@@ -78,6 +78,8 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
   }
   m.thermal_energy_error = th.heat.energy_balance_rel_error;
   m.thermal_steps = th.heat.steps;
+  if (!th.heat.interfaces.empty())
+    m.healing_followed_s = th.heat.healing_end_s - (th.heat.end_time_s - v.thermal.cooldown_s);
   std::vector<double> durations;
   for (const ToolpathLayer& l : tp.layers) durations.push_back(l.duration_s());
   m.layer_time_s = stats_of(durations);
@@ -88,6 +90,7 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
     m.too_cold_fraction = part.too_cold_fraction();
     m.min_healing = part.healing_min;
     m.mean_healing = part.healing_mean;
+    m.still_warm_fraction = part.still_warm_fraction();
   }
   return m;
 }

@@ -79,6 +79,7 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
   ho.lump = v.thermal.lump;
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
+  ho.max_cooldown_s = v.thermal.max_cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);

@@ -41,6 +41,12 @@ void HealingIntegrator::integrate(const InterfaceIndex& index, double half_s, st
   }
 }
 
+bool HealingIntegrator::any_warm(const InterfaceIndex& index, std::span<const double> state) const {
+  for (std::uint32_t k = 0; k < index.size(); ++k)
+    if (warm(index, state, k)) return true;
+  return false;
+}
+
 void HealingIntegrator::flush_lumps(const InterfaceIndex& index) {
   for (std::size_t g = 0; g < index.model_cells(); ++g)
     for (const std::uint32_t k : index.inner(g)) integral_[k] += lump_integral_[g];

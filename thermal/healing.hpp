@@ -45,6 +45,15 @@ class HealingIntegrator {
   // Per interface, ∫ dt / t_w so far (all of it once the lumps are flushed).
   std::span<const double> integrals() const { return integral_; }
 
+  // Whether interface k is at or above the healing threshold in `state` (by model cell, all of `index`'s
+  // cells born): the mean of its two cells' temperatures, as it heals.
+  bool warm(const InterfaceIndex& index, std::span<const double> state, std::uint32_t k) const {
+    const auto& cells = index.cells(k);
+    return 0.5 * (state[cells[0]] + state[cells[1]]) >= reptation_.min_temp_c();
+  }
+  // Whether any interface is (warm).
+  bool any_warm(const InterfaceIndex& index, std::span<const double> state) const;
+
  private:
   double healing_rate(const InterfaceIndex& index, std::span<const double> state, std::uint32_t k) const {
     const auto& cells = index.cells(k);

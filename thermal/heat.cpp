@@ -49,7 +49,8 @@ void check_same_on_every_rank(const ThermalMesh& mesh, const HeatOptions& o, Com
   mix(mesh.links.size());
   for (const ThermalCell& c : mesh.cells) mix(c.birth_s), mix(c.volume_mm3), mix(c.open_area_mm2);
   for (const ThermalLink& l : mesh.links) mix(l.a), mix(l.b), mix(l.interface);
-  mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.lump);
+  mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.max_cooldown_s);
+  mix(o.lump);
   const double mine = static_cast<double>(h.value() >> 12);  // 52 bits: exact in a double
   if (ranks.gather_each(mine)[0] != mine)
     throw InternalError(
@@ -67,6 +68,8 @@ void check_options(const HeatOptions& o) {
                      fmt::format("must be 0 or more, got {}", o.birth_interval_s));
   if (!(o.cooldown_s >= 0.0) || !std::isfinite(o.cooldown_s))
     throw InputError({}, "thermal.cooldown", fmt::format("must be 0 or more, got {}", o.cooldown_s));
+  if (!(o.max_cooldown_s >= 0.0) || !std::isfinite(o.max_cooldown_s))
+    throw InputError({}, "thermal.max_cooldown", fmt::format("must be 0 or more, got {}", o.max_cooldown_s));
   if (!positive(o.sample_interval_s))
     throw InputError({}, "thermal.sample_interval", fmt::format("must be > 0, got {}", o.sample_interval_s));
   if (o.lump_depth < 1 || o.lump_depth > 100)
@@ -86,8 +89,8 @@ void check_options(const HeatOptions& o) {
 }
 
 // One heat solve (solve_heat): the part's model, its birth schedule and interfaces, and the integrator
-// stepping from birth group to birth group, with the healing integrator, the history recorder and the lumper
-// looking at every step or group.
+// stepping from birth group to birth group and through the cooldown, with the healing integrator, the
+// history recorder and the lumper looking at every step or group, then on while interfaces still heal.
 //
 // The model's cells are the mesh's cells until some are lumped, after which model_of_[i] is mesh cell i's
 // model cell (non-decreasing; model_of_[n] is the model's cell count). Everything read per step is kept by
@@ -117,6 +120,10 @@ class HeatSolve {
   }
   // Integrates to `target`: the healing over each step, and the history in it.
   void advance(double target);
+  // One integrator step towards `target`: the healing over it, and the history in it if `record`.
+  void step(double target, bool record);
+  // After the cooldown: steps on while an interface is at or above the healing threshold, up to t_cap_.
+  void heal_until_cold();
   void finish();
 
   const Material& material_;
@@ -125,7 +132,8 @@ class HeatSolve {
   PartModel model_;
   double median_tau_;
   BirthSchedule births_;
-  double t0_, t_end_;
+  // First birth, end of the print (the last birth or end_s), end of the cooldown, latest end of the healing.
+  double t0_, t_print_, t_end_, t_cap_;
   std::vector<InterfaceResult> interfaces_;
   InterfaceIndex index_;
   HealingIntegrator healing_;
@@ -136,6 +144,7 @@ class HeatSolve {
   // The integrator's state (PartModel::set_capacity) at the end of the last step; and every model cell's
   // temperature for the cells beyond it (unborn: they wait at the deposition temperature).
   std::vector<double> temps_, before_;
+  std::vector<double> cooled_;  // before_ at the end of the cooldown
   std::size_t cap_ = 0;
   CvodeOptions cvode_options_;
   std::unique_ptr<Cvode> cvode_;
@@ -155,7 +164,9 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       median_tau_(median_time_constant_s(model_)),
       births_(plan_births(mesh.cells, median_tau_, options)),
       t0_(births_.groups.front().time_s),
-      t_end_(std::max(births_.groups.back().time_s, end_s) + options.cooldown_s),
+      t_print_(std::max(births_.groups.back().time_s, end_s)),
+      t_end_(t_print_ + options.cooldown_s),
+      t_cap_(t_print_ + std::max(options.cooldown_s, options.max_cooldown_s)),
       interfaces_(list_interfaces(mesh)),
       index_(interfaces_, n_),
       healing_(material, index_),
@@ -218,6 +229,8 @@ HeatResult HeatSolve::run() {
     cvode_->reinit(t_, model_.local(before_), 1e-3 * births_.interval_s);
   }
   advance(t_end_);
+  cooled_ = before_;
+  heal_until_cold();
   if (options_.progress) options_.progress(1.0);
   healing_.flush_lumps(index_);
   finish();
@@ -279,24 +292,32 @@ void HeatSolve::restart_integrator() {
 void HeatSolve::advance(double target) {
   if (target <= t_) return;
   cvode_->set_stop_time(target);
+  while (t_ < target) step(target, true);
+}
+
+void HeatSolve::step(double target, bool record) {
   const auto state_at = [&](double t) { return model_.gather(cvode_->interpolate(t), between_all_); };
-  while (t_ < target) {
-    const double t_prev = t_;
-    t_ = cvode_->step(target);
-    const double half = 0.5 * (t_ - t_prev);
-    const double mid = t_prev + half;
-    const double offset = half / std::sqrt(3.0);
-    // Across ranks, every rank gathers the whole state: what follows is the same on all of them.
-    const std::span<const double> now = model_.gather(cvode_->state(), now_all_);
-    if (healing_.find(index_, model_.born(), before_, now)) {
-      // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
-      const std::span<const double> y0 = state_at(mid - offset);
-      first_point_.assign(y0.begin(), y0.end());
-      healing_.integrate(index_, half, first_point_, state_at(mid + offset));
-    }
-    std::copy(now.begin(), now.end(), before_.begin());
-    history_.record_until(t_, now, mesh_born_, model_.born(), state_at);
+  const double t_prev = t_;
+  t_ = cvode_->step(target);
+  const double half = 0.5 * (t_ - t_prev);
+  const double mid = t_prev + half;
+  const double offset = half / std::sqrt(3.0);
+  // Across ranks, every rank gathers the whole state: what follows is the same on all of them.
+  const std::span<const double> now = model_.gather(cvode_->state(), now_all_);
+  if (healing_.find(index_, model_.born(), before_, now)) {
+    // Gauss-Legendre, two points: exact for cubics in t, as CVODE's interpolant is at low order.
+    const std::span<const double> y0 = state_at(mid - offset);
+    first_point_.assign(y0.begin(), y0.end());
+    healing_.integrate(index_, half, first_point_, state_at(mid + offset));
   }
+  std::copy(now.begin(), now.end(), before_.begin());
+  if (record) history_.record_until(t_, now, mesh_born_, model_.born(), state_at);
+}
+
+void HeatSolve::heal_until_cold() {
+  if (t_cap_ > t_) cvode_->set_stop_time(t_cap_);
+  while (t_ < t_cap_ && healing_.any_warm(index_, before_)) step(t_cap_, false);
+  result_.healing_end_s = t_;
 }
 
 void HeatSolve::finish() {
@@ -305,12 +326,22 @@ void HeatSolve::finish() {
     interfaces_[k].healing_integral = integral[k];
     interfaces_[k].healing = std::min(1.0, std::pow(integral[k], 0.25));
   }
-  for (InterfaceResult& r : interfaces_)
+  for (std::uint32_t k = 0; k < interfaces_.size(); ++k) {
+    InterfaceResult& r = interfaces_[k];
     r.verdict = judge_interface(r.substrate_c, r.on_top, r.healing, material_);
+    r.still_warm = healing_.warm(index_, before_, k);
+    result_.still_warm += r.still_warm;
+    result_.still_warm_area_mm2 += r.still_warm ? r.area_mm2 : 0.0;
+  }
+  if (result_.still_warm > 0)
+    result_.notes.push_back(fmt::format(
+        "thermal: {} interfaces were still at or above the healing threshold ({:g} C) {:g} s after the last "
+        "layer (thermal.max_cooldown); their healing is what it had reached by then",
+        result_.still_warm, material_.healing_min_temp_c, t_cap_ - t_print_));
   result_.interfaces = std::move(interfaces_);
   history_.take(result_);
 
-  std::copy(before_.begin(), before_.end() - 1, temps_.begin());
+  std::copy(cooled_.begin(), cooled_.end() - 1, temps_.begin());
   result_.final_temp_c.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) result_.final_temp_c[i] = static_cast<float>(temps_[model_of_[i]]);
   for (std::size_t c = 0; c < n_; ++c)  // mesh cells sharing their model cell
@@ -322,7 +353,7 @@ void HeatSolve::finish() {
         "their neighbours along the bead), {} cells at the end; set thermal.lump: false to keep every cell",
         result_.lumped_cells, n_, options_.lump_depth + 1, options_.lump_tolerance_k, result_.model_cells));
   result_.energy_in_J = model_.energy_in_J();
-  result_.energy_lost_J = before_[cap_];
+  result_.energy_lost_J = cooled_[cap_];
   result_.energy_stored_J = model_.energy_stored_J(temps_);
   const double scale = std::max(std::abs(result_.energy_in_J),
                                 std::abs(result_.energy_lost_J) + std::abs(result_.energy_stored_J));

@@ -17,8 +17,10 @@
 //
 // Every link marked as an interface is judged (thermal/fusion.hpp): the substrate temperature is the older
 // cell's as the younger is born; the healing integral runs over the interface temperature (the mean of the
-// two cells') from then to the end of the cooldown, by two-point Gauss quadrature over each CVODE step on
-// CVODE's own interpolant.
+// two cells') from then until every interface has cooled below the material's healing threshold (at least
+// to the end of the cooldown, at most to the end of the print + max_cooldown_s, where those still above it
+// are reported), by two-point Gauss quadrature over each CVODE step on CVODE's own interpolant. The layers'
+// history, the final temperatures and the energy balance end with the cooldown.
 #pragma once
 
 #include <cstddef>
@@ -50,7 +52,10 @@ struct HeatOptions {
   // integrator, and a long print of small beads (a desktop program) would be tens of thousands of them.
   double birth_interval_s = 0.0;
   std::size_t max_automatic_birth_events = 5000;
-  double cooldown_s = 600.0;  // simulated after the last birth (healing goes on), >= 0
+  double cooldown_s = 600.0;  // simulated after the end of the print (its last birth, or end_s), >= 0
+  // Healing goes on after the cooldown while an interface is at or above the healing threshold, up to this
+  // long after the end of the print, s (>= 0; the cooldown when shorter than it).
+  double max_cooldown_s = 24.0 * 3600.0;
   // The fan's output over time, in time order (fan_schedule of a toolpath); empty: off throughout. A change
   // takes effect at the first birth group at or after it (within a birth interval), and during the cooldown
   // when it comes.
@@ -101,6 +106,9 @@ struct InterfaceResult {
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
   double healing_integral = 0.0;  // ∫ dt / t_w over the interface's history, not capped at 1
   double healing = 0.0;           // min(1, D_h) = min(1, healing_integral^¼)
+  // Still at or above the healing threshold when the healing integral ended (at the end of the print +
+  // max_cooldown_s): its healing is what it had reached by then.
+  bool still_warm = false;
   Verdict verdict = Verdict::kOk;
 };
 
@@ -125,7 +133,14 @@ struct HeatResult {
   double energy_in_J = 0.0, energy_lost_J = 0.0, energy_stored_J = 0.0, energy_balance_rel_error = 0.0;
   long steps = 0, rhs_evaluations = 0, linear_iterations = 0;
   int ranks = 1;  // the MPI ranks the solve was shared among
+  // From the first birth to the end of the cooldown (what the history, the final temperatures and the
+  // energy balance cover), s.
   double start_time_s = 0.0, end_time_s = 0.0;
+  // When the healing integral ended, s: every interface below the healing threshold, at end_time_s or
+  // later; the interfaces still at or above it then (InterfaceResult::still_warm) and their area.
+  double healing_end_s = 0.0;
+  std::size_t still_warm = 0;
+  double still_warm_area_mm2 = 0.0;
 };
 
 // The fan's changes over a timed toolpath: its output from each move on where it differs from the move
@@ -133,9 +148,10 @@ struct HeatResult {
 std::vector<FanSetting> fan_schedule(const Toolpath& toolpath);
 
 // Solves the heat transfer on `mesh` from the first birth to the last birth + cooldown (at least to
-// `end_s`, the end of the print, + cooldown). `layer_count`: how many toolpath layers there are (the cells'
-// layer indices are below it). Throws InputError for options out of range, InternalError when the
-// integrator fails. An empty mesh gives an empty result.
+// `end_s`, the end of the print, + cooldown), and on while interfaces heal (HeatOptions::max_cooldown_s).
+// `layer_count`: how many toolpath layers there are (the cells' layer indices are below it). Throws
+// InputError for options out of range, InternalError when the integrator fails. An empty mesh gives an empty
+// result.
 HeatResult solve_heat(const ThermalMesh& mesh, std::size_t layer_count, double end_s,
                       const Material& material, const Environment& env, const HeatOptions& options = {});
 

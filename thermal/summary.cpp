@@ -5,8 +5,6 @@
 #include <limits>
 #include <utility>
 
-#include "core/units.hpp"
-
 namespace beadtwin::thermal {
 namespace {
 
@@ -30,6 +28,10 @@ void add(FusionSummary& s, const InterfaceResult& r) {
   }
   s.healing_min = std::isnan(s.healing_min) ? r.healing : std::min(s.healing_min, r.healing);
   s.healing_mean = (std::isnan(s.healing_mean) ? 0.0 : s.healing_mean) + r.area_mm2 * r.healing;
+  if (r.still_warm) {
+    ++s.still_warm;
+    s.still_warm_area_mm2 += r.area_mm2;
+  }
   if (r.verdict == Verdict::kTooHot) {
     ++s.too_hot;
     s.too_hot_area_mm2 += r.area_mm2;
@@ -128,7 +130,7 @@ double weighted_quantile(std::vector<std::pair<double, double>> value_weight, do
 LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
                                   const Material& material, double ambient_c, double share) {
   const double t_dep = material.deposition_temp_c;
-  const double ea_r = material.healing_activation_J_mol / kGasConstant_J_molK;
+  const Reptation reptation(material);
   std::vector<std::pair<double, double>> hot, cold;  // (wait, area)
   for (const InterfaceResult& r : landing) {
     // Laid together with the bead on it (no layer change between them), or warming as it was covered (a
@@ -141,11 +143,13 @@ LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, doub
     // Healing: the substrate temperature that would give the required D_h.
     double needed_c = t_dep;  // nothing healed at all: only the hottest substrate might
     if (r.healing_integral > 0.0) {
-      const double contact_k = 0.5 * (t_dep + r.substrate_c) + kKelvinOffset;
-      const double inv =
-          1.0 / contact_k -
-          4.0 / ea_r * std::log(material.required_healing / std::pow(r.healing_integral, 0.25));
-      needed_c = inv > 0.0 ? 2.0 * (1.0 / inv - kKelvinOffset) - t_dep : t_dep + 1.0;
+      // The integral needs to be D^4 / I times what it was: t_w at the needed contact temperature that
+      // many times shorter than at the one it had.
+      const double contact_c = 0.5 * (t_dep + r.substrate_c);
+      const double needed_contact_c =
+          reptation.temp_at_log_time(reptation.log_time(contact_c) -
+                                     std::log(std::pow(material.required_healing, 4) / r.healing_integral));
+      needed_c = std::isfinite(needed_contact_c) ? 2.0 * needed_contact_c - t_dep : t_dep + 1.0;
     }
     cold.emplace_back(wait_to_reach(r.substrate_c, needed_c, r.substrate_rate_K_s, ambient_c, t_dep),
                       r.area_mm2);

@@ -34,6 +34,10 @@ struct FusionSummary {
   double too_hot_area_mm2 = 0.0, too_cold_area_mm2 = 0.0;
   double too_hot_fraction() const { return area_mm2 > 0.0 ? too_hot_area_mm2 / area_mm2 : 0.0; }
   double too_cold_fraction() const { return area_mm2 > 0.0 ? too_cold_area_mm2 / area_mm2 : 0.0; }
+  // Interfaces still at or above the healing threshold when the healing integral ended, and their area.
+  std::size_t still_warm = 0;
+  double still_warm_area_mm2 = 0.0;
+  double still_warm_fraction() const { return area_mm2 > 0.0 ? still_warm_area_mm2 / area_mm2 : 0.0; }
   // The problem covering most of the interface area when at least `kVerdictShare` of it has one, else ok;
   // kNoInterface without interfaces.
   Verdict verdict() const;

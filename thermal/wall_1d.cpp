@@ -95,6 +95,9 @@ void validate_material(const Material& m, Problems& problems) {
   problems.non_negative("material.healing_ref_temp_c", m.healing_ref_temp_c);
   problems.positive("material.reptation_time_ref_s", m.reptation_time_ref_s);
   problems.non_negative("material.healing_activation_J_mol", m.healing_activation_J_mol);
+  problems.positive("material.wlf_c1", m.wlf_c1);
+  problems.positive("material.wlf_c2_k", m.wlf_c2_k);
+  problems.non_negative("material.wlf_range_k", m.wlf_range_k);
   problems.non_negative("material.healing_min_temp_c", m.healing_min_temp_c);
   problems.in_range("material.required_healing", m.required_healing, 0.0, 1.0);
 }

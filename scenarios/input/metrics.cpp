@@ -94,6 +94,10 @@ const MetricDef kMetrics[] = {
      "least degree of healing over the interfaces (1: fully healed; unset without interfaces)"},
     {"interfaces.mean_healing", U::kRatio, Better::kHigher, kGate, healing<Metrics, &Metrics::mean_healing>,
      "degree of healing, area-weighted mean over the interfaces"},
+    {"interfaces.still_warm_fraction", U::kFraction, Better::kLower, kGate,
+     part<&Metrics::still_warm_fraction>,
+     "share of the interface area still at or above the healing threshold when the healing integral ended "
+     "(thermal.max_cooldown after the last layer): healing there is what it had reached by then"},
     {"layer_time_s.min", U::kSeconds, Better::kNeither, kGate, layer_time<&Stats3::min>,
      "shortest layer time"},
     {"layer_time_s.mean", U::kSeconds, Better::kNeither, kGate, layer_time<&Stats3::mean>, "mean layer time"},
@@ -135,6 +139,10 @@ const MetricDef kMetrics[] = {
      part<&Metrics::thermal_energy_error>, "the thermal solution's energy balance error, relative"},
     {"thermal.cvode_steps", U::kCount, Better::kNeither, kDiagnostic, part<&Metrics::thermal_steps>,
      "time steps the thermal solver took"},
+    {"thermal.healing_followed_s", U::kSeconds, Better::kNeither, kDiagnostic,
+     part<&Metrics::healing_followed_s>,
+     "how long after the last layer the healing integral was followed: the cooldown, or longer while an "
+     "interface stayed at or above its healing threshold"},
 };
 
 const SectionMetricDef kSectionMetrics[] = {

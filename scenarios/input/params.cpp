@@ -239,8 +239,19 @@ const Param<ThermalSpec> kThermal[] = {
       .dim = D::kTime,
       .default_text = "10 min",
       .range = {0, 1e7},
-      .meaning = "time simulated after the last layer (interfaces keep healing)"},
+      .meaning = "time simulated after the last layer: the layers' temperature history, the final "
+                 "temperatures and the energy balance end there; healing goes on past it while an "
+                 "interface is at or above its healing threshold (thermal.max_cooldown)"},
      BT_MEMBER(ThermalSpec, cooldown_s)},
+    {{.key = "max_cooldown",
+      .dim = D::kTime,
+      .default_text = "24 h",
+      .range = {0, 1e7},
+      .meaning = "longest time after the last layer that healing is followed while an interface is still "
+                 "at or above its healing threshold; those still there then are reported "
+                 "(interfaces.still_warm_fraction)",
+      .source = "thermal/heat.hpp"},
+     BT_MEMBER(ThermalSpec, max_cooldown_s)},
     {{.key = "sample_interval",
       .dim = D::kTime,
       .default_text = "5 s",

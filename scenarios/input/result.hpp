@@ -79,6 +79,8 @@ struct Metrics {
   std::optional<CadMetrics> cad;
   int interfaces = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
+  // Share of the interface area still at or above the healing threshold when the healing integral ended.
+  double still_warm_fraction = 0;
   Stats3 layer_time_s;
   // Void detection in the slicer (sections with voids.detect): uncovered pieces found and their area.
   int planned_voids = 0;
@@ -92,6 +94,7 @@ struct Metrics {
   double voxel_size_mm = 0;
   double thermal_energy_error = 0;
   long thermal_steps = 0;
+  double healing_followed_s = 0;  // after the last layer: the cooldown, or longer while interfaces were warm
   // Defects the deposit found (sim::Defect): voids of at least a voxel, material the roller ploughed,
   // bead laid over nothing, corners the roller cannot follow, the nozzle or roller running into the part.
   int voids = 0;

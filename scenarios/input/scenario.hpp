@@ -172,6 +172,7 @@ struct ThermalSpec {
   double birth_interval_s = 0.0;  // 0: chosen from the cells
   double sample_interval_s = 5.0;
   double cooldown_s = 600.0;
+  double max_cooldown_s = 24.0 * 3600.0;  // healing goes on while interfaces are warm, up to this
   double rel_tol = 1e-3;
   double abs_tol_k = 0.05;
   bool lump = true;  // settled cells lumped (thermal::HeatOptions::lump)

@@ -74,6 +74,15 @@ TEST(Materials, EveryShippedMaterialLoadsWithSensibleValues) {
     EXPECT_GT(m.healing_ref_temp_c, m.healing_min_temp_c);
     EXPECT_GT(m.required_healing, 0.0);
     EXPECT_LE(m.required_healing, 1.0);
+    // Amorphous (PLA printed largely so): WLF from T_g, with constants of the usual size (the universal
+    // 17.44 and 51.6 K where nothing was measured) and the Arrhenius part above T_g + ~100 K.
+    EXPECT_EQ(m.healing_law, HealingLaw::kWlf);
+    EXPECT_GE(m.wlf_c1, 10.0);
+    EXPECT_LE(m.wlf_c1, 40.0);
+    EXPECT_GE(m.wlf_c2_k, 25.0);
+    EXPECT_LE(m.wlf_c2_k, 120.0);
+    EXPECT_GE(m.wlf_range_k, 50.0);
+    EXPECT_LE(m.wlf_range_k, 150.0);
   }
 }
 

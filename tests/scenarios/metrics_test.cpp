@@ -41,6 +41,7 @@ Metrics distinct_metrics() {
   m.too_cold_fraction = 0.08;
   m.min_healing = 0.61;
   m.mean_healing = 0.97;
+  m.still_warm_fraction = 0.015;
   m.layer_time_s = {280, 300, 330};
   m.extruder_demand = 0.83;
   m.planned_voids = 2;
@@ -59,6 +60,7 @@ Metrics distinct_metrics() {
   m.redistributed_volume_mm3 = 2.2e5;
   m.thermal_energy_error = 3e-4;
   m.thermal_steps = 4321;
+  m.healing_followed_s = 1860;
   SectionRow floor;
   floor.name = "floor";
   floor.layers = 2;
@@ -104,6 +106,7 @@ const std::map<std::string, double> kExpected = {
     {"interfaces.too_cold_fraction", 0.08},
     {"interfaces.min_healing", 0.61},
     {"interfaces.mean_healing", 0.97},
+    {"interfaces.still_warm_fraction", 0.015},
     {"layer_time_s.min", 280},
     {"layer_time_s.mean", 300},
     {"layer_time_s.max", 330},
@@ -124,6 +127,7 @@ const std::map<std::string, double> kExpected = {
     {"deposit.redistributed_volume_mm3", 2.2e5},
     {"thermal.energy_balance_rel_error", 3e-4},
     {"thermal.cvode_steps", 4321},
+    {"thermal.healing_followed_s", 1860},
 };
 
 const std::set<std::string> kDiagnostics = {"deposit.voxel_size_mm",
@@ -131,7 +135,8 @@ const std::set<std::string> kDiagnostics = {"deposit.voxel_size_mm",
                                             "deposit.swept_volume_mm3",
                                             "deposit.redistributed_volume_mm3",
                                             "thermal.energy_balance_rel_error",
-                                            "thermal.cvode_steps"};
+                                            "thermal.cvode_steps",
+                                            "thermal.healing_followed_s"};
 
 TEST(Metrics, EachDeclarationReadsItsOwnFigure) {
   const Metrics m = distinct_metrics();

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -13,7 +14,8 @@ namespace beadtwin::thermal {
 namespace {
 
 // Three cells in a row along x, each touching the next across an interface (0-1: interface 0, 1-2:
-// interface 1). The reference material heals at 1/s at 200 °C, not at all below 110 °C.
+// interface 1). The reference material heals at 1/s at 200 °C (WLF from T_g = 110 °C), not at all below
+// 110 °C.
 ThermalMesh row() {
   ThermalMesh mesh;
   mesh.voxel_size_mm = 1.0;
@@ -45,6 +47,41 @@ TEST(HealingIntegrator, AWarmInterfaceGainsHalfTheStepTimesItsRateAtEachGaussPoi
   EXPECT_DOUBLE_EQ(
       healing.integrals()[1],
       0.5 * reptation.rate_per_s(166.0) + 0.5 * reptation.rate_per_s(164.0) + reptation.rate_per_s(160.0));
+}
+
+// Isothermal healing (Wool & O'Connor 1981; the isothermal case of Yang & Pitchumani 2002): an interface
+// held at one temperature for exactly its reptation time reaches D_h = 1. At 150 °C the reference material's
+// WLF law gives t_w = 10^(17.44 · 90/141.6 − 17.44 · 40/91.6) s = 10^3.4690253 s = 2944.593 s, by hand.
+TEST(HealingIntegrator, AnInterfaceHeldForItsReptationTimeHealsFully) {
+  const Material material;
+  const std::vector<InterfaceResult> interfaces = list_interfaces(row());
+  const InterfaceIndex index(interfaces, 3);
+  HealingIntegrator healing(material, index);
+  const double t_w = std::pow(10.0, 3.4690253);
+  const std::vector<double> state = {150.0, 150.0, 150.0};
+  ASSERT_TRUE(healing.find(index, 3, state, state));
+  healing.integrate(index, 0.5 * t_w, state, state);
+  EXPECT_NEAR(healing.integrals()[0], 1.0, 1e-6);
+  EXPECT_NEAR(healing.integrals()[1], 1.0, 1e-6);
+  // A quarter of it: D_h = 0.25^¼ = 0.7071, the fourth-root law.
+  HealingIntegrator quarter(material, index);
+  ASSERT_TRUE(quarter.find(index, 3, state, state));
+  quarter.integrate(index, 0.125 * t_w, state, state);
+  EXPECT_NEAR(std::pow(quarter.integrals()[0], 0.25), std::sqrt(0.5), 1e-6);
+}
+
+// An interface is warm while the mean of its two cells is at or above the healing threshold.
+TEST(HealingIntegrator, AnInterfaceIsWarmWhileItsMeanTemperatureIsAtTheThreshold) {
+  const Material material;  // no healing below 110 °C
+  const std::vector<InterfaceResult> interfaces = list_interfaces(row());
+  const InterfaceIndex index(interfaces, 3);
+  const HealingIntegrator healing(material, index);
+  const std::vector<double> state = {100.0, 120.0, 99.0};
+  EXPECT_TRUE(healing.warm(index, state, 0));   // (100 + 120) / 2 = 110
+  EXPECT_FALSE(healing.warm(index, state, 1));  // 109.5
+  EXPECT_TRUE(healing.any_warm(index, state));
+  const std::vector<double> cold = {100.0, 119.0, 99.0};
+  EXPECT_FALSE(healing.any_warm(index, cold));
 }
 
 TEST(HealingIntegrator, ColdCellsAndUnbornCellsDoNotHeal) {

@@ -555,45 +555,56 @@ TEST(HeatBirths, AnAutomaticIntervalIsMadeLongerWhenThePrintWouldNeedTooManyEven
 // isothermal reptation result D_h = (t / t_w)^(1/4), Wool & O'Connor 1981): two cubes, the upper born 10 s
 // after the lower, nothing lost anywhere (no convection, no radiation, insulated table), both at a
 // deposition temperature of 150 °C for good. The interface heals from the younger's birth (10 s) to the end
-// (40 s): D_h = (30 s / t_w(150 °C))^(1/4).
+// (40 s): D_h = (30 s / t_w(150 °C))^(1/4). It is still warm then: healing is followed no further than the
+// cooldown (max_cooldown_s 0), and the interface is reported as still warm.
 TEST(HeatHealing, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
-  Material material = test_material();
-  material.deposition_temp_c = 150.0;
-  material.healing_ref_temp_c = 200.0;
-  material.reptation_time_ref_s = 1.0;
-  material.healing_activation_J_mol = 150e3;
-  material.healing_min_temp_c = 110.0;
-  material.support_limit_c = 120.0;
-  ThermalMesh mesh;
-  mesh.voxel_size_mm = 1.0;
-  mesh.cells.push_back(cell_at({5.0, 5.0, 5.0}, 1000.0, 0.0, 0));
-  mesh.cells.push_back(cell_at({5.0, 5.0, 15.0}, 1000.0, 10.0, 1));
-  mesh.links.push_back(link(0, 1, {0.0, 0.0, 100.0}, true));
-  HeatOptions options;
-  options.birth_interval_s = 0.5;  // the default (a fifth of C/G ≈ 106 s) would merge the two births
-  options.cooldown_s = 30.0;
-  const HeatResult result = solve_heat(mesh, 2, 0.0, material, adiabatic(), options);
+  for (const HealingLaw law : {HealingLaw::kWlf, HealingLaw::kArrhenius}) {
+    SCOPED_TRACE(name_of(law));
+    Material material = test_material();
+    material.healing_law = law;
+    material.deposition_temp_c = 150.0;
+    material.glass_transition_c = 110.0;
+    material.healing_ref_temp_c = 200.0;
+    material.reptation_time_ref_s = 1.0;
+    material.healing_activation_J_mol = 150e3;
+    material.healing_min_temp_c = 110.0;
+    material.support_limit_c = 120.0;
+    ThermalMesh mesh;
+    mesh.voxel_size_mm = 1.0;
+    mesh.cells.push_back(cell_at({5.0, 5.0, 5.0}, 1000.0, 0.0, 0));
+    mesh.cells.push_back(cell_at({5.0, 5.0, 15.0}, 1000.0, 10.0, 1));
+    mesh.links.push_back(link(0, 1, {0.0, 0.0, 100.0}, true));
+    HeatOptions options;
+    options.birth_interval_s = 0.5;  // the default (a fifth of C/G ≈ 106 s) would merge the two births
+    options.cooldown_s = 30.0;
+    options.max_cooldown_s = 0.0;
+    const HeatResult result = solve_heat(mesh, 2, 0.0, material, adiabatic(), options);
 
-  // t_w(T) = t_ref exp(E_a/R (1/T − 1/T_ref)), by hand: 150000 / 8.314462618 · (1/423.15 − 1/473.15)
-  // = 4.5054055, exp(4.5054055) = 90.50504 s.
-  const double exponent =
-      150e3 / 8.314462618 * (1.0 / (150.0 + kKelvinOffset) - 1.0 / (200.0 + kKelvinOffset));
-  const double t_w = 1.0 * std::exp(exponent);
-  ASSERT_NEAR(t_w, 90.50504, 1e-4);
-  const double expected = std::min(1.0, std::pow(30.0 / t_w, 0.25));  // 0.7588
-  ASSERT_EQ(result.interfaces.size(), 1u);
-  const InterfaceResult& r = result.interfaces[0];
-  RecordProperty("healing_error", sci(std::abs(r.healing - expected) / expected));
-  EXPECT_NEAR(r.healing, expected, 0.01 * expected);
-  EXPECT_NEAR(r.healing, expected, 1e-6 * expected);  // constant rate: the quadrature is exact
-  // Nothing moved.
-  EXPECT_FLOAT_EQ(result.final_temp_c[0], 150.0f);
-  EXPECT_FLOAT_EQ(result.final_temp_c[1], 150.0f);
-  // It landed on top of a substrate at 150 °C, above the support limit of 120 °C: too hot wins.
-  EXPECT_TRUE(r.on_top);
-  EXPECT_DOUBLE_EQ(r.substrate_c, 150.0);
-  EXPECT_EQ(r.verdict, Verdict::kTooHot);
-  EXPECT_EQ(result.energy_lost_J, 0.0);
+    // By hand, WLF: log10 t_w(150 °C) / t_w(200 °C) = 17.44 · 90/141.6 − 17.44 · 40/91.6 = 3.4690253, so
+    // t_w = 2944.593 s. Arrhenius: 150000 / 8.314462618 · (1/423.15 − 1/473.15) = 4.5054055, exp(4.5054055)
+    // = 90.50504 s.
+    const double t_w = law == HealingLaw::kWlf ? std::pow(10.0, 3.4690253) : 90.50504;
+    const double expected = std::min(1.0, std::pow(30.0 / t_w, 0.25));  // 0.3177 (WLF), 0.7588 (Arrhenius)
+    ASSERT_EQ(result.interfaces.size(), 1u);
+    const InterfaceResult& r = result.interfaces[0];
+    RecordProperty("healing_error", sci(std::abs(r.healing - expected) / expected));
+    EXPECT_NEAR(r.healing, expected, 1e-6 * expected);  // constant rate: the quadrature is exact
+    // Nothing moved.
+    EXPECT_FLOAT_EQ(result.final_temp_c[0], 150.0f);
+    EXPECT_FLOAT_EQ(result.final_temp_c[1], 150.0f);
+    // It landed on top of a substrate at 150 °C, above the support limit of 120 °C: too hot wins.
+    EXPECT_TRUE(r.on_top);
+    EXPECT_DOUBLE_EQ(r.substrate_c, 150.0);
+    EXPECT_EQ(r.verdict, Verdict::kTooHot);
+    EXPECT_EQ(result.energy_lost_J, 0.0);
+    // Still at 150 °C when healing stopped with the cooldown.
+    EXPECT_TRUE(r.still_warm);
+    EXPECT_EQ(result.still_warm, 1u);
+    EXPECT_DOUBLE_EQ(result.still_warm_area_mm2, 100.0);
+    EXPECT_DOUBLE_EQ(result.healing_end_s, result.end_time_s);
+    ASSERT_FALSE(result.notes.empty());
+    EXPECT_NE(result.notes.back().find("thermal.max_cooldown"), std::string::npos) << result.notes.back();
+  }
 }
 
 // Healing saturates at 1 once ∫ dt / t_w reaches 1: at the reference temperature t_w = t_ref = 1 s.
@@ -608,11 +619,64 @@ TEST(HeatHealing, HealingSaturatesAtOne) {
   mesh.links.push_back(link(0, 1, {100.0, 0.0, 0.0}, true));
   HeatOptions options;
   options.cooldown_s = 10.0;
+  options.max_cooldown_s = 10.0;  // adiabatic: it would stay warm for ever
   const HeatResult result = solve_heat(mesh, 1, 0.0, material, adiabatic(), options);
   ASSERT_EQ(result.interfaces.size(), 1u);
   EXPECT_DOUBLE_EQ(result.interfaces[0].healing, 1.0);
   EXPECT_FALSE(result.interfaces[0].on_top);  // side by side
   EXPECT_EQ(result.interfaces[0].verdict, Verdict::kOk);
+}
+
+// Healing is followed until every interface has cooled below the healing threshold, so how long the
+// cooldown is does not move it: a small block (3 x 3 cells, 4 layers) on an insulated table in still air
+// (2 W/m²K, no radiation), healing slowly enough (t_w 1000 s at 200 °C) not to reach 1, is still warm 10
+// minutes after its last layer, and its interfaces' healing differs by less than 0.005 between a cooldown
+// of 10 and one of 60 minutes, under either law (5e-7 under WLF, 5e-6 under Arrhenius). Stopped at 10
+// minutes instead (max_cooldown_s), the warm interfaces are reported, and the healing they miss is 6e-4
+// under WLF and 7e-3 under the Arrhenius law, which heals near T_g.
+TEST(HeatHealing, HealingDoesNotDependOnTheCooldownOnceEveryInterfaceHasCooled) {
+  const ThermalMesh mesh = block(3, 3, 4);
+  Environment env;
+  env.convection_W_m2K = 2.0;
+  env.bed_insulated = true;
+  for (const HealingLaw law : {HealingLaw::kWlf, HealingLaw::kArrhenius}) {
+    SCOPED_TRACE(name_of(law));
+    Material material = test_material();
+    material.healing_law = law;
+    material.reptation_time_ref_s = 1000.0;
+    HeatOptions options;
+    options.cooldown_s = 600.0;
+    const HeatResult short_cooldown = solve_heat(mesh, 4, 0.0, material, env, options);
+    options.cooldown_s = 3600.0;
+    const HeatResult long_cooldown = solve_heat(mesh, 4, 0.0, material, env, options);
+    options.cooldown_s = 600.0;
+    options.max_cooldown_s = 600.0;
+    const HeatResult stopped = solve_heat(mesh, 4, 0.0, material, env, options);
+
+    // The block was still warm at the end of the short cooldown: healing went on past it.
+    EXPECT_GT(short_cooldown.healing_end_s, short_cooldown.end_time_s + 60.0);
+    EXPECT_EQ(short_cooldown.still_warm, 0u);
+    EXPECT_EQ(long_cooldown.still_warm, 0u);
+    ASSERT_EQ(short_cooldown.interfaces.size(), long_cooldown.interfaces.size());
+    double worst = 0.0, worst_stopped = 0.0, least = 1.0;
+    for (std::size_t k = 0; k < short_cooldown.interfaces.size(); ++k) {
+      const double healing = long_cooldown.interfaces[k].healing;
+      least = std::min(least, healing);
+      worst = std::max(worst, std::abs(short_cooldown.interfaces[k].healing - healing));
+      worst_stopped = std::max(worst_stopped, std::abs(stopped.interfaces[k].healing - healing));
+    }
+    const std::string law_name(name_of(law));
+    RecordProperty("max_healing_change_" + law_name, sci(worst));
+    RecordProperty("max_healing_change_stopped_at_cooldown_" + law_name, sci(worst_stopped));
+    EXPECT_LT(least, 0.9);  // not all saturated: a change would show
+    EXPECT_LT(worst, 0.005);
+    EXPECT_GT(stopped.still_warm, 0u);
+    EXPECT_GT(stopped.still_warm_area_mm2, 0.0);
+    EXPECT_DOUBLE_EQ(stopped.healing_end_s, stopped.end_time_s);
+    if (law == HealingLaw::kArrhenius) {
+      EXPECT_GT(worst_stopped, 0.005);
+    }
+  }
 }
 
 // ---- options ---------------------------------------------------------------------------------------------

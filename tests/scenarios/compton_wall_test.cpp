@@ -22,6 +22,7 @@
 #include "scenarios/variant_stages.hpp"
 #include "sim/deposit.hpp"
 #include "tests/read_file.hpp"
+#include "tests/scenarios/compton_wall.hpp"
 #include "tests/scenarios/report_checks.hpp"
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
@@ -30,25 +31,11 @@
 namespace beadtwin::scenarios {
 namespace {
 
+using testing::at_time;
+using testing::compton_scenario;
+using testing::first_deposit;
+using testing::keep_layers;
 using testing::read_file;
-
-Scenario compton_scenario() {
-  return load_scenario_text(shipped_files().at("compton-wall.yaml"), "<built-in>/compton-wall.yaml");
-}
-
-// The wall cut to its first `layers` layers.
-void keep_layers(Variant& v, int layers) {
-  slicer::SectionParams& wall = v.sections.at(0);
-  wall.z_max_mm = wall.z_min_mm + layers * wall.layer_height_mm;
-}
-
-// The first move of a layer that lays material (a layer's moves start with the travel to it).
-const Move& first_deposit(const Toolpath& tp, std::size_t layer) {
-  const ToolpathLayer& l = tp.layers.at(layer);
-  for (std::size_t m = l.first_move; m < l.end_move; ++m)
-    if (tp.moves[m].deposits()) return tp.moves[m];
-  throw InternalError(fmt::format("layer {} lays nothing", layer));
-}
 
 // The shipped scenario as it is: the paper's numbers, a straight wall laid in one direction, 40 s a layer.
 TEST(ComptonWall, ScenarioHoldsThePapersSetUp) {
@@ -171,15 +158,6 @@ std::vector<LayerGeometry> geometry(const thermal::ThermalMesh& mesh, std::size_
       g.at(static_cast<std::size_t>(std::max(la, lb))).contact_mm2 += link.area_mm2();
   }
   return g;
-}
-
-// A sampled history at t, linear between samples; NaN outside it or before the layer exists.
-double at_time(const std::vector<double>& times, const std::vector<float>& values, double t) {
-  if (times.empty() || t < times.front() || t > times.back()) return std::numeric_limits<double>::quiet_NaN();
-  const auto k = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
-  if (k == times.size()) return values.back();
-  const double w = (t - times[k - 1]) / (times[k] - times[k - 1]);
-  return (1.0 - w) * values[k - 1] + w * values[k];
 }
 
 struct Agreement {

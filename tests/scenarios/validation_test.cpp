@@ -106,7 +106,7 @@ Solved solve(const Variant& v, double snapshot_every_s = 0.0) {
 // the new bead lands, a few kelvin above the surface; their area-weighted mean over the layer stands in for
 // the surface reading until the model reports a surface temperature. The one place to change then.
 double substrate_as_camera_reads_c(const thermal::FusionSummary& landing_layer) {
-  return landing_layer.substrate_mean_c;
+  return landing_layer.surface.mean_c;
 }
 
 // The cell a camera facing the wall's side (the -y side) sees at `x_mm` along layer `layer`: of the layer's

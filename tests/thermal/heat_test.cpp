@@ -65,21 +65,28 @@ ThermalMesh column(int count, double thickness_mm, double area_mm2) {
 
 // ---- lumped body ----------------------------------------------------------------------------------------
 
+// A 20 mm cube, open on five faces (100 mm² × 5), the sixth on the table: one cell, so a lumped body.
+ThermalMesh open_cube() {
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 1.0;
+  mesh.cells.push_back(cell_at({10.0, 10.0, 10.0}, 8000.0));
+  mesh.cells[0].open_area_mm2 = 2000.0;
+  mesh.cells[0].table_area_mm2 = 400.0;
+  return mesh;
+}
+
+// Air at 18 °C cooling by convection at `h_W_m2K`; the table insulated.
+Environment air_over_insulated_table(double h_W_m2K) {
+  return {.ambient_c = 18.0, .bed_insulated = true, .convection_W_m2K = h_W_m2K};
+}
+
 // Newton's law of cooling of a lumped body (Incropera & DeWitt, Fundamentals of Heat and Mass Transfer,
 // 6th ed., §5.1, the lumped capacitance method): T(t) = T∞ + (T0 − T∞) exp(−t/τ), τ = ρ c_p V / (h A_s). One
 // cell is exactly a lumped body (one temperature), so the only error is the integrator's.
 TEST(HeatLumped, OneCellCoolsExponentially) {
   const Material material = test_material();  // ε = 0: convection only
-  Environment env;
-  env.bed_insulated = true;
-  env.convection_W_m2K = 7.0;
-  env.ambient_c = 18.0;
-  ThermalMesh mesh;
-  mesh.voxel_size_mm = 1.0;
-  // A 20 mm cube, open on five faces (100 mm² × 5); the table under it is insulated.
-  mesh.cells.push_back(cell_at({10.0, 10.0, 10.0}, 8000.0));
-  mesh.cells[0].open_area_mm2 = 2000.0;
-  mesh.cells[0].table_area_mm2 = 400.0;
+  const Environment env = air_over_insulated_table(7.0);
+  const ThermalMesh mesh = open_cube();
   const double c = capacity_J_K(material, 8000.0);
   const double tau_s = c / (env.convection_W_m2K * 2000.0e-6);  // 1335 s
 
@@ -194,15 +201,8 @@ TEST(HeatLumped, TemperatureDependentSpecificHeat) {
 TEST(HeatLumped, SpecificHeatStepFollowsTheSeparatedVariableSolution) {
   Material material = test_material();  // ε = 0: convection only
   material.specific_heat_by_temp = glass_step_specific_heat();
-  Environment env;
-  env.bed_insulated = true;
-  env.ambient_c = 18.0;
-  env.convection_W_m2K = 7.0;
-  ThermalMesh mesh;
-  mesh.voxel_size_mm = 1.0;
-  mesh.cells.push_back(cell_at({10.0, 10.0, 10.0}, 8000.0));  // a 20 mm cube open on five faces
-  mesh.cells[0].open_area_mm2 = 2000.0;
-  mesh.cells[0].table_area_mm2 = 400.0;
+  const Environment env = air_over_insulated_table(7.0);
+  const ThermalMesh mesh = open_cube();
   const double mass_kg = material.density_kg_m3 * 8000.0e-9, ha_W_K = env.convection_W_m2K * 2000.0e-6;
   HeatOptions options;
   options.rel_tol = 1e-6;

@@ -87,7 +87,15 @@ void validate_layers(std::span<const Wall1dLayer> layers, Problems& problems) {
 
 void validate_material(const Material& m, Problems& problems) {
   problems.positive("material.density_kg_m3", m.density_kg_m3);
-  problems.positive("material.specific_heat_J_kgK", m.specific_heat_J_kgK);
+  if (m.specific_heat_by_temp.empty())
+    problems.positive("material.specific_heat_J_kgK", m.specific_heat_J_kgK);
+  for (std::size_t i = 0; i < m.specific_heat_by_temp.size(); ++i) {
+    const auto& [temp_c, c_p] = m.specific_heat_by_temp[i];
+    const std::string key = fmt::format("material.specific_heat_by_temp[{}]", i);
+    problems.positive(key, c_p);
+    if (!std::isfinite(temp_c) || (i > 0 && !(temp_c > m.specific_heat_by_temp[i - 1].first)))
+      problems.add(key, fmt::format("temperatures must be finite and increase, got {} C", temp_c));
+  }
   problems.positive("material.conductivity_through_W_mK", m.conductivity_through_W_mK);
   problems.in_range("material.emissivity", m.emissivity, 0.0, 1.0);
   problems.non_negative("material.deposition_temp_c", m.deposition_temp_c);

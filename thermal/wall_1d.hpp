@@ -4,12 +4,14 @@
 //
 // The part is modelled as a 1-D stack of layers in the spirit of Compton et al. 2017 (Additive Manufacturing
 // 17:77-86): each layer is `nodes_per_layer` control volumes through its thickness, with its footprint area
-// and the length of its exposed side edges. Heat is conducted through the stack (k through the layer
-// thickness), lost by convection and radiation from the sides and from the exposed part of each layer's
-// top, and exchanged with the table under layer 0, each through the half node between the node's centre and
-// its face (thermal/surface.hpp): half a node's thickness (k through the layer) to the top and the table,
-// and area / perimeter across the layer (k across the bead) to the sides, half the width of a straight wall.
-// Layers appear by element birth: a whole layer is born at once, at its start time and at the deposition
+// and the length of its exposed side edges. A node's heat capacity is m c_p(T) (Material::specific_heat_at,
+// the table when the material gives one), its energy m ∫ c_p dT, as in the 3-D model (thermal/heat.hpp). Heat
+// is conducted through the stack (k through the layer thickness), lost by convection and radiation from the
+// sides and from the exposed part of each layer's top, and exchanged with the table under layer 0, each
+// through the half node between the node's centre and its face (thermal/surface.hpp): half a node's
+// thickness (k through the layer) to the top and the table, and area / perimeter across the layer (k across
+// the bead) to the sides, half the width of a straight wall. Layers appear by element birth: a whole layer
+// is born at once, at its start time and at the deposition
 // temperature, so the time a bead really waits before being covered is represented by the layer-to-layer
 // period, not bead by bead.
 //

@@ -17,7 +17,8 @@ constexpr double kMPerMm = 1e-3;
 
 Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material,
                          const Environment& env, int nodes_per_layer)
-    : n_(static_cast<std::size_t>(nodes_per_layer)),
+    : material_(material),
+      n_(static_cast<std::size_t>(nodes_per_layer)),
       block_(n_ + 2),
       reptation_(material),
       deposition_temp_c_(material.deposition_temp_c),
@@ -37,8 +38,7 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
     const double node_thickness_m = in.height_mm * kMPerMm / n;
     Layer layer;
     layer.area_m2 = area_m2;
-    layer.node_capacity_J_K =
-        material.density_kg_m3 * material.specific_heat_J_kgK * area_m2 * node_thickness_m;
+    layer.node_mass_kg = material.density_kg_m3 * area_m2 * node_thickness_m;
     layer.inner_conductance_W_K = k * area_m2 / node_thickness_m;
     layer.side_area_node_m2 = in.perimeter_mm * kMPerMm * node_thickness_m;
     layer.top_r_m2K_W = 0.5 * node_thickness_m / k;
@@ -82,11 +82,12 @@ void Wall1dModel::error_weights(std::span<const double> y, std::span<double> wei
       const std::size_t k = temp_index(i, j);
       weights[k] = 1.0 / (rel_tol_ * std::abs(y[k]) + abs_tol_k_);
     }
-    // Energy lost: the absolute tolerance is the energy of abs_tol_k over the whole layer, so the balance
-    // is held to the accuracy of the temperatures.
+    // Energy lost: the absolute tolerance is the energy of abs_tol_k over the whole layer (its heat capacity
+    // at the deposition temperature), so the balance is held to the accuracy of the temperatures.
     const std::size_t q = loss_index(i);
-    weights[q] = 1.0 / (rel_tol_ * std::abs(y[q]) +
-                        abs_tol_k_ * layers_[i].node_capacity_J_K * static_cast<double>(n_));
+    weights[q] =
+        1.0 / (rel_tol_ * std::abs(y[q]) +
+               abs_tol_k_ * node_capacity_J_K(layers_[i], deposition_temp_c_) * static_cast<double>(n_));
     // Healing: what is reported is D_h = min(1, H^(1/4)), whose relative error is a quarter of H's. So H
     // gets 4 rel_tol, and once H is past 1 (fully healed) only staying past 1 matters: a tenth of the
     // margin is allowed on top. Without this, the healing integrals of hot interfaces, which grow to
@@ -124,9 +125,9 @@ double Wall1dModel::interface_temp_c(std::size_t layer, std::span<const double> 
 }
 
 double Wall1dModel::energy_in_J() const {
+  const double per_kg = material_.enthalpy_J_kg(air_.ambient_c, deposition_temp_c_);
   double sum = 0.0;
-  for (std::size_t i = 0; i < born_; ++i)
-    sum += layers_[i].node_capacity_J_K * static_cast<double>(n_) * (deposition_temp_c_ - air_.ambient_c);
+  for (std::size_t i = 0; i < born_; ++i) sum += layers_[i].node_mass_kg * static_cast<double>(n_) * per_kg;
   return sum;
 }
 
@@ -134,7 +135,7 @@ double Wall1dModel::energy_stored_J(std::span<const double> y) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < born_; ++i)
     for (std::size_t j = 0; j < n_; ++j)
-      sum += layers_[i].node_capacity_J_K * (y[temp_index(i, j)] - air_.ambient_c);
+      sum += layers_[i].node_mass_kg * material_.enthalpy_J_kg(air_.ambient_c, y[temp_index(i, j)]);
   return sum;
 }
 
@@ -186,7 +187,7 @@ void Wall1dModel::rhs(double /*t*/, std::span<const double> y, std::span<double>
         heat_W += layers_[i + 1].below_conductance_W_K * (y[temp_index(i + 1, 0)] - temp);
       const double lost = loss(i, j, temp).W;
       lost_W += lost;
-      ydot[temp_index(i, j)] = (heat_W - lost) / layer.node_capacity_J_K;
+      ydot[temp_index(i, j)] = (heat_W - lost) / node_capacity_J_K(layer, temp);
     }
     ydot[loss_index(i)] = lost_W;
     if (i > 0) ydot[healing_index(i)] = reptation_.rate_per_s(interface_temp_c(i, y));
@@ -198,7 +199,7 @@ void Wall1dModel::jacobian(double /*t*/, std::span<const double> y, BandJacobian
     const Layer& layer = layers_[i];
     for (std::size_t j = 0; j < n_; ++j) {
       const std::size_t row = temp_index(i, j);
-      const double inv_c = 1.0 / layer.node_capacity_J_K;
+      const double inv_c = 1.0 / node_capacity_J_K(layer, y[row]);
       double diagonal_W_K = 0.0;
       auto couple = [&](std::size_t col, double conductance) {
         jac.set(row, col, conductance * inv_c);

@@ -27,7 +27,9 @@ namespace beadtwin::thermal {
 // error test as the temperatures (with weights of their own, see error_weights), and the jump of the rate
 // at the healing threshold is met by CVODE's step control instead of being smeared between samples. The
 // energy lost is a state for the same reason: the balance in − lost − stored then checks the flux
-// bookkeeping (BDF keeps this linear invariant up to the Newton tolerance), not a post-processing rule.
+// bookkeeping, not a post-processing rule. With a constant c_p the stored energy is linear in the state and
+// BDF keeps the balance up to the Newton tolerance; with c_p(T) it is m ∫ c_p dT, and the balance holds to
+// the integration error.
 class Wall1dModel final : public OdeSystem {
  public:
   Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material, const Environment& env,
@@ -76,7 +78,7 @@ class Wall1dModel final : public OdeSystem {
  private:
   struct Layer {
     double area_m2 = 0;
-    double node_capacity_J_K = 0;      // ρ c_p A h/n
+    double node_mass_kg = 0;           // ρ A h/n
     double inner_conductance_W_K = 0;  // between two nodes of this layer: k A / (h/n)
     double below_conductance_W_K = 0;  // to the layer below: k min(A) / (h_below/2n + h/2n)
     double below_weight = 0;           // weight of the lower node in the interface temperature
@@ -92,9 +94,15 @@ class Wall1dModel final : public OdeSystem {
   };
   Loss loss(std::size_t layer, std::size_t node, double temp_c) const;
   double top_area_m2(std::size_t layer, std::size_t node) const;
+  // m c_p(T) of a node of `layer` at temperature temp_c, J/K. (The Jacobian leaves out the change of c_p
+  // with T, as the 3-D model's does: Newton's matrix need not be exact.)
+  double node_capacity_J_K(const Layer& layer, double temp_c) const {
+    return layer.node_mass_kg * material_.specific_heat_at(temp_c);
+  }
   double bed_conductance_W_K(std::size_t layer, std::size_t node) const;
 
   std::vector<Layer> layers_;
+  Material material_;
   std::size_t n_;
   std::size_t block_;
   std::size_t born_ = 0;

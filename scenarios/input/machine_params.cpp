@@ -325,13 +325,15 @@ const Param<Material> kMaterial[] = {
     {{.key = "specific_heat",
       .dim = D::kSpecificHeat,
       .range = {.min = 0, .max = 1e5, .min_exclusive = true},
-      .meaning = "specific heat capacity"},
+      .meaning = "specific heat capacity, one value for all temperatures: used where the material gives no "
+                 "specific_heat_by_temp"},
      BT_MEMBER(Material, specific_heat_J_kgK)},
     {{.key = "specific_heat_by_temp",
       .dim = D::kSpecificHeat,
       .range = {.min = 0, .max = 1e5, .min_exclusive = true},
-      .meaning = "specific heat by temperature instead: [[T, c_p], ...] in increasing temperature, linear "
-                 "between the points, constant beyond them",
+      .meaning = "specific heat by temperature, used instead of specific_heat: [[T, c_p], ...] in increasing "
+                 "temperature, linear between the points, constant beyond them; a variant that sets "
+                 "specific_heat alone is refused (set this one to null with it)",
       .source = "thermal/heat.hpp",
       .derived = true,
       .column_dim = D::kTemperature},

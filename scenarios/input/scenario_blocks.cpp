@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -77,6 +78,17 @@ Machine read_machine(BlockReader& r) {
 Material read_material(BlockReader& r) {
   Material m;
   r.read(material_params(), m);
+  // The table, where the material gives one, is what the heat solve uses: a variant that sets the one value
+  // alone would change nothing.
+  const auto* overridden = r.overridden();
+  const auto set_by_variant = [&](std::string_view key) {
+    return overridden != nullptr && overridden->contains(r.full_key(key));
+  };
+  if (!m.specific_heat_by_temp.empty() && set_by_variant("specific_heat") &&
+      !set_by_variant("specific_heat_by_temp"))
+    r.fail(r.take("specific_heat"), "specific_heat",
+           "this material gives specific_heat_by_temp, which the heat solve uses instead: set "
+           "material.specific_heat_by_temp, or set it to null as well to use this one value");
   r.finish(material_params());
   return m;
 }

@@ -98,7 +98,11 @@ TEST(ComptonWall, ShippedScenarioRuns) {
     // The layer time as the report counts it (from the travel to a layer to its last bead): 40 s, but for
     // the first layer, which has no travel before it.
     EXPECT_NEAR(m["layer_time_s"]["max"].get<double>(), 40.0, 0.01);
-    EXPECT_LT(m["thermal"]["energy_balance_rel_error"].get<double>(), 1e-3);
+    // cf-abs-20's c_p varies with T, so the energy stored, m ∫ c_p dT, is not linear in the temperatures and
+    // BDF keeps the balance only to its integration error: 8e-4 and 1.4e-3 at the run's tolerances (8e-5 at
+    // relative 1e-5 and absolute 1e-4 K, 7e-7 at 1e-6 and 1e-5 K). A flux left out of the bookkeeping would
+    // not shrink with the tolerances.
+    EXPECT_LT(m["thermal"]["energy_balance_rel_error"].get<double>(), 5e-3);
     const auto& h = v["temperature_history"];
     const std::size_t samples = h["times_s"].size();
     // Every 5 s from the first bead to 10 min after the last (150 layers of 40 s).
@@ -114,7 +118,7 @@ TEST(ComptonWall, ShippedScenarioRuns) {
       while (first < samples && layer["temp_c"][first].is_null()) ++first;
       ASSERT_LT(first, samples);
       // Cells are born in groups, at the middle of each group's birth times (at most half a birth interval,
-      // here 6.7 s, after the first of them), and sampled every 5 s.
+      // here 8.2 s, after the first of them), and sampled every 5 s.
       EXPECT_NEAR(h["times_s"][first].get<double>(), 40.0 * index, 15.0);
       EXPECT_LE(layer["temp_c"][first].get<double>(), 200.0 + 1e-6);
       EXPECT_GT(layer["temp_c"][first].get<double>(), 150.0);
@@ -219,18 +223,21 @@ Agreement compare(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h
 //    when the 3-D layer's first bead does, and the comparison follows each column of the wall the time its
 //    own bead landed later (see compare).
 // What still differs, and how much it can move a layer's mean:
-//  - births in groups: a 3-D cell is born at its group's middle, up to half a birth interval (here 4.3 s)
-//    from its own time, while a young layer cools by up to 1.5 K/s. The groups run evenly along the layer,
-//    so their shifts cancel in the mean except for the two partial groups at its ends (2 of 9): up to
-//    1.5 K/s x 2.2 s x 2/9 = 0.7 K, while the layer is young;
+//  - births in groups: a 3-D cell is born at its group's middle, up to half a birth interval (here 5.3 s:
+//    the interval is a fifth of the cells' time constant at the deposition temperature, where c_p is
+//    2005 J/kg·K) from its own time, while a young layer cools by up to 1.5 K/s. The groups run evenly
+//    along the layer, so their shifts cancel in the mean except for the two partial groups at its ends
+//    (2 of 9): up to 1.5 K/s x 2.7 s x 2/9 = 0.9 K, while the layer is young (measured: 0.72 K, in the
+//    first layer 50 s into the print);
 //  - conduction along the wall, between columns laid up to 38 s apart and towards the cooler ends: it moves
 //    heat within a layer, so the mean changes only through the curvature of radiation over the 10-20 K
 //    along the layer, below 0.05 K;
 //  - the integrators: at 1e-5 relative tolerance, with the 1-D history read between 1 s samples, below
 //    0.05 K.
-// So within 0.8 K at tight tolerances. At the run's default tolerances (relative 1e-3, absolute 0.05 K) the
-// 3-D integrator adds up to 1 % of the 182 K between deposition and the air (tests/thermal/heat_test.cpp:
-// within 1 % of analytic solutions at the defaults): within 2.6 K.
+// So within about 1 K at tight tolerances; the test holds it to 0.8 K. At the run's default tolerances
+// (relative 1e-3, absolute 0.05 K) the 3-D integrator adds up to 1.5 % of the 182 K between deposition and
+// the air (1 % on the analytic cases of tests/thermal/heat_test.cpp; here 2.4 K where the first layer cools
+// fastest, against the table, as c_p steps across T_g): within 3.5 K.
 TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
   constexpr int kLayers = 25;  // 1000 s of printing: the wall is past its first layers' transient
   Variant v = compton_scenario().variants[0];
@@ -299,7 +306,7 @@ TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
     // Both models put each face behind a half cell; the 1-D wall takes area over perimeter across the layer
     // to its sides, the 3-D cells the depth of their voxels' faces from the centroid, a few tenths of a
     // millimetre apart on this wall: 0.9 K at tight tolerances.
-    EXPECT_LT(a.max_K, tight ? 1.0 : 2.6);
+    EXPECT_LT(a.max_K, tight ? 1.0 : 3.5);
   }
 }
 

@@ -122,7 +122,8 @@ TEST(LsamMould, ShippedScenarioShowsTheLayerTimeTradeOff) {
   EXPECT_NE(read_file(o.out_dir / "summary.md").find("| one-bead |"), std::string::npos);
 
   // The floor prints the same in both; the walls part. Laid in half the time, the one-bead wall lands on a
-  // substrate well above the support limit, the two-bead wall on one about at it.
+  // substrate well above the support limit, the two-bead wall on one near it (a few degrees above it with
+  // cf-abs-20's c_p(T), whose melt holds more heat than one value did).
   const VariantResult& a = r.variants[0];
   const VariantResult& b = r.variants[1];
   const double limit_c = sc.variants[0].material.support_limit_c;
@@ -134,15 +135,16 @@ TEST(LsamMould, ShippedScenarioShowsTheLayerTimeTradeOff) {
   EXPECT_GT(walls_b.substrate_temp_c.mean, walls_a.substrate_temp_c.mean + 20.0);
   // Hotter landings: more of the wall too hot, and less of it too cold (a hotter interface heals).
   EXPECT_GT(walls_b.too_hot_fraction, 0.8);
-  EXPECT_LT(walls_a.too_hot_fraction, 0.6);
+  EXPECT_LT(walls_a.too_hot_fraction, walls_b.too_hot_fraction - 0.2);
   EXPECT_LT(walls_b.too_cold_fraction, walls_a.too_cold_fraction);
-  EXPECT_GT(b.metrics.too_hot_fraction, a.metrics.too_hot_fraction + 0.1);  // the floor alike in both
   EXPECT_LT(b.metrics.print_time_s, a.metrics.print_time_s);
   EXPECT_NEAR(b.metrics.mass_kg, a.metrics.mass_kg, 0.02 * a.metrics.mass_kg);
 
   // The gates say so: the one-bead set fails the too-hot gates, the absolute one and the one against the
-  // baseline (the two-bead set, the first variant), and passes the print-time gate.
-  EXPECT_TRUE(gate(a, "interfaces.too_hot_fraction <= 0.3").passed);
+  // baseline (the two-bead set, the first variant: more than 5 points more of the area too hot, the floor
+  // alike in both), and passes the print-time gate. The two-bead set, its wall landing above the support
+  // limit too, fails the absolute one as well.
+  EXPECT_FALSE(gate(a, "interfaces.too_hot_fraction <= 0.3").passed);
   EXPECT_FALSE(gate(b, "interfaces.too_hot_fraction <= 0.3").passed);
   EXPECT_TRUE(gate(a, "interfaces.too_hot_fraction <= baseline + 0.05").passed);
   EXPECT_FALSE(gate(b, "interfaces.too_hot_fraction <= baseline + 0.05").passed);

@@ -86,6 +86,28 @@ TEST(Materials, EveryShippedMaterialLoadsWithSensibleValues) {
   }
 }
 
+// Each shipped material gives its specific heat by temperature with the step of the glass transition: c_p
+// rises across T_g +- 5 K by more than a tenth of its room-temperature value (a glass alone rises by about
+// 4 % over 10 K), never falls with temperature, and stays between 1000 and 2500 J/kg·K from room temperature
+// to the deposition temperature (amorphous polymers and their carbon-fibre compounds: docs/physics.md,
+// Cooling).
+TEST(Materials, SpecificHeatRisesWithTheGlassTransitionStep) {
+  for (const std::string& name : shipped_materials()) {
+    SCOPED_TRACE(name);
+    const Material m = load_material(name);
+    ASSERT_FALSE(m.specific_heat_by_temp.empty());
+    const double tg = m.glass_transition_c, room = m.specific_heat_at(23.0);
+    EXPECT_GT(m.specific_heat_at(tg + 5.0) - m.specific_heat_at(tg - 5.0), 0.1 * room);
+    for (double t = 0.0; t <= m.deposition_temp_c; t += 1.0) {
+      EXPECT_GE(m.specific_heat_at(t + 1.0), m.specific_heat_at(t)) << t << " C";
+      if (t >= 20.0) {
+        EXPECT_GT(m.specific_heat_at(t), 1000.0) << t << " C";
+        EXPECT_LT(m.specific_heat_at(t), 2500.0) << t << " C";
+      }
+    }
+  }
+}
+
 // Neat polymers conduct heat alike in every direction; their files say so with three equal values.
 TEST(Materials, NeatPolymersAreIsotropic) {
   for (const char* name : {"abs", "pla"}) {

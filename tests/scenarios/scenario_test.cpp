@@ -231,6 +231,20 @@ TEST(Scenario, ThermalKeysAreReadAndCheckedWhereWritten) {
       replace(kGood, "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}",
               "    set: {material.specific_heat_by_temp: [[200 C, 1200], [20 C, 2000]]}"));
   EXPECT_EQ(cold.key(), "material.specific_heat_by_temp");
+  // cf-abs-20 gives a table, which the heat solve uses: a variant setting the one value alone is refused,
+  // with the table set to null it is taken.
+  const std::string base = "    set: {sections.walls.boundary.passes: 2, machine.environment.bed_temp: 90 C}";
+  const InputError alone = load_error(replace(kGood, base, "    set: {material.specific_heat: 1500 J/kgK}"));
+  EXPECT_EQ(alone.key(), "material.specific_heat");
+  EXPECT_NE(std::string(alone.what()).find("specific_heat_by_temp"), std::string::npos) << alone.what();
+  const Variant one = load_scenario_text(replace(kGood, base,
+                                                 "    set: {material.specific_heat: 1500 J/kgK, "
+                                                 "material.specific_heat_by_temp: null}"),
+                                         "test.yaml")
+                          .variants[1];
+  EXPECT_TRUE(one.material.specific_heat_by_temp.empty());
+  EXPECT_DOUBLE_EQ(one.material.specific_heat_at(110.0), 1500.0);
+  EXPECT_FALSE(load_scenario_text(kGood, "test.yaml").variants[1].material.specific_heat_by_temp.empty());
 }
 
 // The skin by default; the voxel fields for ParaView (about 60 bytes a voxel) when asked for.

@@ -141,6 +141,8 @@ TEST(Wall1dTest, LumpedBodyWithASpecificHeatStepFollowsTheSeparatedVariableSolut
   Material material;
   material.emissivity = 0.0;
   material.specific_heat_by_temp = glass_step_specific_heat();
+  // A lumped body: no half node between its temperature and its faces.
+  material.conductivity_through_W_mK = material.conductivity_across_W_mK = 1e4;
   Environment env;
   env.bed_insulated = true;
   const Wall1dLayer layer{.z_top_mm = 5,

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "scenarios/input/result.hpp"
-#include "sim/cad_compare.hpp"
 #include "thermal/communicator.hpp"
 
 namespace beadtwin::scenarios {

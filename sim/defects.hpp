@@ -1,8 +1,10 @@
 // What is wrong with a deposit, where it is and what caused it: the defects the deposit reports
-// (sim/deposit.hpp), how runs of them are merged, and the checks that need the toolpath alone or the part
-// as it stands: corners tighter than the roller can follow, and travel moves that run into the part.
-// The voids are located apart (sim/voids.hpp); material ploughed by the roller, beads laid over nothing and
-// the nozzle running into material above a bead are found while laying (sim/deposit.cpp).
+// (sim/deposit.hpp), how runs of them are merged, and the check that needs the toolpath alone: corners
+// tighter than the roller can follow. Travel moves that run into the part as it stands are measured apart
+// (sim/travel_collision.hpp), and so are the voids (sim/voids.hpp); material ploughed by the roller, beads
+// laid over nothing and the nozzle running into material above a bead are found while laying
+// (sim/deposit.cpp). The report's types (scenarios/input/result.hpp) hold these defects, so this header
+// leaves OpenVDB out.
 #pragma once
 
 #include <algorithm>
@@ -15,7 +17,6 @@
 #include <utility>
 #include <vector>
 
-#include <openvdb/openvdb.h>
 #include <Eigen/Core>
 
 #include "core/toolpath.hpp"
@@ -74,12 +75,5 @@ class DefectLog {
 // turn of more than one radian within it is a radius under half the width. A run of such joints within a
 // window of each other is one defect, its size the largest turn in degrees.
 void roller_corners(const Toolpath& toolpath, double roller_width_mm, DefectLog& log);
-
-// How deep a travel move runs into material standing above the nozzle's tip, mm (0 when clear): the fill
-// (fraction, voxels of `voxel_size_mm`, deposit_transform) is read along the move every voxel, under the
-// tip's centre and four points on its rim (`nozzle_diameter_mm`; 0: the centre only), up to four voxels
-// above the tip: material within reach of the tip, not a whole tall part above a travel below it.
-double travel_collision_mm(const Move& move, const openvdb::FloatGrid& fill, double voxel_size_mm,
-                           double nozzle_diameter_mm);
 
 }  // namespace beadtwin::sim

@@ -18,6 +18,7 @@
 #include "sim/porosity.hpp"
 #include "sim/substrate.hpp"
 #include "sim/sweep_plan.hpp"
+#include "sim/travel_collision.hpp"
 #include "sim/voids.hpp"
 
 namespace beadtwin::sim {

@@ -10,8 +10,8 @@
 // sim/sweep_plan (moves to sweeps: which moves continue one bead, how the ends are cut), sim/bead_sweep
 // (the swept solid and its supersampled voxel coverage), sim/substrate (what lies under a bead),
 // sim/fill_writer (conservation: scaling, overflow pushed to free neighbours), sim/porosity (void inside the
-// envelope), sim/voids (the voids located), sim/defects (what is wrong, where, and the checks of the roller's
-// corners and the travel moves). This file is the stage.
+// envelope), sim/voids (the voids located), sim/defects (what is wrong, where, and the check of the roller's
+// corners), sim/travel_collision (travel moves that run into the part). This file is the stage.
 //
 // Conventions the consumers (thermal, render, reports) rely on:
 //  - Voxel (i,j,k) spans [i, i+1) · voxel_size_mm along x (likewise y, z), in mm, machine frame. The grids'

@@ -10,7 +10,7 @@
 
 #include "core/stages.hpp"
 #include "scenarios/input/scenario.hpp"
-#include "sim/deposit.hpp"
+#include "sim/defects.hpp"
 #include "thermal/fusion.hpp"
 
 namespace beadtwin::scenarios {

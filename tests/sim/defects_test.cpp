@@ -12,6 +12,7 @@
 #include "core/toolpath.hpp"
 #include "core/units.hpp"
 #include "sim/deposit.hpp"
+#include "sim/travel_collision.hpp"
 #include "tests/sim/lsam_beads.hpp"
 #include "tests/sim/voxel_block.hpp"
 

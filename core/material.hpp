@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <utility>
@@ -44,7 +45,13 @@ struct Material {
   double deposition_temp_c = 200.0;  // temperature of the bead as it leaves the nozzle
   double glass_transition_c = 110.0;
   // Fusion window (docs/physics.md, fusion window).
-  double support_limit_c = 120.0;  // substrate hotter than this at deposition: too hot (slump, squash-out)
+  // The support of a new bead (thermal/support.hpp): the material under it softer than softening_temp_c
+  // (NaN: the glass transition) flows as a viscous layer, its zero-shear viscosity viscosity_ref_Pa_s at
+  // healing_ref_temp_c shifted with temperature as the reptation time is; the bead is too hot where that
+  // layer slumps by more than max_slump times the layer height as it lands.
+  double softening_temp_c = std::numeric_limits<double>::quiet_NaN();
+  double viscosity_ref_Pa_s = 1e5;
+  double max_slump = 0.1;
   HealingLaw healing_law = HealingLaw::kWlf;
   double healing_ref_temp_c = 200.0;  // T_ref of the reptation time
   double reptation_time_ref_s = 1.0;  // t_w at T_ref

@@ -100,6 +100,18 @@ const std::vector<DimensionDef>& table() {
       {Dimension::kAcceleration,
        "acceleration",
        {{"mm/s2", 1}, {"m/s2", 1000}, {"in/s2", 25.4}, {"g0", 9806.65}}},
+      {Dimension::kPressure,
+       "pressure",
+       {{"Pa", 1},
+        {"mPa", 1e-3},
+        {"kPa", 1e3},
+        {"MPa", 1e6},
+        {"bar", 1e5},
+        {"psi", 6894.757293168},
+        {"N/mm2", 1e6}}},
+      {Dimension::kViscosity,
+       "viscosity",
+       {{"Pa*s", 1}, {"Pas", 1}, {"mPa*s", 1e-3}, {"mPas", 1e-3}, {"kPa*s", 1e3}, {"kPas", 1e3}}},
       {Dimension::kDimensionless, "number", {{"", 1}}},
   };
   return t;

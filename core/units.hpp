@@ -32,6 +32,8 @@ enum class Dimension {
   kRotationalSpeed,    // rev/min
   kMolarEnergy,        // J/mol
   kAcceleration,       // mm/s²
+  kPressure,           // Pa
+  kViscosity,          // Pa·s
   kDimensionless,      // plain number, no unit allowed
 };
 

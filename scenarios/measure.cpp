@@ -91,6 +91,7 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
     m.min_healing = part.healing_min;
     m.mean_healing = part.healing_mean;
     m.still_warm_fraction = part.still_warm_fraction();
+    m.max_slump_ratio = part.slump_ratio_max;
   }
   return m;
 }
@@ -101,6 +102,8 @@ FusionRow fusion_row(const thermal::FusionSummary& f) {
   row.interfaces = static_cast<int>(f.interfaces);
   row.substrate_temp_c = {f.substrate.min_c, f.substrate.mean_c, f.substrate.max_c};
   row.surface_temp_c = {f.surface.min_c, f.surface.mean_c, f.surface.max_c};
+  row.support_limit_c = {f.support_limit.min_c, f.support_limit.mean_c, f.support_limit.max_c};
+  row.slump_ratio_max = f.slump_ratio_max;
   row.healing = f.healing_min;
   row.healing_mean = f.healing_mean;
   row.too_hot = static_cast<int>(f.too_hot);

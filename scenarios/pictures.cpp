@@ -243,7 +243,7 @@ Field make_field(Colouring colouring, const PictureInputs& in, const thermal::Th
       f.title = "temperature of what the bead landed on (°C)";
       f.voxels = values_by_label(fill, *th.mesh.cell_grid, thermal::cell_substrate_c(th.mesh, th.heat));
       set_scale(f, range, frame.cold_c, frame.hot_c, render::ColourMap::inferno());
-      f.note = fmt::format("support limit {:.0f} °C; grey: on the table", material.support_limit_c);
+      f.note = fmt::format("soft above {:.0f} °C; grey: on the table", material.softening_temp_c);
       break;
     }
     case Colouring::kSurface: {

@@ -137,13 +137,24 @@ std::string window_text(const LayerRow& l) {
          window_range(l.typical_min_s, l.typical_max_s) + ")";
 }
 
+// The median over layers of the temperature up to which what lay under their beads carried them (the mean
+// of each layer's, LayerRow::support_limit_c); null where no layer has one.
+json median_support_limit(const VariantResult& r) {
+  std::vector<double> v;
+  for (const LayerRow& row : r.layers)
+    if (std::isfinite(row.support_limit_c.mean)) v.push_back(row.support_limit_c.mean);
+  if (v.empty()) return nullptr;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
 // Substrate temperature at deposition per layer (least, mean, most, coloured by the layer's verdict) against
-// the support limit and T_g.
+// the temperature up to which what lay under the beads carried them (per layer) and T_g.
 std::string substrate_plot(const VariantResult& r) {
   if (r.layers.empty() || !r.variant) return {};
   json p = {{"kind", "substrate"},
             {"label", "substrate temperature per layer"},
-            {"support", r.variant->material.support_limit_c},
+            {"support", json::array()},
             {"tg", r.variant->material.glass_transition_c},
             {"hot_colour", hex(verdict_colour(thermal::Verdict::kTooHot))}};
   for (const LayerRow& row : r.layers) {
@@ -151,6 +162,7 @@ std::string substrate_plot(const VariantResult& r) {
     p["min"].push_back(number_or_null(row.substrate_temp_c.min));
     p["mean"].push_back(number_or_null(row.substrate_temp_c.mean));
     p["max"].push_back(number_or_null(row.substrate_temp_c.max));
+    p["support"].push_back(number_or_null(row.support_limit_c.mean));
     p["verdicts"].push_back(thermal::to_string(row.verdict));
     p["colours"].push_back(hex(verdict_colour(row.verdict)));
   }
@@ -194,7 +206,8 @@ std::string ordinal(int n) {
   return fmt::format("{}{}", n, suffix);
 }
 
-// The chosen layers' mean temperature against time, with the support limit and T_g.
+// The chosen layers' mean temperature against time, with the temperature up to which what lay under the
+// beads carried them (the median layer's) and T_g.
 std::string history_plot(const VariantResult& r) {
   const TemperatureHistory& hist = r.temperature_history;
   if (hist.layers.empty() || hist.times_s.size() < 2 || !r.variant) return {};
@@ -206,7 +219,7 @@ std::string history_plot(const VariantResult& r) {
             {"label", "layer temperature against time"},
             {"times", std::move(times)},
             {"unit", minutes ? "min" : "s"},
-            {"support", r.variant->material.support_limit_c},
+            {"support", median_support_limit(r)},
             {"tg", r.variant->material.glass_transition_c},
             {"hot_colour", hex(verdict_colour(thermal::Verdict::kTooHot))},
             {"series", json::array()}};
@@ -227,8 +240,9 @@ std::string history_caption(const VariantResult& r) {
       "<p class=muted>The mean temperature of each chosen layer's beads laid so far (volume-weighted "
       "over its thermal cells), every {:g} s. Layers are numbered from 0 at the table, as in the layer "
       "table, so layer 14 is the 15th layer printed (papers usually count from 1: their layer 15). "
-      "Dashed: the support limit (a substrate above it is too soft to carry the next layer) and the "
-      "glass transition T_g. Choose the layers with <code>output.history_layers</code>.</p>",
+      "Dashed: the substrate temperature up to which what lay under the beads carried them (the median "
+      "layer's; hotter, it slumps under the next layer and the roller) and the glass transition T_g. Choose "
+      "the layers with <code>output.history_layers</code>.</p>",
       interval);
 }
 
@@ -357,8 +371,10 @@ std::string pictures_html(const VariantResult& v) {
   if (fusion)
     h += fmt::format(
         "<p class=legend>Fusion: each piece of bead by its worst interface where it landed: <span "
-        "style=\"background:{}\"></span>fuses <span style=\"background:{}\"></span>too hot (the substrate "
-        "under it above the support limit) <span style=\"background:{}\"></span>too cold (an interface "
+        "style=\"background:{}\"></span>fuses <span style=\"background:{}\"></span>too hot (the soft "
+        "material "
+        "under it slumps under the bead and the roller) <span style=\"background:{}\"></span>too cold (an "
+        "interface "
         "that "
         "does not heal) <span style=\"background:{}\"></span>no interface (on the table alone)</p>",
         hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
@@ -393,7 +409,7 @@ std::string plots_html(const VariantResult& v) {
   h += "<h3>Layer time against the fusion window</h3><p class=muted>Each layer's time as printed, coloured "
        "by "
        "its verdict, and in green the layer times that would have put it in the fusion window: long "
-       "enough for the layer below to cool under the support limit, short enough for it to stay warm "
+       "enough for what lies under the beads to carry them, short enough for it to stay warm "
        "enough to heal; darker for all of the layer's landing area (as its verdict counts it), lighter for "
        "half of it (the typical interface). A first-order estimate from the cooling each interface was on "
        "as it was covered: "

@@ -103,6 +103,8 @@ json history_json(const TemperatureHistory& h) {
 json fusion_json(const FusionRow& f) {
   return {{"substrate_temp_c", stats_json(f.substrate_temp_c)},
           {"surface_temp_c", stats_json(f.surface_temp_c)},
+          {"support_limit_c", stats_json(f.support_limit_c)},
+          {"slump_ratio_max", number_or_null(f.slump_ratio_max)},
           {"interfaces", f.interfaces},
           {"healing_min", number_or_null(f.healing)},
           {"healing_mean", number_or_null(f.healing_mean)},

@@ -1,7 +1,8 @@
 // The plots of beadtwin's report.html and sweep.html, drawn with Chart.js (embedded in the report before
 // this script). The report carries each plot's data as JSON in a script element of class beadtwin-plot
 // (type application/json); this script puts a canvas after each one and draws it. Kinds: "substrate" (the
-// substrate temperature per layer against the support limit and T_g), "layer_time" (each layer's time
+// substrate temperature per layer against the temperature at which what was under the beads would carry
+// them, and T_g), "layer_time" (each layer's time
 // against the layer times that would have put it in the fusion window), "history" (chosen layers' mean
 // temperature against time) and "pareto" (a sweep's variants by two metrics). Missing values are null and
 // leave gaps. Colours for verdicts come with the data, from the same table the pictures use.
@@ -33,8 +34,9 @@
       {type: 'bar', label: 'least to most', data: p.min.map((lo, i) => (lo === null ? null : [lo, p.max[i]])),
        backgroundColor: colours.map((c) => c + '99'), borderColor: colours, borderWidth: 1,
        barPercentage: 1.0, categoryPercentage: 0.6, order: 2},
-      level('support limit ' + p.support.toFixed(0) + ' °C (above: too hot)', p.support, n, p.hot_colour,
-            [4, 3], 'end'),
+      {type: 'line', label: 'carries the bead up to (mean; above: slumps)', data: p.support,
+       borderColor: p.hot_colour, borderDash: [4, 3], borderWidth: 1.5, pointRadius: 0, pointHitRadius: 0,
+       stepped: 'middle', spanGaps: false, fill: false, order: 0},
       level('T_g ' + p.tg.toFixed(0) + ' °C', p.tg, n, '#555', [2, 3]),
     ];
     return {
@@ -99,7 +101,10 @@
       borderColor: seriesColours[k % seriesColours.length], borderWidth: 1.5, pointRadius: 0,
       spanGaps: false,
     }));
-    datasets.push(line('support limit ' + p.support.toFixed(0) + ' °C', p.support, p.hot_colour, [4, 3]));
+    if (p.support !== null) {
+      datasets.push(line('carries the bead up to ' + p.support.toFixed(0) + ' °C (median layer)', p.support,
+                         p.hot_colour, [4, 3]));
+    }
     datasets.push(line('T_g ' + p.tg.toFixed(0) + ' °C', p.tg, '#555', [2, 3]));
     return {
       type: 'line',

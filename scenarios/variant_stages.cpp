@@ -81,6 +81,8 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.max_cooldown_s = v.thermal.max_cooldown_s;
   ho.sample_interval_s = v.thermal.sample_interval_s;
+  ho.support = {.roller_pressure_Pa = v.machine.roller_pressure_Pa,
+                .roller_contact_mm = v.machine.roller_contact_mm};
   for (const double t : v.thermal.snapshot_times_s)
     ho.snapshot_times_s.push_back(std::isinf(t) ? tp.total_time_s() : t);
   for (const double t : picture_snapshot_times(v.render, tp)) ho.snapshot_times_s.push_back(t);

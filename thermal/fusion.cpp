@@ -88,10 +88,9 @@ double reptation_time_s(const Material& material, double temp_c) {
   return rate > 0.0 ? 1.0 / rate : std::numeric_limits<double>::infinity();
 }
 
-Verdict judge_interface(double substrate_c, bool on_top, double healing, const Material& material) {
-  if (on_top && substrate_c > material.support_limit_c) return Verdict::kTooHot;
-  if (healing < material.required_healing) return Verdict::kTooCold;
-  return Verdict::kOk;
+Verdict judge_interface(bool too_hot, double healing, const Material& material) {
+  if (too_hot) return Verdict::kTooHot;
+  return healing < material.required_healing ? Verdict::kTooCold : Verdict::kOk;
 }
 
 }  // namespace beadtwin::thermal

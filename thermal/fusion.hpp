@@ -1,13 +1,13 @@
 // The fusion window of an interface (docs/physics.md, fusion window): what the thermal models share.
 //
-// An interface is where a new bead lands on or against material laid before. It is too hot when the
-// substrate under it is above the material's support limit as the bead lands (it cannot carry the bead and
-// the roller: slump, squash-out); too cold when it does not heal: the degree of healing of non-isothermal
-// reptation (Yang & Pitchumani 2002), D_h = (∫ dt / t_w(T(t)))^¼ over the interface's temperature history,
-// stays below the required healing. The reptation time is t_w(T) = t_ref · a(T) / a(T_ref), its shift a(T)
-// by the material's law (HealingLaw): for amorphous polymers WLF from the glass transition T_g up to
-// T_g + ΔT_WLF, log10 a = −C1 (T − T_g) / (C2 + T − T_g), and Arrhenius above it, ln a = E_a/R (1/T − 1/T_s)
-// + ln a(T_s) at the switch T_s = T_g + ΔT_WLF, continuous there; or Arrhenius throughout.
+// An interface is where a new bead lands on or against material laid before. It is too hot when the soft
+// material under it cannot carry the bead and the roller (thermal/support.hpp: it slumps); too cold when it
+// does not heal: the degree of healing of non-isothermal reptation (Yang & Pitchumani 2002), D_h = (∫ dt /
+// t_w(T(t)))^¼ over the interface's temperature history, stays below the required healing. The reptation time
+// is t_w(T) = t_ref · a(T) / a(T_ref), its shift a(T) by the material's law (HealingLaw): for amorphous
+// polymers WLF from the glass transition T_g up to T_g + ΔT_WLF, log10 a = −C1 (T − T_g) / (C2 + T − T_g),
+// and Arrhenius above it, ln a = E_a/R (1/T − 1/T_s) + ln a(T_s) at the switch T_s = T_g + ΔT_WLF,
+// continuous there; or Arrhenius throughout.
 #pragma once
 
 #include <string_view>
@@ -63,9 +63,8 @@ class Reptation {
 // diverges).
 double reptation_time_s(const Material& material, double temp_c);
 
-// The verdict on an interface: too hot when the substrate was above the support limit as the new bead
-// landed (judged only where it lands on top: `on_top`), else too cold when its healing (min(1, D_h)) is below
-// the required healing, else ok.
-Verdict judge_interface(double substrate_c, bool on_top, double healing, const Material& material);
+// The verdict on an interface: too hot where the material under it does not carry it (`too_hot`,
+// thermal/support.hpp), else too cold when its healing (min(1, D_h)) is below the required healing, else ok.
+Verdict judge_interface(bool too_hot, double healing, const Material& material);
 
 }  // namespace beadtwin::thermal

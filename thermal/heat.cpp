@@ -18,6 +18,7 @@
 #include "thermal/interface_index.hpp"
 #include "thermal/lumper.hpp"
 #include "thermal/part_model.hpp"
+#include "thermal/support.hpp"
 
 namespace beadtwin::thermal {
 namespace {
@@ -105,6 +106,8 @@ class HeatSolve {
   // Births the cells of group `g` in `state` (the first cap_ model cells and the energy lost): the
   // interfaces they open take their substrate's temperature and cooling rate.
   void born_group(const BirthGroup& g, std::span<double> state);
+  // Whether the soft material under interface r's younger cell carries it (r.on_top), from `state`.
+  void judge_support(InterfaceResult& r, std::span<const double> state) const;
   // Lumps the settled cells in before_ (HeatOptions::lump) if it is time; true if any were.
   bool lump_settled();
   // Makes room in the integrator's state for the model cells below `end`: by half at least, so the
@@ -126,9 +129,14 @@ class HeatSolve {
   void heal_until_cold();
   void finish();
 
+  const ThermalMesh& mesh_;
   const Material& material_;
   const HeatOptions& options_;
   std::size_t n_;  // mesh cells
+  Support support_;
+  // The mesh's support cells, or for a mesh built without them (by hand) those measured from it alone.
+  std::vector<SupportCell> own_support_;
+  std::span<const SupportCell> support_cells_;
   PartModel model_;
   double median_tau_;
   BirthSchedule births_;
@@ -157,9 +165,14 @@ class HeatSolve {
 
 HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double end_s, const Material& material,
                      const Environment& env, const HeatOptions& options)
-    : material_(material),
+    : mesh_(mesh),
+      material_(material),
       options_(options),
       n_(mesh.cells.size()),
+      support_(material, options.support),
+      own_support_(mesh.support.size() == mesh.cells.size() ? std::vector<SupportCell>{}
+                                                            : support_cells(mesh, nullptr)),
+      support_cells_(own_support_.empty() ? std::span<const SupportCell>(mesh.support) : own_support_),
       model_(mesh, material, env),
       median_tau_(median_time_constant_s(model_)),
       births_(plan_births(mesh.cells, median_tau_, options)),
@@ -237,6 +250,13 @@ HeatResult HeatSolve::run() {
   return std::move(result_);
 }
 
+void HeatSolve::judge_support(InterfaceResult& r, std::span<const double> state) const {
+  const auto temp_c = [&](std::uint32_t c) {
+    return c < mesh_born_ ? state[model_of_[c]] : material_.deposition_temp_c;
+  };
+  r.support = support_.judge(support_cells_, r.older, r.younger, births_.interval_s, temp_c);
+}
+
 void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
   for (std::size_t i = mesh_born_; i < g.end; ++i)
     for (const std::uint32_t k : index_.of_younger(i)) {
@@ -250,6 +270,7 @@ void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
         r.substrate_surface_c = model_.face_surface_c(older, model_of_[r.younger], r.substrate_c);
         r.substrate_rate_K_s = model_.rate(older, state.data(), loss);
       }
+      if (r.on_top) judge_support(r, state);
     }
   model_.birth(model_of_[g.end], state);
   mesh_born_ = g.end;
@@ -328,7 +349,7 @@ void HeatSolve::finish() {
   }
   for (std::uint32_t k = 0; k < interfaces_.size(); ++k) {
     InterfaceResult& r = interfaces_[k];
-    r.verdict = judge_interface(r.substrate_c, r.on_top, r.healing, material_);
+    r.verdict = judge_interface(r.on_top && r.support.too_hot(), r.healing, material_);
     r.still_warm = healing_.warm(index_, before_, k);
     result_.still_warm += r.still_warm;
     result_.still_warm_area_mm2 += r.still_warm ? r.area_mm2 : 0.0;

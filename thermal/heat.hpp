@@ -60,6 +60,7 @@ struct HeatOptions {
   // takes effect at the first birth group at or after it (within a birth interval), and during the cooldown
   // when it comes.
   std::vector<FanSetting> fan;
+  SupportLoad support;             // the roller or tamper on a new bead (the too-hot verdict)
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
   // Settled cells lumped (docs/physics.md, settled cells): when at least lump_check_cells cells (and a
@@ -104,6 +105,9 @@ struct InterfaceResult {
   double substrate_surface_c = 0.0;
   // How fast the older cell was cooling then, K/s (NaN when both were born together).
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
+  // Where the younger lands on top (on_top): whether the soft material under it carries it
+  // (thermal/support.hpp), with the temperatures as it landed.
+  SupportResult support;
   double healing_integral = 0.0;  // ∫ dt / t_w over the interface's history, not capped at 1
   double healing = 0.0;           // min(1, D_h) = min(1, healing_integral^¼)
   // Still at or above the healing threshold when the healing integral ended (at the end of the print +

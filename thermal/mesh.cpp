@@ -431,6 +431,7 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   }
   ContactLists contacts = sum_faces(deposit, mesh);
   mesh.links = make_links(contacts, keys);
+  mesh.support = support_cells(mesh, &toolpath);
   if (mesh.cell_length_factor > 1.0) mesh.notes.push_back(longer_cells_note(mesh));
   return mesh;
 }

@@ -34,6 +34,7 @@
 #include "core/memory.hpp"
 #include "core/toolpath.hpp"
 #include "sim/deposit.hpp"
+#include "thermal/support.hpp"
 
 namespace beadtwin::thermal {
 
@@ -91,6 +92,7 @@ struct ThermalMesh {
   double table_z_mm = 0.0;            // the bottom of the deposit's lowest voxel row
   std::vector<ThermalCell> cells;     // by birth time (ties: by chain, piece, strip, slice)
   std::vector<ThermalLink> links;     // by (a, b)
+  std::vector<SupportCell> support;   // per cell: what the too-hot verdict measures (support_cells)
   openvdb::Int32Grid::Ptr cell_grid;  // index of the cell each material voxel belongs to; -1 elsewhere
   std::size_t chains = 0;
   // With an automatic cell length: how many times two bead widths the pieces were made (1: not longer).

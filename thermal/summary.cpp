@@ -25,6 +25,9 @@ void add(FusionSummary& s, const InterfaceResult& r) {
   if (r.on_top) {
     add(s.substrate, r.substrate_c, r.area_mm2);
     add(s.surface, r.substrate_surface_c, r.area_mm2);
+    if (std::isfinite(r.support.limit_c)) add(s.support_limit, r.support.limit_c, r.area_mm2);
+    if (r.support.allowed_mm > 0.0)
+      s.slump_ratio_max = std::fmax(s.slump_ratio_max, r.support.slump_mm / r.support.allowed_mm);
   }
   s.healing_min = std::isnan(s.healing_min) ? r.healing : std::min(s.healing_min, r.healing);
   s.healing_mean = (std::isnan(s.healing_mean) ? 0.0 : s.healing_mean) + r.area_mm2 * r.healing;
@@ -41,9 +44,10 @@ void add(FusionSummary& s, const InterfaceResult& r) {
   }
 }
 
-void finish(FusionSummary& s, double on_top_area_mm2) {
+void finish(FusionSummary& s, double on_top_area_mm2, double limited_area_mm2) {
   finish(s.substrate, on_top_area_mm2);
   finish(s.surface, on_top_area_mm2);
+  finish(s.support_limit, limited_area_mm2);
   if (!std::isnan(s.healing_mean))
     s.healing_mean = s.area_mm2 > 0.0 ? s.healing_mean / s.area_mm2 : s.healing_min;
 }
@@ -136,10 +140,10 @@ LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, doub
     // Laid together with the bead on it (no layer change between them), or warming as it was covered (a
     // neighbour laid just before): no cooling curve to follow.
     if (!(r.substrate_rate_K_s < 0.0)) continue;
-    // Too hot unless the substrate is at or below the support limit.
-    hot.emplace_back(
-        wait_to_reach(r.substrate_c, material.support_limit_c, r.substrate_rate_K_s, ambient_c, t_dep),
-        r.area_mm2);
+    // Too hot unless the substrate is at or below the temperature at which what is under it carries the
+    // bead (thermal/support.hpp; infinite where no temperature up to the deposition's would slump it).
+    hot.emplace_back(wait_to_reach(r.substrate_c, r.support.limit_c, r.substrate_rate_K_s, ambient_c, t_dep),
+                     r.area_mm2);
     // Healing: the substrate temperature that would give the required D_h.
     double needed_c = t_dep;  // nothing healed at all: only the hottest substrate might
     if (r.healing_integral > 0.0) {
@@ -176,14 +180,15 @@ FusionSummary summarise_part(const HeatResult& heat) {
 std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<const int> group_of_cell,
                                             std::size_t group_count) {
   std::vector<FusionSummary> groups(group_count);
-  std::vector<double> on_top_area(group_count, 0.0);
+  std::vector<double> on_top_area(group_count, 0.0), limited_area(group_count, 0.0);
   for (const InterfaceResult& r : heat.interfaces) {
     const int g = group_of_cell[r.younger];
     if (g < 0 || static_cast<std::size_t>(g) >= group_count) continue;
     add(groups[static_cast<std::size_t>(g)], r);
     if (r.on_top) on_top_area[static_cast<std::size_t>(g)] += r.area_mm2;
+    if (r.on_top && std::isfinite(r.support.limit_c)) limited_area[static_cast<std::size_t>(g)] += r.area_mm2;
   }
-  for (std::size_t k = 0; k < group_count; ++k) finish(groups[k], on_top_area[k]);
+  for (std::size_t k = 0; k < group_count; ++k) finish(groups[k], on_top_area[k], limited_area[k]);
   return groups;
 }
 

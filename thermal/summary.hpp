@@ -28,6 +28,11 @@ struct FusionSummary {
   // Where beads landed on top of something (NaN where none did, as on the first layer): the substrate's
   // temperature (its cell's) and its surface's as the bead landed (InterfaceResult).
   TemperatureStats substrate, surface;
+  // There too: the substrate temperature at which what was under the bead would just have carried it
+  // (SupportResult::limit_c, where some temperature would not), and the most any of them slumped, as a
+  // fraction of what is allowed (above 1: too hot); NaN where none landed on top.
+  TemperatureStats support_limit;
+  double slump_ratio_max = kNaN;
   // Degree of healing min(1, D_h): least and area-weighted mean; NaN without interfaces.
   double healing_min = kNaN, healing_mean = kNaN;
   std::size_t too_hot = 0, too_cold = 0;  // interfaces

@@ -99,7 +99,6 @@ void validate_material(const Material& m, Problems& problems) {
   problems.positive("material.conductivity_through_W_mK", m.conductivity_through_W_mK);
   problems.in_range("material.emissivity", m.emissivity, 0.0, 1.0);
   problems.non_negative("material.deposition_temp_c", m.deposition_temp_c);
-  problems.non_negative("material.support_limit_c", m.support_limit_c);
   problems.non_negative("material.healing_ref_temp_c", m.healing_ref_temp_c);
   problems.positive("material.reptation_time_ref_s", m.reptation_time_ref_s);
   problems.non_negative("material.healing_activation_J_mol", m.healing_activation_J_mol);
@@ -147,6 +146,7 @@ struct SubstrateWindow {
   double end_s = 0;
   double at_start_c = 0, min_c = 0, max_c = 0;
   double surface_at_start_c = 0;  // its top face's, as the layer starts
+  SupportResult support;          // whether the layers under it carry it, as it starts
   double integral_cs = 0;         // ∫ T dt, °C·s
   double last_t = 0, last_c = 0;
   bool open = false;
@@ -169,12 +169,44 @@ struct SubstrateWindow {
   }
 };
 
+// Whether the layers under `layer` (>= 1) carry it in state y: the column of node centres from the top of the
+// layer below down to the table, or to the first node no longer soft.
+SupportResult wall_support(const Support& support, const Wall1dModel& model,
+                           std::span<const Wall1dLayer> layers, std::size_t layer,
+                           std::span<const double> y) {
+  const std::size_t n = model.nodes_per_layer();
+  std::vector<double> z{layers[layer - 1].z_top_mm}, t{y[model.temp_index(layer - 1, n - 1)]};
+  double bottom = layers[0].z_top_mm - layers[0].height_mm;  // the table, unless a node is no longer soft
+  std::size_t deepest_soft = layer - 1;
+  bool soft = true;
+  for (std::size_t i = layer; soft && i-- > 0;) {
+    const double dz = layers[i].height_mm / static_cast<double>(n);
+    for (std::size_t j = n; soft && j-- > 0;) {
+      z.push_back(layers[i].z_top_mm - (static_cast<double>(n - 1 - j) + 0.5) * dz);
+      t.push_back(y[model.temp_index(i, j)]);
+      soft = t.back() > support.softening_c();
+      if (soft) deepest_soft = i;
+      if (!soft) bottom = z.back() - 0.5 * dz;
+    }
+  }
+  z.push_back(bottom);
+  t.push_back(t.back());
+  const Wall1dLayer& below = layers[layer - 1];
+  const Wall1dLayer& l = layers[layer];
+  const double width =
+      below.perimeter_mm > 0.0 ? 2.0 * below.area_mm2 / below.perimeter_mm : std::sqrt(below.area_mm2);
+  const double length = l.area_mm2 / std::max(width, 1e-9);
+  const double speed = l.end_s > l.start_s ? length / (l.end_s - l.start_s) : 0.0;
+  return support.judge_column(z, t, width, l.height_mm, speed, l.start_s - layers[deepest_soft].start_s);
+}
+
 // Reads what the result keeps out of the integration, step by step: the sampled layer temperatures and the
 // substrate temperature during each layer's deposition.
 class Recorder {
  public:
-  Recorder(const Wall1dModel& model, std::span<const Wall1dLayer> layers, std::vector<double> times)
-      : model_(model), layers_(layers), times_(std::move(times)), windows_(layers.size()) {
+  Recorder(const Wall1dModel& model, const Support& support, std::span<const Wall1dLayer> layers,
+           std::vector<double> times)
+      : model_(model), support_(support), layers_(layers), times_(std::move(times)), windows_(layers.size()) {
     temps_.assign(layers.size(), std::vector<float>(times_.size(), std::numeric_limits<float>::quiet_NaN()));
   }
 
@@ -183,6 +215,7 @@ class Recorder {
     if (layer > 0) {
       windows_[layer].start(t, model_.substrate_temp_c(layer, y), layers_[layer].end_s);
       windows_[layer].surface_at_start_c = model_.substrate_surface_c(layer, y);
+      windows_[layer].support = wall_support(support_, model_, layers_, layer, y);
     }
     while (next_ < times_.size() && times_[next_] <= t) record(next_++, y);
   }
@@ -218,6 +251,7 @@ class Recorder {
   }
 
   const Wall1dModel& model_;
+  const Support& support_;
   std::span<const Wall1dLayer> layers_;
   std::vector<double> times_;
   std::size_t next_ = 0;
@@ -225,11 +259,11 @@ class Recorder {
   std::vector<SubstrateWindow> windows_;
 };
 
-// Too hot is judged on the substrate just before the new layer touches it: that is what has to carry the
-// layer and the roller. The reheating by the new layer afterwards is what fuses them, not a defect (and its
-// peak depends on the node spacing, since the whole layer is born at once).
+// Too hot is judged on the layers under the new one just before it touches them: they have to carry it and
+// the roller. The reheating by the new layer afterwards is what fuses them, not a defect (and its peak
+// depends on the node spacing, since the whole layer is born at once).
 Verdict judge(const Wall1dLayerResult& r, const Material& material) {
-  return judge_interface(r.substrate_at_start_c, true, r.healing, material);
+  return judge_interface(r.support.too_hot(), r.healing, material);
 }
 
 }  // namespace
@@ -278,6 +312,7 @@ Wall1dLayerResult layer_result(std::size_t layer, std::span<const Wall1dLayer> l
   const SubstrateWindow& w = recorder.window(layer);
   r.substrate_at_start_c = w.at_start_c;
   r.surface_at_start_c = w.surface_at_start_c;
+  r.support = w.support;
   r.substrate_min_c = w.min_c;
   r.substrate_max_c = w.max_c;
   r.substrate_mean_c = w.mean_c(layers[layer].start_s);
@@ -316,7 +351,8 @@ Wall1dResult solve_wall_1d(std::span<const Wall1dLayer> layers, const Material& 
 
   Wall1dModel model(layers, material, env, options.nodes_per_layer);
   model.set_tolerances(options.rel_tol, options.abs_tol_k, kHealingAbsTol);
-  Recorder recorder(model, layers, sample_times(t0, t_end, options.sample_interval_s));
+  const Support support(material, options.support);
+  Recorder recorder(model, support, layers, sample_times(t0, t_end, options.sample_interval_s));
   std::vector<double> y0 = model.initial_state();
   model.birth(0, y0);
   CvodeOptions cvode_options;

@@ -26,6 +26,7 @@
 
 #include "core/material.hpp"
 #include "thermal/fusion.hpp"
+#include "thermal/support.hpp"
 
 namespace beadtwin::thermal {
 
@@ -45,6 +46,7 @@ struct Wall1dOptions {
   int nodes_per_layer = 2;       // nodes through each layer's thickness, >= 1
   double cooldown_s = 600;       // simulated time after the last layer (healing goes on), >= 0
   double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
+  SupportLoad support;           // the roller or tamper on each new layer (the too-hot verdict)
 };
 
 // What one layer's interface (with the layer below) went through.
@@ -63,7 +65,11 @@ struct Wall1dLayerResult {
   // Degree of healing min(1, D_h) of the interface under this layer at the end of the simulation.
   // NaN for layer 0 (no interface).
   double healing = 0;
-  // substrate_at_start_c > support_limit_c: kTooHot; else healing < required_healing: kTooCold; else kOk.
+  // Whether the soft layers under this one carry it (thermal/support.hpp), judged just before it touches
+  // them: the wall's width is 2 area / perimeter (a straight wall's), its speed the layer's length over its
+  // deposition time, the soft layers' load time its start less the start of the deepest soft layer.
+  SupportResult support;
+  // support.too_hot(): kTooHot; else healing < required_healing: kTooCold; else kOk.
   Verdict verdict = Verdict::kNoInterface;
 };
 

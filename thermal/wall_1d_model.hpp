@@ -43,6 +43,7 @@ class Wall1dModel final : public OdeSystem {
   std::size_t temp_index(std::size_t layer, std::size_t node) const { return layer * block_ + 1 + node; }
   std::size_t healing_index(std::size_t layer) const { return layer * block_; }
   std::size_t loss_index(std::size_t layer) const { return layer * block_ + 1 + n_; }
+  std::size_t nodes_per_layer() const { return n_; }
 
   // The state before any birth: every temperature at the deposition temperature, nothing healed or lost.
   std::vector<double> initial_state() const;

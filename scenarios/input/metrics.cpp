@@ -2,6 +2,7 @@
 #include "scenarios/input/metrics.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string_view>
 #include <type_traits>
 #include <utility>
@@ -49,6 +50,12 @@ std::optional<double> healing(const Row& r) {
   return r.interfaces > 0 ? std::optional<double>(r.*Member) : std::nullopt;
 }
 
+// A figure that is not a number where nothing measured it: unset there.
+template <class Row, double Row::*Member>
+std::optional<double> finite(const Row& r) {
+  return std::isfinite(r.*Member) ? std::optional<double>(r.*Member) : std::nullopt;
+}
+
 const MetricDef kMetrics[] = {
     {"layers", U::kCount, Better::kNeither, kGate, part<&Metrics::layers>, "layers in the toolpath"},
     {"print_time_s", U::kSeconds, Better::kLower, kGate, part<&Metrics::print_time_s>,
@@ -87,7 +94,12 @@ const MetricDef kMetrics[] = {
     {"interfaces.count", U::kCount, Better::kNeither, kGate, part<&Metrics::interfaces>,
      "interfaces where a bead landed on an older one"},
     {"interfaces.too_hot_fraction", U::kFraction, Better::kLower, kGate, part<&Metrics::too_hot_fraction>,
-     "share of the interface area whose substrate was above the support limit"},
+     "share of the interface area too hot: where the soft material under the bead slumps under it and the "
+     "roller by more than the material allows"},
+    {"interfaces.max_slump_ratio", U::kRatio, Better::kLower, kGate,
+     finite<Metrics, &Metrics::max_slump_ratio>,
+     "the most the soft material under a landing bead slumped, over what the material allows (above 1: too "
+     "hot; unset where no bead landed on another)"},
     {"interfaces.too_cold_fraction", U::kFraction, Better::kLower, kGate, part<&Metrics::too_cold_fraction>,
      "share of the interface area that does not heal"},
     {"interfaces.min_healing", U::kRatio, Better::kHigher, kGate, healing<Metrics, &Metrics::min_healing>,
@@ -163,7 +175,7 @@ const SectionMetricDef kSectionMetrics[] = {
      "interfaces where its beads landed on older ones"},
     {"interfaces.too_hot_fraction", U::kFraction, Better::kLower, kGate,
      section<&SectionRow::too_hot_fraction>,
-     "share of their area whose substrate was above the support limit"},
+     "share of their area too hot: where the soft material under the bead slumps"},
     {"interfaces.too_cold_fraction", U::kFraction, Better::kLower, kGate,
      section<&SectionRow::too_cold_fraction>, "share of their area that does not heal"},
     {"interfaces.min_healing", U::kRatio, Better::kHigher, kGate, healing<SectionRow, &SectionRow::healing>,

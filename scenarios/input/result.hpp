@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -46,6 +47,10 @@ struct CadMetrics {
 struct FusionRow {
   int interfaces = 0;
   Stats3 substrate_temp_c, surface_temp_c;
+  // Where beads landed on top: the substrate temperature at which what was under them would just have
+  // carried them (thermal::SupportResult::limit_c), and the most they slumped over what is allowed.
+  Stats3 support_limit_c;
+  double slump_ratio_max = 0;
   double healing = 0, healing_mean = 0;
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;
@@ -81,6 +86,9 @@ struct Metrics {
   double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
   // Share of the interface area still at or above the healing threshold when the healing integral ended.
   double still_warm_fraction = 0;
+  // The most the soft material under a landing bead slumped, over what the material allows; NaN: none landed
+  // on another.
+  double max_slump_ratio = std::numeric_limits<double>::quiet_NaN();
   Stats3 layer_time_s;
   // Void detection in the slicer (sections with voids.detect): uncovered pieces found and their area.
   int planned_voids = 0;

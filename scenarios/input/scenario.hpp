@@ -49,6 +49,8 @@ struct Machine {
                       .junction_deviation_mm = 0.02 * kMmPerInch};
   double roller_width_mm = 0.0;                             // 0: unknown
   double roller_diameter_mm = 0.0;                          // 0: unknown
+  double roller_pressure_Pa = 0.0;                          // 0: no roller load on the bead
+  double roller_contact_mm = 0.0;                           // length along the bead it presses
   double nozzle_diameter_mm = 0.0;                          // 0: unknown
   double ooze_time_s = 0.0;                                 // 0: no ooze after melt off
   double extruder_output_kg_s = 150 * kKgPerLb / 3600;      // nominal output (a Thermwood PH15 head)

@@ -89,6 +89,7 @@ Material read_material(BlockReader& r) {
     r.fail(r.take("specific_heat"), "specific_heat",
            "this material gives specific_heat_by_temp, which the heat solve uses instead: set "
            "material.specific_heat_by_temp, or set it to null as well to use this one value");
+  if (std::isnan(m.softening_temp_c)) m.softening_temp_c = m.glass_transition_c;
   r.finish(material_params());
   return m;
 }

@@ -127,7 +127,9 @@ TEST(ComptonWall, ShippedScenarioRuns) {
       EXPECT_LT(last, index == 0 ? 65.0 : 30.0);  // the first layer lies on the 65 C table
     }
   }
-  // The report plots the three layers against time, with the support limit and T_g, from the same samples.
+  // The report plots the three layers against time, with the temperature up to which what lay under the
+  // beads carried them (the median layer's: soft above T_g, carrying below the deposition temperature) and
+  // T_g, from the same samples.
   const std::vector<nlohmann::json> plots = testing::report_plots(read_file(o.out_dir / "report.html"));
   const auto history =
       std::find_if(plots.begin(), plots.end(), [](const auto& p) { return p["kind"] == "history"; });
@@ -136,7 +138,8 @@ TEST(ComptonWall, ShippedScenarioRuns) {
   EXPECT_EQ((*history)["series"][2]["label"], "layer 29 (the 30th)");
   EXPECT_EQ((*history)["series"][2]["temp"].size(),
             j["variants"][0]["temperature_history"]["times_s"].size());
-  EXPECT_EQ((*history)["support"].get<double>(), 125.0);
+  EXPECT_GT((*history)["support"].get<double>(), 110.0);
+  EXPECT_LT((*history)["support"].get<double>(), 200.0);
   EXPECT_EQ((*history)["tg"].get<double>(), 110.0);
 }
 

@@ -42,7 +42,7 @@ material:
   emissivity: 0.9
   deposition_temp: 200 C
   glass_transition: 110 C
-  fusion: {support_limit: 120 C, healing_ref_temp: 200 C, reptation_time: 1 s, activation_energy: 150 kJ/mol,
+  fusion: {viscosity: 1e5 Pa*s, healing_ref_temp: 200 C, reptation_time: 1 s, activation_energy: 150 kJ/mol,
            min_healing_temp: 110 C, required_healing: 0.9}
 part:
   open_box: {size: [240 mm, 180 mm, 30 mm], wall: 40 mm, floor: 10 mm}

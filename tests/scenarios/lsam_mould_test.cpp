@@ -122,32 +122,32 @@ TEST(LsamMould, ShippedScenarioShowsTheLayerTimeTradeOff) {
   EXPECT_NE(read_file(o.out_dir / "summary.md").find("| one-bead |"), std::string::npos);
 
   // The floor prints the same in both; the walls part. Laid in half the time, the one-bead wall lands on a
-  // substrate some 20 K hotter than the two-bead wall. With the faces behind their half cells and cf-abs-20's
-  // c_p(T) both now land above the support limit (the two-bead wall at about 140 °C, 125 °C the limit), and
-  // judged by the substrate cell's temperature against that one limit both walls come out too hot over
-  // most of their landing area alike (0.77 and 0.73): the trade-off between them shows in the temperatures,
-  // not in the too-hot fractions, until the support is judged structurally (the softened height under the
-  // bead against the wall's width, which tells a one-bead wall from a two-bead one).
+  // substrate some 30 K hotter than the two-bead wall (168 and 137 C). Both walls carry their beads: judged
+  // structurally (the soft height under the bead against the wall's 41 mm, thermal/support.hpp), the
+  // one-bead wall's soft layer slumps at most about twice what is allowed and almost nowhere too much, the
+  // two-bead wall's less. The hotter landings heal: the one-bead wall is mostly sound and the two-bead
+  // wall mostly too cold.
   const VariantResult& a = r.variants[0];
   const VariantResult& b = r.variants[1];
-  const double limit_c = sc.variants[0].material.support_limit_c;
   EXPECT_NEAR(section(a, "floor").substrate_temp_c.mean, section(b, "floor").substrate_temp_c.mean, 3.0);
   const SectionRow& walls_a = section(a, "walls");
   const SectionRow& walls_b = section(b, "walls");
-  EXPECT_GT(walls_a.substrate_temp_c.mean, limit_c);
   EXPECT_GT(walls_b.substrate_temp_c.mean, walls_a.substrate_temp_c.mean + 20.0);
-  // Hotter landings heal better.
-  EXPECT_GT(walls_a.too_hot_fraction, 0.5);
-  EXPECT_GT(walls_b.too_hot_fraction, 0.5);
-  EXPECT_LT(walls_b.too_cold_fraction, walls_a.too_cold_fraction);
+  EXPECT_GT(walls_b.slump_ratio_max, walls_a.slump_ratio_max);
+  EXPECT_LT(walls_a.too_hot_fraction, 0.01);
+  EXPECT_LT(walls_b.too_hot_fraction, 0.05);
+  EXPECT_GT(walls_a.too_cold_fraction, 0.5);
+  EXPECT_LT(walls_b.too_cold_fraction, 0.1);
   EXPECT_LT(b.metrics.print_time_s, a.metrics.print_time_s);
   EXPECT_NEAR(b.metrics.mass_kg, a.metrics.mass_kg, 0.02 * a.metrics.mass_kg);
 
-  // The gates: both sets fail the absolute too-hot gate, and the one-bead set passes the print-time gate.
-  EXPECT_FALSE(gate(a, "interfaces.too_hot_fraction <= 0.3").passed);
-  EXPECT_FALSE(gate(b, "interfaces.too_hot_fraction <= 0.3").passed);
+  // The gates: neither set is too hot; the two-bead set fails the healing gate, the one-bead set heals
+  // better and passes the print-time gate.
+  EXPECT_TRUE(gate(a, "interfaces.too_hot_fraction <= 0.3").passed);
+  EXPECT_TRUE(gate(b, "interfaces.too_hot_fraction <= 0.3").passed);
+  EXPECT_FALSE(gate(a, "interfaces.mean_healing >= 0.85").passed);
+  EXPECT_GT(b.metrics.mean_healing, a.metrics.mean_healing + 0.05);
   EXPECT_TRUE(gate(b, "print_time_s <= baseline * 1.2").passed);
-  EXPECT_FALSE(b.passed);
 }
 
 }  // namespace

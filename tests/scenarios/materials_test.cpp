@@ -65,10 +65,12 @@ TEST(Materials, EveryShippedMaterialLoadsWithSensibleValues) {
     EXPECT_GT(m.reptation_time_ref_s, 0.0);
     EXPECT_GT(m.healing_activation_J_mol, 0.0);
     EXPECT_GE(m.price_per_kg, 0.0);
-    // Fusion window: heals only above the minimum, which is no hotter than the support limit; the bead is
-    // laid hotter than both and than T_g.
-    EXPECT_LE(m.healing_min_temp_c, m.support_limit_c);
-    EXPECT_LT(m.support_limit_c, m.deposition_temp_c);
+    // Fusion window: heals only above the minimum, soft above the softening temperature; the bead is laid
+    // hotter than both and than T_g, and what is under it flows like a melt at most there.
+    EXPECT_LT(m.healing_min_temp_c, m.deposition_temp_c);
+    EXPECT_LT(m.softening_temp_c, m.deposition_temp_c);
+    EXPECT_GE(m.viscosity_ref_Pa_s, 100.0);
+    EXPECT_GT(m.max_slump, 0.0);
     EXPECT_LT(m.glass_transition_c, m.deposition_temp_c);
     EXPECT_GE(m.healing_min_temp_c, m.glass_transition_c) << "heals in the glass";
     EXPECT_GT(m.healing_ref_temp_c, m.healing_min_temp_c);

@@ -42,6 +42,7 @@ Metrics distinct_metrics() {
   m.min_healing = 0.61;
   m.mean_healing = 0.97;
   m.still_warm_fraction = 0.015;
+  m.max_slump_ratio = 0.35;
   m.layer_time_s = {280, 300, 330};
   m.extruder_demand = 0.83;
   m.planned_voids = 2;
@@ -107,6 +108,7 @@ const std::map<std::string, double> kExpected = {
     {"interfaces.min_healing", 0.61},
     {"interfaces.mean_healing", 0.97},
     {"interfaces.still_warm_fraction", 0.015},
+    {"interfaces.max_slump_ratio", 0.35},
     {"layer_time_s.min", 280},
     {"layer_time_s.mean", 300},
     {"layer_time_s.max", 330},

@@ -57,4 +57,22 @@ inline Toolpath timed(std::vector<Move> moves) {
   return toolpath;
 }
 
+// `count` beads of `length_mm` along x side by side at the pitch that fills the layer (A / h), `layers`
+// high, each layer laid bead by bead from y = 0 with travels between them.
+inline Toolpath bead_block(int count, int layers, double length_mm) {
+  const double pitch = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
+  std::vector<Move> moves;
+  Eigen::Vector3d at(0.0, 0.0, kBeadHeight);
+  for (int l = 0; l < layers; ++l) {
+    const double z = (l + 1) * kBeadHeight;
+    for (int n = 0; n < count; ++n) {
+      const Eigen::Vector3d a(0.0, n * pitch, z), b(length_mm, n * pitch, z);
+      moves.push_back(travel(at, a));
+      moves.push_back(bead(a, b, l));
+      at = b;
+    }
+  }
+  return timed(std::move(moves));
+}
+
 }  // namespace beadtwin::testing

@@ -602,10 +602,12 @@ TEST(HeatHealing, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
     material.reptation_time_ref_s = 1.0;
     material.healing_activation_J_mol = 150e3;
     material.healing_min_temp_c = 110.0;
-    material.support_limit_c = 120.0;
+    // A melt as runny as oil at 200 °C (1 Pa·s, a test value): the substrate, soft at 150 °C, slumps.
+    material.viscosity_ref_Pa_s = 1.0;
     ThermalMesh mesh;
     mesh.voxel_size_mm = 1.0;
     mesh.cells.push_back(cell_at({5.0, 5.0, 5.0}, 1000.0, 0.0, 0));
+    mesh.cells.back().table_area_mm2 = 100.0;  // on the (insulated) table
     mesh.cells.push_back(cell_at({5.0, 5.0, 15.0}, 1000.0, 10.0, 1));
     mesh.links.push_back(link(0, 1, {0.0, 0.0, 100.0}, true));
     HeatOptions options;
@@ -626,9 +628,11 @@ TEST(HeatHealing, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
     // Nothing moved.
     EXPECT_FLOAT_EQ(result.final_temp_c[0], 150.0f);
     EXPECT_FLOAT_EQ(result.final_temp_c[1], 150.0f);
-    // It landed on top of a substrate at 150 °C, above the support limit of 120 °C: too hot wins.
+    // It landed on top of a substrate at 150 °C, all of it soft (10 mm), which slumped: too hot wins.
     EXPECT_TRUE(r.on_top);
     EXPECT_DOUBLE_EQ(r.substrate_c, 150.0);
+    EXPECT_DOUBLE_EQ(r.support.soft_height_mm, 10.0);
+    EXPECT_GT(r.support.slump_mm, r.support.allowed_mm);
     EXPECT_EQ(r.verdict, Verdict::kTooHot);
     EXPECT_EQ(result.energy_lost_J, 0.0);
     // Still at 150 °C when healing stopped with the cooldown.
@@ -645,7 +649,6 @@ TEST(HeatHealing, IsothermalInterfaceHealsAsTheFourthRootOfTime) {
 TEST(HeatHealing, HealingSaturatesAtOne) {
   Material material = test_material();
   material.deposition_temp_c = material.healing_ref_temp_c;
-  material.support_limit_c = 250.0;
   ThermalMesh mesh;
   mesh.voxel_size_mm = 1.0;
   mesh.cells.push_back(cell_at({5.0, 5.0, 5.0}, 1000.0));

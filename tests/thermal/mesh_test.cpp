@@ -68,19 +68,7 @@ Toolpath stacked_beads() {
 
 // `count` beads side by side at the pitch that fills the layer (A / h), `layers` high, with travels.
 Toolpath block(int count, int layers) {
-  const double pitch = bead_area_mm2(kBeadWidth, kBeadHeight) / kBeadHeight;
-  std::vector<Move> moves;
-  Eigen::Vector3d at(0.0, 0.0, kBeadHeight);
-  for (int l = 0; l < layers; ++l) {
-    const double z = (l + 1) * kBeadHeight;
-    for (int n = 0; n < count; ++n) {
-      const Eigen::Vector3d a(0.0, n * pitch, z), b(100.0, n * pitch, z);
-      moves.push_back(travel(at, a));
-      moves.push_back(bead(a, b, l));
-      at = b;
-    }
-  }
-  return timed(std::move(moves));
+  return testing::bead_block(count, layers, 100.0);
 }
 
 // The mean width, over the voxel row [0, s] at a flat face of the stadium, of the section's semicircular

@@ -61,19 +61,21 @@ TEST(CellSummaries, HealingIsTheLeastAsTheYoungerCell) {
 }
 
 // One interface, its substrate at 150 °C cooling at 1 K/s towards 18 °C air (τ = 132 s) as the bead landed
-// after a 40 s layer, healed to ∫ dt/t_w = 2. Too hot until the substrate has cooled to the 120 °C support
-// limit: 132 ln(132/102) = 34.033 s more. Heals as required (0.9) while the contact temperature keeps t_w
-// within 2 / 0.9⁴ of its value at the contact temperature it had, (200 + 150)/2 = 175 °C. Under WLF (T_g
-// 110 °C, C1 17.44, C2 51.6 K), by hand: log10 a(175) = −17.44 · 65/116.6 = −9.7221269, plus log10(2/0.6561)
-// = 0.4840506 makes −9.2380763 = −17.44 x/(51.6 + x) at x = 58.118526 K, a contact at 168.11853 °C, a
-// substrate at 136.23705 °C, reached 132 ln(132/118.23705) = 14.534573 s later than 150 °C. Under Arrhenius
-// (150 kJ/mol): 1/T' = 1/448.15 K − ln(0.6561/2) R/E_a gives 162.92621 °C, 26.669027 s.
+// after a 40 s layer, healed to ∫ dt/t_w = 2. Too hot until the substrate has cooled to the 120 °C at which
+// what is under it carries the bead (SupportResult::limit_c): 132 ln(132/102) = 34.033 s more. Heals as
+// required (0.9) while the contact temperature keeps t_w within 2 / 0.9⁴ of its value at the contact
+// temperature it had, (200 + 150)/2 = 175 °C. Under WLF (T_g 110 °C, C1 17.44, C2 51.6 K), by hand: log10
+// a(175) = −17.44 · 65/116.6 = −9.7221269, plus log10(2/0.6561) = 0.4840506 makes −9.2380763 = −17.44 x/(51.6
+// + x) at x = 58.118526 K, a contact at 168.11853 °C, a substrate at 136.23705 °C, reached 132
+// ln(132/118.23705) = 14.534573 s later than 150 °C. Under Arrhenius (150 kJ/mol): 1/T' = 1/448.15 K −
+// ln(0.6561/2) R/E_a gives 162.92621 °C, 26.669027 s.
 TEST(LayerTimeWindow, WaitsFollowTheCoolingAndTheReptationTimesShift) {
   InterfaceResult r = interface(0, 1, 10.0, true, 150.0, 1.0, Verdict::kOk);
   r.substrate_rate_K_s = -1.0;
   r.healing_integral = 2.0;
+  r.support.limit_c = 120.0;
   const std::vector<InterfaceResult> landing = {r};
-  Material material;  // deposited at 200 °C, support limit 120 °C, required healing 0.9
+  Material material;  // deposited at 200 °C, required healing 0.9
   const LayerTimeWindow wlf = layer_time_window(landing, 40.0, material, 18.0, 0.5);
   EXPECT_NEAR(wlf.min_s, 74.033442, 1e-5);
   EXPECT_NEAR(wlf.max_s, 54.534573, 1e-5);

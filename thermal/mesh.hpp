@@ -92,6 +92,7 @@ struct ThermalMesh {
   std::vector<ThermalCell> cells;     // by birth time (ties: by chain, piece, strip, slice)
   std::vector<ThermalLink> links;     // by (a, b)
   openvdb::Int32Grid::Ptr cell_grid;  // index of the cell each material voxel belongs to; -1 elsewhere
+  openvdb::MaskGrid::ConstPtr gaps;   // the deposit's enclosed gaps (shared; may be null): they see no air
   std::size_t chains = 0;
   // With an automatic cell length: how many times two bead widths the pieces were made (1: not longer).
   double cell_length_factor = 1.0;

@@ -4,18 +4,18 @@
 // faces. The view factors come from rays traced with Embree against the part as deposited so far.
 //
 // Geometry. The part is the deposit's voxels (ThermalMesh::cell_grid): its occluders are the voxel faces
-// towards the outside air or an enclosed gap (the finished part's surface, staircase and all), each with the
-// toolpath layer of its cell. A layer's faces join the scene when every cell of that layer is born; the
-// layer being printed does not yet hide anything. The table is the plane z = ThermalMesh::table_z_mm, of no
-// edge: a ray going down that meets no voxel face ends on it.
+// towards the outside air (the finished part's surface, staircase and all; a ray from outside never reaches
+// an enclosed gap), each with the toolpath layer of its cell. A layer's faces join the scene when every cell
+// of that layer is born; the layer being printed does not yet hide anything. The table is the plane z =
+// ThermalMesh::table_z_mm, of no edge: a ray going down that meets no voxel face ends on it.
 //
 // Samples. A cell's surface for good (its voxel faces towards the outside air: not towards another cell,
 // an enclosed gap or the table) is sampled at up to `faces_per_cell` of its faces, spread evenly over them in
-// the order (direction, then voxel); each sample casts rays_per_cell / faces_per_cell rays over its
-// hemisphere, cosine-weighted by a fixed stratified pattern (a spiral of equal areas on the unit disk, turned
-// by a hash of the cell and sample), so that the fraction of rays that escape is the sample's view factor
-// and the result is the same on every run and thread count. A cell's view factor is the mean over its
-// samples.
+// the order (direction, then voxel); the cell's rays_per_cell rays are shared equally among its samples,
+// each casting its share over its hemisphere, cosine-weighted by a fixed stratified pattern (a spiral of
+// equal areas on the unit disk, turned by a hash of the cell and sample), so that the fraction of rays that
+// escape is the sample's view factor and the result is the same on every run and thread count. A cell's view
+// factor is the mean over its samples.
 //
 // When. A cell's views are first found when its layer joins the scene, and again whenever the height of the
 // scene's top above the cell's centroid has grown by the factor 1 + regrow since they were last found: a

@@ -77,6 +77,7 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
   ho.rel_tol = v.thermal.rel_tol;
   ho.abs_tol_k = v.thermal.abs_tol_k;
   ho.lump = v.thermal.lump;
+  ho.view_factors = v.thermal.view_factors;
   ho.birth_interval_s = v.thermal.birth_interval_s;
   ho.cooldown_s = v.thermal.cooldown_s;
   ho.max_cooldown_s = v.thermal.max_cooldown_s;

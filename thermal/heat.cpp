@@ -19,6 +19,7 @@
 #include "thermal/lumper.hpp"
 #include "thermal/part_model.hpp"
 #include "thermal/support.hpp"
+#include "thermal/view_factor.hpp"
 
 namespace beadtwin::thermal {
 namespace {
@@ -51,7 +52,7 @@ void check_same_on_every_rank(const ThermalMesh& mesh, const HeatOptions& o, Com
   for (const ThermalCell& c : mesh.cells) mix(c.birth_s), mix(c.volume_mm3), mix(c.open_area_mm2);
   for (const ThermalLink& l : mesh.links) mix(l.a), mix(l.b), mix(l.interface);
   mix(o.rel_tol), mix(o.abs_tol_k), mix(o.birth_interval_s), mix(o.cooldown_s), mix(o.max_cooldown_s);
-  mix(o.lump);
+  mix(o.lump), mix(o.view_factors);
   const double mine = static_cast<double>(h.value() >> 12);  // 52 bits: exact in a double
   if (ranks.gather_each(mine)[0] != mine)
     throw InternalError(
@@ -108,6 +109,8 @@ class HeatSolve {
   void born_group(const BirthGroup& g, std::span<double> state);
   // Whether the soft material under interface r's younger cell carries it (r.on_top), from `state`.
   void judge_support(InterfaceResult& r, std::span<const double> state) const;
+  // The view factors of the cells whose view the births so far changed, into the model.
+  void update_views();
   // Lumps the settled cells in before_ (HeatOptions::lump) if it is time; true if any were.
   bool lump_settled();
   // Makes room in the integrator's state for the model cells below `end`: by half at least, so the
@@ -148,7 +151,9 @@ class HeatSolve {
   HistoryRecorder history_;
   Lumper lumper_;
   std::vector<std::uint32_t> model_of_;
-  std::size_t mesh_born_ = 0;  // mesh cells born so far: [0, mesh_born_)
+  std::unique_ptr<SkyView> sky_;  // null without view factors
+  std::vector<CellView> views_;   // per mesh cell, as the model has them
+  std::size_t mesh_born_ = 0;     // mesh cells born so far: [0, mesh_born_)
   // The integrator's state (PartModel::set_capacity) at the end of the last step; and every model cell's
   // temperature for the cells beyond it (unborn: they wait at the deposition temperature).
   std::vector<double> temps_, before_;
@@ -201,7 +206,12 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
   cap_ = std::min(n_, std::max<std::size_t>(births_.groups.front().end, 1024));
   before_.assign(temps_.begin(), temps_.begin() + static_cast<std::ptrdiff_t>(cap_));
   before_.push_back(0.0);  // energy lost
+  if (options.view_factors && mesh.cell_grid) {
+    sky_ = std::make_unique<SkyView>(mesh);
+    views_.resize(n_);
+  }
   born_group(births_.groups.front(), before_);
+  update_views();
   model_.set_fan(fan_at(t0_));
   model_.set_capacity(cap_);
   cvode_options_.solver = LinearSolver::kGmres;
@@ -225,6 +235,7 @@ HeatResult HeatSolve::run() {
     const bool grow = model_of_[groups[g].end] > cap_;
     if (grow) grow_state(groups[g].end);
     born_group(groups[g], before_);
+    update_views();
     model_.set_fan(fan_at(t_));
     if (grow || lumped) restart_integrator();
     // The first step tries to reach the next group at once: the temperatures move slowly against the birth
@@ -274,6 +285,17 @@ void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
     }
   model_.birth(model_of_[g.end], state);
   mesh_born_ = g.end;
+}
+
+void HeatSolve::update_views() {
+  if (!sky_) return;
+  for (const ViewChange& v : sky_->update(mesh_born_)) {
+    const double area_m2 = mesh_.cells[v.cell].open_area_mm2 * 1e-6;
+    CellView& had = views_[v.cell];
+    model_.add_view(model_of_[v.cell], area_m2 * (v.view.sky - had.sky),
+                    area_m2 * (v.view.table - had.table));
+    had = v.view;
+  }
 }
 
 bool HeatSolve::lump_settled() {
@@ -381,6 +403,10 @@ void HeatSolve::finish() {
   result_.energy_balance_rel_error =
       scale > 0.0 ? std::abs(result_.energy_in_J - result_.energy_lost_J - result_.energy_stored_J) / scale
                   : 0.0;
+  if (sky_) {
+    result_.view_updates = sky_->updates();
+    result_.view_rays = sky_->rays_cast();
+  }
   result_.ranks = model_.communicator() != nullptr ? model_.communicator()->size() : 1;
   result_.steps = steps_ + cvode_->steps();
   result_.rhs_evaluations = rhs_ + cvode_->rhs_evaluations();

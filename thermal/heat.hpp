@@ -5,8 +5,10 @@
 // they touch through G = k_n A / d: A the contact's area, d the distance of the two centroids along its
 // normal n, and k_n = nᵀ K n with K the orthotropic conductivity (along the bead, across it in plan,
 // through the layer) averaged over the two cells' bead directions. Open surface loses heat by convection
-// and radiation, h (T − T∞) + ε σ (T⁴ − T∞⁴); the surface on the table exchanges with it through the bed
-// contact conductance (nothing on an insulated table). A cell is born at the deposition temperature when
+// and radiation, h (T − T∞) + ε σ (T⁴ − T∞⁴), through the half cell under it (thermal/surface.hpp), the
+// radiation weighted by what the surface sees of the sky and the table (thermal/view_factor.hpp); the
+// surface on the table exchanges with it through the bed contact conductance (nothing on an insulated
+// table). A cell is born at the deposition temperature when
 // its material lands; until then it does not exist for its neighbours, whose faces towards it are open
 // surface.
 //
@@ -73,6 +75,10 @@ struct HeatOptions {
   double lump_tolerance_k = 0.5;
   std::size_t lump_check_cells = 4096;
   double lump_max_cells = 64.0;  // a lumped cell's most mass, in median cells
+  // Each cell's surface for good radiates with its view factors of the sky and the table, found by rays
+  // against the part as laid so far (thermal/view_factor.hpp; a mesh without its cell grid has none);
+  // false: every open face sees only the sky.
+  bool view_factors = true;
   // Times at which every cell's temperature is kept (thermal/snapshot_files.hpp), s; outside the simulated
   // span they are clamped to its ends.
   std::vector<double> snapshot_times_s;
@@ -123,6 +129,8 @@ struct HeatResult {
   double automatic_interval_s = 0.0;        // a fifth of the median time constant (before any lengthening)
   std::vector<std::string> notes;           // what the solve chose for the user (a longer birth interval)
   std::size_t birth_events = 0;
+  std::size_t view_updates = 0;        // cells' view factors found (thermal/view_factor.hpp)
+  std::size_t view_rays = 0;           // rays cast for them
   std::size_t lump_events = 0;         // times settled cells were lumped
   std::size_t lumped_cells = 0;        // mesh cells in a lumped cell at the end
   std::size_t model_cells = 0;         // the model's cells at the end (the mesh's, less what lumping took)

@@ -415,6 +415,7 @@ ThermalMesh build_thermal_mesh(const Toolpath& toolpath, const sim::Deposit& dep
   ThermalMesh mesh;
   const double vs = deposit.voxel_size_mm;
   mesh.voxel_size_mm = vs;
+  mesh.gaps = deposit.gaps;
   if (!deposit.fill || deposit.fill->activeVoxelCount() == 0) return mesh;
   BT_CHECK(deposit.move && deposit.time);
   // The steps go over the fill leaf by leaf: a deposit's grids hold voxels, never active tiles.

@@ -94,6 +94,7 @@ struct ThermalMesh {
   std::vector<ThermalLink> links;     // by (a, b)
   std::vector<SupportCell> support;   // per cell: what the too-hot verdict measures (support_cells)
   openvdb::Int32Grid::Ptr cell_grid;  // index of the cell each material voxel belongs to; -1 elsewhere
+  openvdb::MaskGrid::ConstPtr gaps;   // the deposit's enclosed gaps (shared; may be null): they see no air
   std::size_t chains = 0;
   // With an automatic cell length: how many times two bead widths the pieces were made (1: not longer).
   double cell_length_factor = 1.0;

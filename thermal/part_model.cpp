@@ -41,7 +41,8 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
       deposition_c_(material.deposition_temp_c),
       ambient_c_(env.ambient_c),
       bed_c_(env.bed_temp_c),
-      eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4) {
+      eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4),
+      table_radiant_c_(env.bed_insulated ? env.ambient_c : env.bed_temp_c) {
   fan_full_h_ = env.fan_convection_W_m2K;
   mass_kg_.resize(n_);
   exposed_m2_.resize(n_);
@@ -56,6 +57,7 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
     h_[i] = env.convection_at(c.centroid_mm.z() - mesh.table_z_mm);
     mass_kg_[i] = material.density_kg_m3 * c.volume_mm3 * kM3PerMm3;
     exposed_m2_[i] = c.open_area_mm2 * kM2PerMm2;
+    open_m2_.push_back(exposed_m2_[i]);
     exposed_rarea_[i] = c.open_depth_mm3.dot(inverse_k) * kM3PerMm3;
     // The table's contact in series with the conduction from the centroid down to the table.
     const double down_m = std::max(c.centroid_mm.z() - mesh.table_z_mm, 0.0) * kMPerMm;
@@ -71,6 +73,11 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
       exposed_m2_[i] += nb_area_m2_[k];
       exposed_rarea_[i] += nb_rarea_[k];
     }
+  sky_m2_ = open_m2_;
+  table_view_m2_.assign(n_, 0.0);
+  eps_sigma_view_.assign(n_, eps_sigma_);
+  radiant_c_.assign(n_, ambient_c_);
+  for (std::size_t i = 0; i < n_; ++i) update_air(i);
   loss_.assign(n_, 0.0);
   born_end_.assign(first_.begin(), first_.end() - 1);
   born_g_.assign(n_, 0.0);
@@ -122,6 +129,25 @@ void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& materia
     nb_g_.push_back(nb.conductance_W_K);
     nb_area_m2_.push_back(nb.area_m2);
     nb_rarea_.push_back(nb.rarea);
+  }
+}
+
+void PartModel::update_air(std::size_t i) {
+  const double exposed = exposed_m2_[i], table = table_view_m2_[i];
+  if (table == 0.0 && sky_m2_[i] == open_m2_[i]) {  // it sees only the sky
+    eps_sigma_view_[i] = eps_sigma_;
+    radiant_c_[i] = ambient_c_;
+    return;
+  }
+  // The faces towards neighbours not yet born see the sky.
+  const double sky = std::max(exposed - open_m2_[i], 0.0) + sky_m2_[i];
+  const double seen = sky + table;
+  eps_sigma_view_[i] = exposed > 0.0 ? eps_sigma_ * std::clamp(seen / exposed, 0.0, 1.0) : eps_sigma_;
+  radiant_c_[i] = ambient_c_;
+  if (table > 0.0 && seen > 0.0) {
+    const double ta = ambient_c_ + kKelvinOffset, tb = table_radiant_c_ + kKelvinOffset;
+    const double t4 = (sky * ta * ta * ta * ta + table * tb * tb * tb * tb) / seen;
+    radiant_c_[i] = std::sqrt(std::sqrt(t4)) - kKelvinOffset;
   }
 }
 
@@ -186,13 +212,16 @@ void PartModel::birth(std::size_t end, std::span<double> y) {
 void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
   const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
   std::vector<double> mass(m, 0.0), exposed(m, 0.0), rarea(m, 0.0), table(m, 0.0), h_area(m, 0.0),
-      h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0);
+      h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0), open(m, 0.0), sky(m, 0.0), table_view(m, 0.0);
   for (std::size_t i = 0; i < n_; ++i) {
     const std::size_t g = to[i];
     mass[g] += mass_kg_[i];
     exposed[g] += exposed_m2_[i];
     rarea[g] += exposed_rarea_[i];
     table[g] += table_W_K_[i];
+    open[g] += open_m2_[i];
+    sky[g] += sky_m2_[i];
+    table_view[g] += table_view_m2_[i];
     h_area[g] += h_[i] * exposed_m2_[i];
     h_sum[g] += h_[i];
     count[g] += 1.0;
@@ -226,6 +255,12 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   exposed_m2_ = std::move(exposed);
   exposed_rarea_ = std::move(rarea);
   table_W_K_ = std::move(table);
+  open_m2_ = std::move(open);
+  sky_m2_ = std::move(sky);
+  table_view_m2_ = std::move(table_view);
+  eps_sigma_view_.assign(n_, eps_sigma_);
+  radiant_c_.assign(n_, ambient_c_);
+  for (std::size_t i = 0; i < n_; ++i) update_air(i);
   h_ = std::move(h);
   first_ = std::move(first);
   nb_cell_ = std::move(nb_cell);

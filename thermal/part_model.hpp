@@ -108,9 +108,20 @@ class PartModel final : public OdeSystem {
     const std::size_t k = face_towards(i, j);
     return face_flux(air(i), t, nb_area_m2_[k] > 0.0 ? nb_rarea_[k] / nb_area_m2_[k] : 0.0).surface_c;
   }
-  // The air side of model cell i's open faces.
+  // The air side of model cell i's open faces: the mean of their views (thermal/view_factor.hpp), the faces
+  // towards neighbours not yet born taken as seeing the sky.
   AirSide air(std::size_t i) const {
-    return {.convection_W_m2K = std::max(h_[i], fan_h_), .eps_sigma = eps_sigma_, .ambient_c = ambient_c_};
+    return {.convection_W_m2K = std::max(h_[i], fan_h_),
+            .eps_sigma = eps_sigma_view_[i],
+            .ambient_c = ambient_c_,
+            .radiant_c = radiant_c_[i]};
+  }
+  // Adds to model cell i's surface for good the views `sky_m2` and `table_m2`: its area times the change of
+  // its sky and table view factors, m². Every cell starts seeing only the sky (sky: its area, table: 0).
+  void add_view(std::size_t i, double sky_m2, double table_m2) {
+    sky_m2_[i] += sky_m2;
+    table_view_m2_[i] += table_m2;
+    update_air(i);
   }
   // The part-cooling fan at `output` (0..1) of its full forced convection from now on.
   void set_fan(double output) { fan_h_ = output * fan_full_h_; }
@@ -148,7 +159,10 @@ class PartModel final : public OdeSystem {
   void close_face(std::size_t i, std::size_t k) {
     exposed_m2_[i] -= nb_area_m2_[k];
     exposed_rarea_[i] -= nb_rarea_[k];
+    update_air(i);
   }
+  // Cell i's ε σ F and mean radiant temperature from its open faces' views (air).
+  void update_air(std::size_t i);
   // The index of neighbour `j` in cell i's neighbour lists (which hold it).
   std::size_t face_towards(std::size_t i, std::uint32_t j) const;
 
@@ -173,6 +187,9 @@ class PartModel final : public OdeSystem {
   // Σ area × half-cell resistance of those faces, m²·m²K/W (thermal/surface.hpp)
   std::vector<double> exposed_rarea_;
   std::vector<double> table_W_K_;  // to the table: its contact in series with the half cell down to it
+  // The surface for good (open to the air whatever is born), m², and its area times its sky and table view
+  // factors, m²; from them and exposed_m2_, the air side's ε σ F and mean radiant temperature, °C.
+  std::vector<double> open_m2_, sky_m2_, table_view_m2_, eps_sigma_view_, radiant_c_;
   std::vector<std::size_t> first_;
   // Neighbours of cell i at [first_[i], first_[i + 1]), by index: who, the conductance, the contact area,
   // and that area times cell i's half-cell resistance to it (m²·m²K/W, while the contact is open surface).
@@ -200,6 +217,7 @@ class PartModel final : public OdeSystem {
   std::vector<double> h_;                  // convection coefficient at the cell's height, W/m²K
   double fan_full_h_ = 0.0, fan_h_ = 0.0;  // forced convection with the fan at full and now, W/m²K
   double deposition_c_, ambient_c_, bed_c_, eps_sigma_;
+  double table_radiant_c_;  // the table as the faces that see it see it: held at bed_c_, or the air's
   double energy_in_J_ = 0.0;
   double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
 };

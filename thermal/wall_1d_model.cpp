@@ -24,7 +24,8 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
       deposition_temp_c_(material.deposition_temp_c),
       air_{.convection_W_m2K = env.convection_W_m2K,
            .eps_sigma = material.emissivity * kStefanBoltzmann_W_m2K4,
-           .ambient_c = env.ambient_c},
+           .ambient_c = env.ambient_c,
+           .radiant_c = env.ambient_c},
       bed_temp_c_(env.bed_temp_c),
       bed_conductance_W_K_(0.0) {
   BT_CHECK_OP(nodes_per_layer, >=, 1);

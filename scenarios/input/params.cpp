@@ -283,6 +283,13 @@ const Param<ThermalSpec> kThermal[] = {
                  "step; false: keep every cell",
       .source = "docs/physics.md"},
      BT_MEMBER(ThermalSpec, lump)},
+    {{.key = "view_factors",
+      .default_text = "true",
+      .meaning = "each open face radiates with its view factors of the sky and the table, from rays traced "
+                 "against the part as laid so far (the rest of its view sees the part: no net exchange); "
+                 "false: every open face radiates to the air over its whole hemisphere",
+      .source = "docs/physics.md"},
+     BT_MEMBER(ThermalSpec, view_factors)},
 };
 
 const Param<RenderSpec> kRender[] = {

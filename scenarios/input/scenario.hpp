@@ -177,7 +177,8 @@ struct ThermalSpec {
   double max_cooldown_s = 24.0 * 3600.0;  // healing goes on while interfaces are warm, up to this
   double rel_tol = 1e-3;
   double abs_tol_k = 0.05;
-  bool lump = true;  // settled cells lumped (thermal::HeatOptions::lump)
+  bool lump = true;          // settled cells lumped (thermal::HeatOptions::lump)
+  bool view_factors = true;  // radiation with each face's view of the sky (thermal::HeatOptions)
   // Temperature snapshots, s; +infinity: the end of the print.
   std::vector<double> snapshot_times_s;
 };

@@ -124,7 +124,10 @@ TEST(ComptonWall, ShippedScenarioRuns) {
       EXPECT_GT(layer["temp_c"][first].get<double>(), 150.0);
       const double last = layer["temp_c"][samples - 1].get<double>();
       EXPECT_GT(last, 18.0);
-      EXPECT_LT(last, index == 0 ? 65.0 : 30.0);  // the first layer lies on the 65 C table
+      // The first layer lies on the 65 C table. The others' sides see that table over about half their
+      // hemisphere (thermal/view_factor.hpp), so they settle towards some 28 C rather than the air's 18 C: a
+      // face losing 7 W/m²K to the air and a radiative 5.5 W/m²K shared between air and table.
+      EXPECT_LT(last, index == 0 ? 65.0 : 40.0);
     }
   }
   // The report plots the three layers against time, with the temperature up to which what lay under the
@@ -288,6 +291,9 @@ TEST(ComptonWall, ThreeDAgreesWithTheOneDModelWhereTheyAssumeTheSame) {
     SCOPED_TRACE(tight ? "tight tolerances" : "the run's tolerances");
     thermal::HeatOptions ho;
     ho.cooldown_s = 400.0;
+    // The 1-D wall radiates from its sides over their whole hemisphere: so does the 3-D one here, without
+    // the view of the table at its foot.
+    ho.view_factors = false;
     if (tight) {
       ho.rel_tol = 1e-5;
       ho.abs_tol_k = 1e-3;

@@ -91,7 +91,8 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
           .material = v.material,
           .environment = v.machine.environment,
           .mesh = thermal_mesh_options(v),
-          .heat = std::move(ho)};
+          .heat = std::move(ho),
+          .uncertainty = v.thermal.uncertainty};
 }
 
 sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress,

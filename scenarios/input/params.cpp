@@ -283,6 +283,14 @@ const Param<ThermalSpec> kThermal[] = {
                  "step; false: keep every cell",
       .source = "docs/physics.md"},
      BT_MEMBER(ThermalSpec, lump)},
+    {{.key = "uncertainty",
+      .default_text = "linearised",
+      .meaning = "the P10-P90 band of every interface's substrate and surface temperature and healing over "
+                 "the plausible ranges its material and machine files give (ranges), and its verdict at "
+                 "both ends (marginal where they differ): linearised (one more heat solve per heat input "
+                 "with a range, run two at a time; the healing law's inputs cost no solve) or off",
+      .source = "docs/physics.md (uncertainty of the verdicts)"},
+     BT_MEMBER(ThermalSpec, uncertainty)},
 };
 
 const Param<RenderSpec> kRender[] = {

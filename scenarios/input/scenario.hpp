@@ -23,6 +23,7 @@
 #include "render/camera.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
+#include "thermal/fusion.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -176,6 +177,8 @@ struct ThermalSpec {
   double rel_tol = 1e-3;
   double abs_tol_k = 0.05;
   bool lump = true;  // settled cells lumped (thermal::HeatOptions::lump)
+  // The verdicts' bands over the inputs' plausible ranges (thermal/uncertainty.hpp).
+  thermal::UncertaintyMethod uncertainty = thermal::UncertaintyMethod::kLinearised;
   // Temperature snapshots, s; +infinity: the end of the print.
   std::vector<double> snapshot_times_s;
 };

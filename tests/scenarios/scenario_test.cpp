@@ -414,6 +414,25 @@ TEST(Gates, ParseAndEvaluate) {
   EXPECT_TRUE(evaluate_gates(sc.gates, m)[2].passed);
 }
 
+// The pessimistic gate: too cold at the cold end of each interface's band, beside the nominal one.
+TEST(Gates, OnTheColdEndOfTheBands) {
+  const Scenario sc = load_scenario_text(
+      replace(kGood, "  - porosity < 0.05\n",
+              "  - interfaces.too_cold_fraction <= 10 %\n  - interfaces.too_cold_fraction_p90 <= 10 %\n"),
+      "t");
+  Metrics m;
+  m.interfaces = 100;
+  m.too_cold_fraction = 0.05;
+  m.fusion.too_cold_fraction_p90 = 0.15;
+  const auto r = evaluate_gates(sc.gates, m);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_TRUE(r[0].passed);
+  EXPECT_FALSE(r[1].passed);
+  EXPECT_EQ(r[1].value, 0.15);
+  m.interfaces = 0;  // nothing measured without interfaces
+  EXPECT_NE(evaluate_gates(sc.gates, m)[1].message.find("not measured"), std::string::npos);
+}
+
 // A section's figures as sections.NAME.FIGURE: judged on that section's row, refused for a figure that is
 // not one, and for a section no variant has, with the sections named.
 TEST(Gates, OnASection) {

@@ -92,7 +92,8 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
           .environment = v.machine.environment,
           .mesh = thermal_mesh_options(v),
           .heat = std::move(ho),
-          .uncertainty = v.thermal.uncertainty};
+          .uncertainty = v.thermal.uncertainty,
+          .uncertainty_tolerance = v.thermal.uncertainty_tolerance};
 }
 
 sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress,

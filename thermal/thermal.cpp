@@ -11,6 +11,7 @@ ThermalResult solve_thermal(const ThermalInput& input) {
   UncertaintyPlan plan;
   if (input.uncertainty == UncertaintyMethod::kLinearised) {
     plan = plan_uncertainty(input.material, input.environment, !heat.fan.empty());
+    plan.tolerance_factor = input.uncertainty_tolerance;
     heat.healing_laws = plan.law_materials();
   }
   out.heat =

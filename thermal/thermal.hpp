@@ -34,6 +34,7 @@ struct ThermalInput {
   // The P10-P90 bands of the interfaces over the ranges of material.ranges and environment.ranges
   // (thermal/uncertainty.hpp): off, or linearised at the cost of one more heat solve per heat input.
   UncertaintyMethod uncertainty = UncertaintyMethod::kOff;
+  double uncertainty_tolerance = 1.0;  // the extra solves' tolerances as factors on heat's (> 0)
 };
 
 // What the thermal stage makes.

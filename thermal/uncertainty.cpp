@@ -250,6 +250,8 @@ void estimate_bands(const UncertaintyPlan& plan, const ThermalMesh& mesh, std::s
   o.progress = {};
   o.healing_laws.clear();
   o.sample_interval_s = std::max(o.sample_interval_s, 60.0);
+  o.rel_tol = std::min(0.1, o.rel_tol * plan.tolerance_factor);
+  o.abs_tol_k *= plan.tolerance_factor;
   std::vector<std::vector<InterfaceShift>> shifts(plan.heat.size());
   const auto solve = [&](std::size_t p) {
     const Perturbation& pert = plan.heat[p];

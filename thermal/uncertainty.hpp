@@ -57,6 +57,8 @@ struct UncertaintyPlan {
   Moments log_required_healing;  // ln D_req: likewise
   Moments support_limit_k;       // the support limit: mean's offset, K, and sd
   std::vector<std::string> inputs;  // every input with a range that the estimate uses, in the files' words
+  // The extra heat solves' tolerances, as factors on the base solve's (HeatOptions::rel_tol, abs_tol_k).
+  double tolerance_factor = 1.0;
   // The healing laws of `laws`, for HeatOptions::healing_laws of the base solve.
   std::vector<Material> law_materials() const;
 };

@@ -291,6 +291,13 @@ const Param<ThermalSpec> kThermal[] = {
                  "with a range, run two at a time; the healing law's inputs cost no solve) or off",
       .source = "docs/physics.md (uncertainty of the verdicts)"},
      BT_MEMBER(ThermalSpec, uncertainty)},
+    {{.key = "uncertainty_tolerance",
+      .default_text = "1",
+      .range = {.min = 1, .max = 100},
+      .meaning = "the bands' extra heat solves run at rel_tol and abs_tol times this (rel_tol at most 0.1): "
+                 "cheaper, at the cost of the band's accuracy",
+      .source = "docs/physics.md (uncertainty of the verdicts)"},
+     BT_MEMBER(ThermalSpec, uncertainty_tolerance)},
 };
 
 const Param<RenderSpec> kRender[] = {

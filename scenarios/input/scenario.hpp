@@ -179,6 +179,7 @@ struct ThermalSpec {
   bool lump = true;  // settled cells lumped (thermal::HeatOptions::lump)
   // The verdicts' bands over the inputs' plausible ranges (thermal/uncertainty.hpp).
   thermal::UncertaintyMethod uncertainty = thermal::UncertaintyMethod::kLinearised;
+  double uncertainty_tolerance = 1.0;  // the bands' extra solves' tolerances, as factors on rel_tol, abs_tol
   // Temperature snapshots, s; +infinity: the end of the print.
   std::vector<double> snapshot_times_s;
 };

@@ -41,6 +41,12 @@ double Material::enthalpy_J_kg(double from_c, double to_c) const {
                         : -piecewise_integral(specific_heat_by_temp, to_c, from_c);
 }
 
+const InputRange* find_range(std::span<const InputRange> ranges, std::string_view key) {
+  for (const InputRange& r : ranges)
+    if (r.key == key) return &r;
+  return nullptr;
+}
+
 double Environment::convection_at(double height_mm) const {
   return convection_by_height.empty() ? convection_W_m2K : piecewise(convection_by_height, height_mm);
 }

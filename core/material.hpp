@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -23,6 +24,29 @@ inline constexpr EnumName<HealingLaw> kHealingLawNames[] = {{HealingLaw::kWlf, "
 constexpr std::span<const EnumName<HealingLaw>> enum_names(HealingLaw) {
   return kHealingLawNames;
 }
+
+// How the plausible values of an input spread (docs/physics.md, uncertainty of the verdicts): uniform between
+// two ends, uniform in the logarithm between them (an input known to within a factor, spanning decades), or
+// normal about the file's value with a standard deviation.
+enum class Spread : std::uint8_t { kUniform, kLogUniform, kNormal };
+inline constexpr EnumName<Spread> kSpreadNames[] = {
+    {Spread::kUniform, "uniform"}, {Spread::kLogUniform, "log-uniform"}, {Spread::kNormal, "normal"}};
+constexpr std::span<const EnumName<Spread>> enum_names(Spread) {
+  return kSpreadNames;
+}
+
+// The plausible values of one input that decides the fusion verdicts, as its file's `ranges:` block gives
+// them, in the key's internal units (or as factors on its value where `scale`).
+struct InputRange {
+  std::string
+      key;  // the input's key in its file: "emissivity", "fusion.reptation_time", "environment.ambient"
+  Spread spread = Spread::kUniform;
+  double lo = 0.0, hi = 0.0;  // uniform, log-uniform: the ends, lo <= value <= hi (factors: lo <= 1 <= hi)
+  double sigma = 0.0;         // normal: the standard deviation about the value (a factor's: about 1)
+  bool scale = false;         // lo, hi and sigma are factors on the value
+};
+// The range of `key` in `ranges`, or nullptr.
+const InputRange* find_range(std::span<const InputRange> ranges, std::string_view key);
 
 // A print material's thermal and fusion properties, SI with temperatures in °C.
 struct Material {
@@ -64,6 +88,7 @@ struct Material {
   double healing_min_temp_c = 110.0;        // below this the interface does not heal at all (glassy)
   double required_healing = 0.9;            // degree of healing D_h below which the interface is too cold
   double price_per_kg = 0.0;
+  std::vector<InputRange> ranges;  // the plausible ranges of the inputs above that decide the verdicts
 };
 
 // What surrounds the print: the air and the build table.
@@ -81,6 +106,7 @@ struct Environment {
   // Forced convection on free faces with the part-cooling fan (or air knife) at full output, W/m²K; at an
   // output s (0..1) the faces lose by max(h, s · fan_convection_W_m2K). 0: the machine has none.
   double fan_convection_W_m2K = 0.0;
+  std::vector<InputRange> ranges;  // the plausible ranges of the inputs above (keys environment.*)
 };
 
 }  // namespace beadtwin

@@ -19,6 +19,8 @@ render::Rgb verdict_colour(thermal::Verdict v) {
       return {0.23f, 0.45f, 0.79f};
     case thermal::Verdict::kNoInterface:
       return {0.60f, 0.64f, 0.68f};
+    case thermal::Verdict::kMarginal:
+      return {0.93f, 0.66f, 0.18f};
   }
   return {0.5f, 0.5f, 0.5f};
 }

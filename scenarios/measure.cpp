@@ -47,6 +47,8 @@ Stats3 stats_of(const std::vector<double>& values) {
   return s;
 }
 
+FusionRow fusion_row(const thermal::FusionSummary& f);
+
 Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
                 const thermal::ThermalResult& th) {
   Metrics m;
@@ -92,6 +94,7 @@ Metrics measure(const Variant& v, const Toolpath& tp, const sim::Deposit& d,
     m.mean_healing = part.healing_mean;
     m.still_warm_fraction = part.still_warm_fraction();
     m.max_slump_ratio = part.slump_ratio_max;
+    m.fusion = fusion_row(part);
   }
   return m;
 }
@@ -111,6 +114,15 @@ FusionRow fusion_row(const thermal::FusionSummary& f) {
   row.too_hot_fraction = f.too_hot_fraction();
   row.too_cold_fraction = f.too_cold_fraction();
   row.verdict = f.verdict();
+  row.substrate_band_c = {f.substrate_p10_c, f.substrate_p90_c};
+  row.surface_band_c = {f.surface_p10_c, f.surface_p90_c};
+  row.healing_band = {f.healing_p10, f.healing_p90};
+  row.marginal_fraction = f.share(f.marginal_area_mm2);
+  row.too_hot_fraction_p10 = f.share(f.too_hot_p10_area_mm2);
+  row.too_hot_fraction_p90 = f.share(f.too_hot_p90_area_mm2);
+  row.too_cold_fraction_p10 = f.share(f.too_cold_p10_area_mm2);
+  row.too_cold_fraction_p90 = f.share(f.too_cold_p90_area_mm2);
+  row.marginal = f.marginal_verdict();
   return row;
 }
 

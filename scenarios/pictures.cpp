@@ -165,6 +165,7 @@ Field fusion_field(const thermal::ThermalResult& th, const openvdb::FloatGrid& f
       {Verdict::kOk, "fuses"},
       {Verdict::kTooHot, "too hot: landed on soft material"},
       {Verdict::kTooCold, "too cold: does not heal"},
+      {Verdict::kMarginal, "marginal: changes within the P10-P90 band"},
       {Verdict::kNoInterface, "no interface (on the table)"}};
   for (const auto& [v, label] : kVerdicts) f.categories.push_back({verdict_colour(v), label});
   std::vector<double> by_cell;

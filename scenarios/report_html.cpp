@@ -113,6 +113,25 @@ std::string healing_text(double min, double mean) {
   return std::isfinite(min) ? fmt::format("{:.3f} / {:.3f}", min, mean) : "–";
 }
 
+// A P10-P90 band as "lo–hi" with `spec` for each end, or a dash where it was not estimated.
+std::string band_text(const Band& b, const char* spec) {
+  if (!std::isfinite(b.p10) || !std::isfinite(b.p90)) return "–";
+  return fmt::format(fmt::runtime(spec), b.p10) + "–" + fmt::format(fmt::runtime(spec), b.p90);
+}
+
+// The verdict, and "marginal" beside it where it changes within the bands.
+std::string verdict_text(const FusionRow& f) {
+  return std::string(thermal::to_string(f.verdict)) + (f.marginal ? " (marginal)" : "");
+}
+
+// The table row's class: marginal before the verdict's colour.
+const char* row_class(const FusionRow& f) {
+  if (f.marginal) return "marginal";
+  return f.verdict == thermal::Verdict::kTooHot    ? "hot"
+         : f.verdict == thermal::Verdict::kTooCold ? "cold"
+                                                   : "";
+}
+
 // Whether no layer time would put the layer in the window: no wait cools it enough (a least of +infinity),
 // none is short enough (a most of 0), or the bounds cross.
 bool no_layer_time_would(double min_s, double max_s) {
@@ -376,9 +395,12 @@ std::string pictures_html(const VariantResult& v) {
         "under it slumps under the bead and the roller) <span style=\"background:{}\"></span>too cold (an "
         "interface "
         "that "
-        "does not heal) <span style=\"background:{}\"></span>no interface (on the table alone)</p>",
+        "does not heal) <span style=\"background:{}\"></span>marginal (the verdict changes within the "
+        "P10-P90 band of the inputs' plausible values) <span style=\"background:{}\"></span>no interface "
+        "(on the table alone)</p>",
         hex(verdict_colour(thermal::Verdict::kOk)), hex(verdict_colour(thermal::Verdict::kTooHot)),
-        hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kNoInterface)));
+        hex(verdict_colour(thermal::Verdict::kTooCold)), hex(verdict_colour(thermal::Verdict::kMarginal)),
+        hex(verdict_colour(thermal::Verdict::kNoInterface)));
   for (const auto& img : v.images) {
     if (img.ends_with("sections.png") || img.ends_with("deviation.png")) continue;
     h += fmt::format("<p><img src=\"{}\" alt=\"{} {}\"></p>", esc(img), esc(v.name), esc(img));
@@ -463,17 +485,17 @@ std::string sections_table_html(const std::vector<SectionRow>& sections) {
       "layer time s</th><th>bead m</th><th>material kg</th><th>cost</th><th>interfaces</th><th>substrate "
       "°C "
       "at deposition min/mean/max</th><th>too hot %</th><th>too cold %</th><th>healing min/mean</th>"
-      "<th class=l>verdict</th></tr>";
+      "<th>healing P10–P90</th><th>marginal %</th><th class=l>verdict</th></tr>";
   for (const SectionRow& sr : sections) {
     const Stats3& s = sr.substrate_temp_c;
     h += fmt::format(
-        "<tr><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.0f}</td><td>{:.1f}</td><td>{:.2f}</td>"
-        "<td>{:.2f}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
-        "class=l>{}</td></tr>",
-        esc(sr.name), sr.layers, hms(sr.print_time_s), sr.mean_layer_time_s, sr.print_length_mm / 1000,
-        sr.mass_kg, sr.material_cost, sr.interfaces, substrate_text(s), 100 * sr.too_hot_fraction,
-        100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean),
-        thermal::to_string(sr.verdict));
+        "<tr class=\"{}\"><td class=l>{}</td><td>{}</td><td>{}</td><td>{:.0f}</td><td>{:.1f}</td>"
+        "<td>{:.2f}</td><td>{:.2f}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td>"
+        "<td>{}</td><td>{:.1f}</td><td class=l>{}</td></tr>",
+        row_class(sr), esc(sr.name), sr.layers, hms(sr.print_time_s), sr.mean_layer_time_s,
+        sr.print_length_mm / 1000, sr.mass_kg, sr.material_cost, sr.interfaces, substrate_text(s),
+        100 * sr.too_hot_fraction, 100 * sr.too_cold_fraction, healing_text(sr.healing, sr.healing_mean),
+        band_text(sr.healing_band, "{:.3f}"), 100 * sr.marginal_fraction, verdict_text(sr));
   }
   return h + "</table>";
 }
@@ -482,21 +504,20 @@ std::string layers_table_html(const std::vector<LayerRow>& layers) {
   std::string h =
       "<details open><summary>Layers</summary><table><tr><th>layer</th><th>z mm</th><th "
       "class=l>section</th><th>start s</th>"
-      "<th>duration s</th><th>substrate °C at deposition min/mean/max</th><th>interfaces</th>"
-      "<th>too hot %</th><th>too cold %</th><th>healing min/mean</th><th class=l>verdict</th>"
+      "<th>duration s</th><th>substrate °C at deposition min/mean/max</th><th>substrate °C P10–P90</th>"
+      "<th>interfaces</th><th>too hot %</th><th>too cold %</th><th>healing min/mean</th>"
+      "<th>healing P10–P90</th><th>marginal %</th><th class=l>verdict</th>"
       "<th>layer time for the window s (typical)</th></tr>";
   for (const auto& l : layers) {
     const Stats3& s = l.substrate_temp_c;
     h += fmt::format(
         "<tr class=\"{}\"><td>{}</td><td>{:.1f}</td><td class=l>{}</td><td>{:.0f}</td><td>{:.1f}</td>"
-        "<td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td "
-        "class=l>{}</td><td>{}</td></tr>",
-        l.verdict == thermal::Verdict::kTooHot    ? "hot"
-        : l.verdict == thermal::Verdict::kTooCold ? "cold"
-                                                  : "",
-        l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, substrate_text(s), l.interfaces,
-        100 * l.too_hot_fraction, 100 * l.too_cold_fraction, healing_text(l.healing, l.healing_mean),
-        thermal::to_string(l.verdict), window_text(l));
+        "<td>{}</td><td>{}</td><td>{}</td><td>{:.1f}</td><td>{:.1f}</td><td>{}</td><td>{}</td><td>{:.1f}</td>"
+        "<td class=l>{}</td><td>{}</td></tr>",
+        row_class(l), l.index, l.z_mm, esc(l.section), l.start_s, l.duration_s, substrate_text(s),
+        band_text(l.substrate_band_c, "{:.1f}"), l.interfaces, 100 * l.too_hot_fraction,
+        100 * l.too_cold_fraction, healing_text(l.healing, l.healing_mean),
+        band_text(l.healing_band, "{:.3f}"), 100 * l.marginal_fraction, verdict_text(l), window_text(l));
   }
   return h + "</table></details>";
 }

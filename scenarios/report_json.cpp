@@ -99,6 +99,12 @@ json history_json(const TemperatureHistory& h) {
   return {{"times_s", std::move(times)}, {"layers", std::move(layers)}};
 }
 
+// A P10-P90 band: [p10, p90], null where not estimated.
+json band_json(const Band& b) {
+  if (std::isnan(b.p10) || std::isnan(b.p90)) return nullptr;
+  return json::array({number_or_null(b.p10), number_or_null(b.p90)});
+}
+
 // The numbers of a layer's or a section's interfaces.
 json fusion_json(const FusionRow& f) {
   return {{"substrate_temp_c", stats_json(f.substrate_temp_c)},
@@ -112,7 +118,15 @@ json fusion_json(const FusionRow& f) {
           {"too_cold", f.too_cold},
           {"too_hot_fraction", f.too_hot_fraction},
           {"too_cold_fraction", f.too_cold_fraction},
-          {"verdict", thermal::to_string(f.verdict)}};
+          {"verdict", thermal::to_string(f.verdict)},
+          {"marginal", f.marginal},
+          {"bands",
+           {{"substrate_temp_c", band_json(f.substrate_band_c)},
+            {"surface_temp_c", band_json(f.surface_band_c)},
+            {"healing", band_json(f.healing_band)},
+            {"marginal_fraction", f.marginal_fraction},
+            {"too_hot_fraction", {{"p10", f.too_hot_fraction_p10}, {"p90", f.too_hot_fraction_p90}}},
+            {"too_cold_fraction", {{"p10", f.too_cold_fraction_p10}, {"p90", f.too_cold_fraction_p90}}}}}};
 }
 
 // A declared metric's value: null where it was not measured, a count as an integer.
@@ -132,6 +146,10 @@ json metrics_json(const Metrics& m) {
     std::string pointer = "/" + std::string(d.name);
     std::replace(pointer.begin(), pointer.end(), '.', '/');
     out[json::json_pointer(pointer)] = metric_json(d, m);
+  }
+  if (m.interfaces > 0) {  // the whole run's bands, as a layer's
+    out["interfaces"]["bands"] = fusion_json(m.fusion)["bands"];
+    out["interfaces"]["marginal"] = m.fusion.marginal;
   }
   return out;
 }

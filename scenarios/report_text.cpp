@@ -16,7 +16,7 @@ body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1100px;color:#22
 h1{margin-bottom:.2em} .verdict{display:inline-block;padding:.2em .7em;border-radius:4px;color:#fff;font-weight:600}
 .pass{background:#2e8b57}.fail{background:#c0392b} table{border-collapse:collapse;margin:1em 0;font-size:13px}
 td,th{border:1px solid #ddd;padding:3px 8px;text-align:right} th{background:#f4f5f7} td.l,th.l{text-align:left}
-tr.hot td{background:#fde2df} tr.cold td{background:#dfe8f8} img{max-width:100%;border:1px solid #ddd}
+tr.hot td{background:#fde2df} tr.cold td{background:#dfe8f8} tr.marginal td{background:#fdf0d5} img{max-width:100%;border:1px solid #ddd}
 .legend span{display:inline-block;width:12px;height:12px;margin:0 4px 0 12px;vertical-align:middle}
 details{margin:1em 0} .muted{color:#777} .plot{position:relative;height:300px;margin:1em 0}
 td.better{background:#dff2e4} td.worse{background:#fbe1dd} td.diff{background:#fff3cc} .delta{color:#555;font-size:11px}

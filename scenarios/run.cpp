@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/atomic_file.hpp"
 #include "scenarios/beside.hpp"
@@ -67,6 +68,11 @@ void note_thermal(const thermal::ThermalResult& th, std::vector<std::string>& no
   if (th.heat.ranks > 1)
     notes.push_back(fmt::format("thermal: solved across {} MPI ranks, each a slice of the part by height",
                                 th.heat.ranks));
+  if (!th.uncertain_inputs.empty())
+    notes.push_back(fmt::format(
+        "thermal: P10-P90 bands over the plausible ranges of {} ({} more heat solves, {} more healing "
+        "integrals; thermal.uncertainty: off leaves them out)",
+        fmt::join(th.uncertain_inputs, ", "), th.extra_heat_solves, th.extra_healing_laws));
 }
 
 // What a variant's run shares with the others: the scenario, the pictures' frame, where it writes, how.

@@ -94,7 +94,9 @@ thermal::ThermalInput thermal_input(const Variant& v, const Toolpath& tp, const 
           .material = v.material,
           .environment = v.machine.environment,
           .mesh = thermal_mesh_options(v),
-          .heat = std::move(ho)};
+          .heat = std::move(ho),
+          .uncertainty = v.thermal.uncertainty,
+          .uncertainty_tolerance = v.thermal.uncertainty_tolerance};
 }
 
 sim::Deposit deposit_variant(const Variant& v, const Toolpath& tp, std::function<void(double)> progress,

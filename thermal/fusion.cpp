@@ -20,6 +20,8 @@ std::string_view to_string(Verdict verdict) {
       return "too_cold";
     case Verdict::kNoInterface:
       return "no_interface";
+    case Verdict::kMarginal:
+      return "marginal";
   }
   return "unknown";
 }

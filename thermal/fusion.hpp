@@ -10,7 +10,11 @@
 // continuous there; or Arrhenius throughout.
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string_view>
+
+#include "core/enum_names.hpp"
 
 #include "core/material.hpp"
 
@@ -19,9 +23,20 @@ namespace beadtwin::thermal {
 constexpr double kGasConstant_J_molK = 8.314462618;
 constexpr double kStefanBoltzmann_W_m2K4 = 5.670374419e-8;
 
-// The verdict on an interface (judge_interface); kNoInterface for a cell that has none.
-enum class Verdict { kOk, kTooHot, kTooCold, kNoInterface };
+// The verdict on an interface (judge_interface); kNoInterface for a cell that has none. kMarginal is no
+// interface's verdict: it is what the reports and the fusion map show for an interface (a cell, a layer)
+// whose verdict changes across the P10-P90 band of the inputs' plausible values (thermal/uncertainty.hpp).
+enum class Verdict { kOk, kTooHot, kTooCold, kNoInterface, kMarginal };
 std::string_view to_string(Verdict verdict);
+
+// How the bands of the verdicts over the inputs' plausible ranges are estimated (thermal/uncertainty.hpp):
+// not at all, or linearised from extra solves.
+enum class UncertaintyMethod : std::uint8_t { kOff, kLinearised };
+inline constexpr EnumName<UncertaintyMethod> kUncertaintyMethodNames[] = {
+    {UncertaintyMethod::kOff, "off"}, {UncertaintyMethod::kLinearised, "linearised"}};
+constexpr std::span<const EnumName<UncertaintyMethod>> enum_names(UncertaintyMethod) {
+  return kUncertaintyMethodNames;
+}
 
 // Rate 1/t_w(T) of the healing integral; zero below the material's healing threshold (glassy: no healing)
 // and where the WLF shift diverges (at or below T_g − C2).

@@ -6,8 +6,15 @@
 
 namespace beadtwin::thermal {
 
-HealingIntegrator::HealingIntegrator(const Material& material, const InterfaceIndex& index)
-    : reptation_(material), warm_c_(reptation_.min_temp_c() - 1.0), integral_(index.size(), 0.0) {
+HealingIntegrator::HealingIntegrator(const Material& material, const InterfaceIndex& index,
+                                     std::span<const Material> more_laws)
+    : reptation_(material) {
+  laws_.push_back(reptation_);
+  for (const Material& m : more_laws) laws_.emplace_back(m);
+  double coldest = reptation_.min_temp_c();
+  for (const Reptation& law : laws_) coldest = std::min(coldest, law.min_temp_c());
+  warm_c_ = coldest - 1.0;
+  integral_.assign(laws_.size(), std::vector<double>(index.size(), 0.0));
   reset_lumps(index);
 }
 
@@ -32,13 +39,17 @@ void HealingIntegrator::integrate(const InterfaceIndex& index, double half_s, st
                                   std::span<const double> y1) {
   for_range(0, healing_now_.size(), [&](std::size_t e) {
     const std::uint32_t k = healing_now_[e];
-    integral_[k] += half_s * healing_rate(index, y0, k);
-    integral_[k] += half_s * healing_rate(index, y1, k);
+    const double t0 = interface_temp(index, y0, k), t1 = interface_temp(index, y1, k);
+    for (std::size_t law = 0; law < laws_.size(); ++law) {
+      integral_[law][k] += half_s * laws_[law].rate_per_s(t0);
+      integral_[law][k] += half_s * laws_[law].rate_per_s(t1);
+    }
   });
-  for (const std::uint32_t g : lumps_healing_now_) {
-    lump_integral_[g] += half_s * reptation_.rate_per_s(y0[g]);
-    lump_integral_[g] += half_s * reptation_.rate_per_s(y1[g]);
-  }
+  for (const std::uint32_t g : lumps_healing_now_)
+    for (std::size_t law = 0; law < laws_.size(); ++law) {
+      lump_integral_[law][g] += half_s * laws_[law].rate_per_s(y0[g]);
+      lump_integral_[law][g] += half_s * laws_[law].rate_per_s(y1[g]);
+    }
 }
 
 bool HealingIntegrator::any_warm(const InterfaceIndex& index, std::span<const double> state) const {
@@ -48,13 +59,15 @@ bool HealingIntegrator::any_warm(const InterfaceIndex& index, std::span<const do
 }
 
 void HealingIntegrator::flush_lumps(const InterfaceIndex& index) {
-  for (std::size_t g = 0; g < index.model_cells(); ++g)
-    for (const std::uint32_t k : index.inner(g)) integral_[k] += lump_integral_[g];
-  std::fill(lump_integral_.begin(), lump_integral_.end(), 0.0);
+  for (std::size_t law = 0; law < laws_.size(); ++law) {
+    for (std::size_t g = 0; g < index.model_cells(); ++g)
+      for (const std::uint32_t k : index.inner(g)) integral_[law][k] += lump_integral_[law][g];
+    std::fill(lump_integral_[law].begin(), lump_integral_[law].end(), 0.0);
+  }
 }
 
 void HealingIntegrator::reset_lumps(const InterfaceIndex& index) {
-  lump_integral_.assign(index.model_cells(), 0.0);
+  lump_integral_.assign(laws_.size(), std::vector<double>(index.model_cells(), 0.0));
   warm_.assign(index.model_cells(), 0);
 }
 

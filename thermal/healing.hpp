@@ -24,8 +24,10 @@ namespace beadtwin::thermal {
 // Integrates ∫ dt / t_w(T) of every interface over the integrator's steps, lumped cells included.
 class HealingIntegrator {
  public:
-  // For `index.size()` interfaces between `index.model_cells()` model cells, none healed yet.
-  HealingIntegrator(const Material& material, const InterfaceIndex& index);
+  // For `index.size()` interfaces between `index.model_cells()` model cells, none healed yet: by `material`'s
+  // reptation law, and beside it by each of `more_laws`' (integrals(law)) over the same temperatures.
+  HealingIntegrator(const Material& material, const InterfaceIndex& index,
+                    std::span<const Material> more_laws = {});
 
   // Which interfaces (and lumped cells) heal over a step from state `start` to state `end` (by model cell,
   // the first `born` born): those born (both cells) with a warm cell, each once. True if any.
@@ -42,8 +44,9 @@ class HealingIntegrator {
   // After the cells were lumped anew and `index` with them: its model cells, none of them healed yet.
   void reset_lumps(const InterfaceIndex& index);
 
-  // Per interface, ∫ dt / t_w so far (all of it once the lumps are flushed).
-  std::span<const double> integrals() const { return integral_; }
+  // Per interface, ∫ dt / t_w so far (all of it once the lumps are flushed): by the material's law, or by
+  // more_laws[law - 1].
+  std::span<const double> integrals(std::size_t law = 0) const { return integral_[law]; }
 
   // Whether interface k is at or above the healing threshold in `state` (by model cell, all of `index`'s
   // cells born): the mean of its two cells' temperatures, as it heals.
@@ -55,16 +58,17 @@ class HealingIntegrator {
   bool any_warm(const InterfaceIndex& index, std::span<const double> state) const;
 
  private:
-  double healing_rate(const InterfaceIndex& index, std::span<const double> state, std::uint32_t k) const {
+  static double interface_temp(const InterfaceIndex& index, std::span<const double> state, std::uint32_t k) {
     const auto& cells = index.cells(k);
-    return reptation_.rate_per_s(0.5 * (state[cells[0]] + state[cells[1]]));
+    return 0.5 * (state[cells[0]] + state[cells[1]]);
   }
 
   Reptation reptation_;
-  double warm_c_;                      // a cell above it may heal during a step
-  std::vector<double> integral_;       // per interface
-  std::vector<double> lump_integral_;  // per model cell: ∫ dt / t_w at its temperature since lumped
-  std::vector<char> warm_;             // per model cell, scratch of find
+  std::vector<Reptation> laws_;                     // the material's, then more_laws'
+  double warm_c_;                                   // a cell above it may heal during a step (by any law)
+  std::vector<std::vector<double>> integral_;       // [law][interface]
+  std::vector<std::vector<double>> lump_integral_;  // [law][model cell]: ∫ dt / t_w since lumped
+  std::vector<char> warm_;                          // per model cell, scratch of find
   std::vector<std::uint32_t> healing_now_, lumps_healing_now_;  // what find found
 };
 

@@ -187,7 +187,7 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       t_cap_(t_print_ + std::max(options.cooldown_s, options.max_cooldown_s)),
       interfaces_(list_interfaces(mesh)),
       index_(interfaces_, n_),
-      healing_(material, index_),
+      healing_(material, index_, options.healing_laws),
       history_(mesh, layer_count, t0_, t_end_, options),
       lumper_(options, median_over_cells(n_, [&](std::size_t i) { return model_.mass_kg(i); })),
       model_of_(n_ + 1) {
@@ -369,9 +369,14 @@ void HeatSolve::finish() {
     interfaces_[k].healing_integral = integral[k];
     interfaces_[k].healing = std::min(1.0, std::pow(integral[k], 0.25));
   }
+  for (std::size_t law = 1; law <= options_.healing_laws.size(); ++law) {
+    const std::span<const double> i = healing_.integrals(law);
+    result_.law_integrals.emplace_back(i.begin(), i.end());
+  }
   for (std::uint32_t k = 0; k < interfaces_.size(); ++k) {
     InterfaceResult& r = interfaces_[k];
     r.verdict = judge_interface(r.on_top && r.support.too_hot(), r.healing, material_);
+    r.verdict_cold = r.verdict_hot = r.verdict;
     r.still_warm = healing_.warm(index_, before_, k);
     result_.still_warm += r.still_warm;
     result_.still_warm_area_mm2 += r.still_warm ? r.area_mm2 : 0.0;

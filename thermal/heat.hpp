@@ -62,7 +62,11 @@ struct HeatOptions {
   // takes effect at the first birth group at or after it (within a birth interval), and during the cooldown
   // when it comes.
   std::vector<FanSetting> fan;
-  SupportLoad support;             // the roller or tamper on a new bead (the too-hot verdict)
+  SupportLoad support;  // the roller or tamper on a new bead (the too-hot verdict)
+  // Further healing laws (each a material's reptation law: thermal/fusion.hpp Reptation) whose healing
+  // integrals are followed beside the material's own over the same temperatures (HeatResult::law_integrals):
+  // what the healing law's inputs do to healing costs no further heat solve.
+  std::vector<Material> healing_laws;
   double sample_interval_s = 5.0;  // for the layers' temperature history, > 0
   int krylov_dimension = 10;
   // Settled cells lumped (docs/physics.md, settled cells): when at least lump_check_cells cells (and a
@@ -120,14 +124,31 @@ struct InterfaceResult {
   // max_cooldown_s): its healing is what it had reached by then.
   bool still_warm = false;
   Verdict verdict = Verdict::kOk;
+  // Over the plausible ranges of the inputs (thermal/uncertainty.hpp; NaN where not estimated): the P10 and
+  // P90 of the substrate's and the surface's temperature as the younger was born (on_top only), °C, and of
+  // the healing min(1, D_h).
+  double substrate_p10_c = std::numeric_limits<double>::quiet_NaN();
+  double substrate_p90_c = std::numeric_limits<double>::quiet_NaN();
+  double surface_p10_c = std::numeric_limits<double>::quiet_NaN();
+  double surface_p90_c = std::numeric_limits<double>::quiet_NaN();
+  double healing_p10 = std::numeric_limits<double>::quiet_NaN();
+  double healing_p90 = std::numeric_limits<double>::quiet_NaN();
+  // The verdict at the cold end of the bands (P10 of the substrate's temperature and of the healing, each
+  // against its threshold with the threshold's own spread) and at the hot end (P90); both the verdict where
+  // not estimated.
+  Verdict verdict_cold = Verdict::kOk, verdict_hot = Verdict::kOk;
+  // The verdict changes within the bands: shown as marginal.
+  bool marginal() const { return verdict_cold != verdict_hot; }
 };
 
 // What solve_heat found: every interface, the layers' history, snapshots, energy and the integrator's work.
 struct HeatResult {
   std::vector<InterfaceResult> interfaces;  // one per interface link, in link order
-  double birth_interval_s = 0.0;            // the one used
-  double automatic_interval_s = 0.0;        // a fifth of the median time constant (before any lengthening)
-  std::vector<std::string> notes;           // what the solve chose for the user (a longer birth interval)
+  // [HeatOptions::healing_laws][interface]: ∫ dt / t_w under that law, as InterfaceResult::healing_integral.
+  std::vector<std::vector<double>> law_integrals;
+  double birth_interval_s = 0.0;      // the one used
+  double automatic_interval_s = 0.0;  // a fifth of the median time constant (before any lengthening)
+  std::vector<std::string> notes;     // what the solve chose for the user (a longer birth interval)
   std::size_t birth_events = 0;
   std::size_t view_updates = 0;        // cells' view factors found (thermal/view_factor.hpp)
   std::size_t view_rays = 0;           // rays cast for them

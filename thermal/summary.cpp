@@ -19,6 +19,31 @@ void finish(TemperatureStats& s, double area_mm2) {
   if (!std::isnan(s.mean_c)) s.mean_c = area_mm2 > 0.0 ? s.mean_c / area_mm2 : s.min_c;
 }
 
+// Adds `value` over `area_mm2` to the area-weighted sum `sum` (NaN until the first; NaN values left out).
+void add_weighted(double& sum, double value, double area_mm2) {
+  if (!std::isnan(value)) sum = (std::isnan(sum) ? 0.0 : sum) + area_mm2 * value;
+}
+
+void add_bands(FusionSummary& s, const InterfaceResult& r) {
+  if (r.on_top) {
+    add_weighted(s.substrate_p10_c, r.substrate_p10_c, r.area_mm2);
+    add_weighted(s.substrate_p90_c, r.substrate_p90_c, r.area_mm2);
+    add_weighted(s.surface_p10_c, r.surface_p10_c, r.area_mm2);
+    add_weighted(s.surface_p90_c, r.surface_p90_c, r.area_mm2);
+  }
+  add_weighted(s.healing_p10, r.healing_p10, r.area_mm2);
+  add_weighted(s.healing_p90, r.healing_p90, r.area_mm2);
+  if (r.marginal()) {
+    ++s.marginal;
+    s.marginal_area_mm2 += r.area_mm2;
+  }
+  // Too hot at the hot end, too cold at the cold end: the pessimistic ends; the other two the optimistic.
+  s.too_hot_p90_area_mm2 += r.verdict_hot == Verdict::kTooHot ? r.area_mm2 : 0.0;
+  s.too_hot_p10_area_mm2 += r.verdict_cold == Verdict::kTooHot ? r.area_mm2 : 0.0;
+  s.too_cold_p90_area_mm2 += r.verdict_cold == Verdict::kTooCold ? r.area_mm2 : 0.0;
+  s.too_cold_p10_area_mm2 += r.verdict_hot == Verdict::kTooCold ? r.area_mm2 : 0.0;
+}
+
 void add(FusionSummary& s, const InterfaceResult& r) {
   ++s.interfaces;
   s.area_mm2 += r.area_mm2;
@@ -29,6 +54,7 @@ void add(FusionSummary& s, const InterfaceResult& r) {
     if (r.support.allowed_mm > 0.0)
       s.slump_ratio_max = std::fmax(s.slump_ratio_max, r.support.slump_mm / r.support.allowed_mm);
   }
+  add_bands(s, r);
   s.healing_min = std::isnan(s.healing_min) ? r.healing : std::min(s.healing_min, r.healing);
   s.healing_mean = (std::isnan(s.healing_mean) ? 0.0 : s.healing_mean) + r.area_mm2 * r.healing;
   if (r.still_warm) {
@@ -48,6 +74,10 @@ void finish(FusionSummary& s, double on_top_area_mm2, double limited_area_mm2) {
   finish(s.substrate, on_top_area_mm2);
   finish(s.surface, on_top_area_mm2);
   finish(s.support_limit, limited_area_mm2);
+  for (double* t : {&s.substrate_p10_c, &s.substrate_p90_c, &s.surface_p10_c, &s.surface_p90_c})
+    if (!std::isnan(*t)) *t = on_top_area_mm2 > 0.0 ? *t / on_top_area_mm2 : kNaN;
+  for (double* h : {&s.healing_p10, &s.healing_p90})
+    if (!std::isnan(*h)) *h = s.area_mm2 > 0.0 ? *h / s.area_mm2 : kNaN;
   if (!std::isnan(s.healing_mean))
     s.healing_mean = s.area_mm2 > 0.0 ? s.healing_mean / s.area_mm2 : s.healing_min;
 }
@@ -55,8 +85,10 @@ void finish(FusionSummary& s, double on_top_area_mm2, double limited_area_mm2) {
 int severity(Verdict v) {
   switch (v) {
     case Verdict::kTooHot:
-      return 3;
+      return 4;
     case Verdict::kTooCold:
+      return 3;
+    case Verdict::kMarginal:
       return 2;
     case Verdict::kOk:
       return 1;
@@ -68,10 +100,23 @@ int severity(Verdict v) {
 
 }  // namespace
 
+namespace {
+
+Verdict verdict_of(const FusionSummary& s, double too_hot_mm2, double too_cold_mm2) {
+  if (s.interfaces == 0) return Verdict::kNoInterface;
+  if (std::max(too_hot_mm2, too_cold_mm2) < kVerdictShare * s.area_mm2) return Verdict::kOk;
+  return too_hot_mm2 >= too_cold_mm2 ? Verdict::kTooHot : Verdict::kTooCold;
+}
+
+}  // namespace
+
 Verdict FusionSummary::verdict() const {
-  if (interfaces == 0) return Verdict::kNoInterface;
-  if (std::max(too_hot_area_mm2, too_cold_area_mm2) < kVerdictShare * area_mm2) return Verdict::kOk;
-  return too_hot_area_mm2 >= too_cold_area_mm2 ? Verdict::kTooHot : Verdict::kTooCold;
+  return verdict_of(*this, too_hot_area_mm2, too_cold_area_mm2);
+}
+
+Verdict FusionSummary::verdict_at(bool pessimistic) const {
+  return pessimistic ? verdict_of(*this, too_hot_p90_area_mm2, too_cold_p90_area_mm2)
+                     : verdict_of(*this, too_hot_p10_area_mm2, too_cold_p10_area_mm2);
 }
 
 std::vector<FusionSummary> summarise_layers(const ThermalMesh& mesh, const HeatResult& heat,
@@ -194,8 +239,10 @@ std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<co
 
 std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& heat) {
   std::vector<Verdict> out(mesh.cells.size(), Verdict::kNoInterface);
-  for (const InterfaceResult& r : heat.interfaces)
-    if (severity(r.verdict) > severity(out[r.younger])) out[r.younger] = r.verdict;
+  for (const InterfaceResult& r : heat.interfaces) {
+    const Verdict v = r.marginal() ? Verdict::kMarginal : r.verdict;
+    if (severity(v) > severity(out[r.younger])) out[r.younger] = v;
+  }
   return out;
 }
 

@@ -39,6 +39,24 @@ struct FusionSummary {
   double too_hot_area_mm2 = 0.0, too_cold_area_mm2 = 0.0;
   double too_hot_fraction() const { return area_mm2 > 0.0 ? too_hot_area_mm2 / area_mm2 : 0.0; }
   double too_cold_fraction() const { return area_mm2 > 0.0 ? too_cold_area_mm2 / area_mm2 : 0.0; }
+  // The bands over the inputs' plausible ranges (InterfaceResult; NaN where not estimated): the area-weighted
+  // means of the interfaces' P10s and of their P90s (of the on-top ones for the temperatures). The inputs
+  // move every interface the same way, so this is the band of the mean when they move together, and no
+  // narrower than the linearised band of the mean otherwise.
+  double substrate_p10_c = kNaN, substrate_p90_c = kNaN, surface_p10_c = kNaN, surface_p90_c = kNaN;
+  double healing_p10 = kNaN, healing_p90 = kNaN;
+  // Interfaces whose verdict changes within their bands (marginal) and their area; the area too hot or too
+  // cold at the pessimistic end of each one's bands (p90: the hot end for too hot, the cold end for too
+  // cold) and at the optimistic end (p10).
+  std::size_t marginal = 0;
+  double marginal_area_mm2 = 0.0;
+  double too_hot_p90_area_mm2 = 0.0, too_hot_p10_area_mm2 = 0.0;
+  double too_cold_p90_area_mm2 = 0.0, too_cold_p10_area_mm2 = 0.0;
+  double share(double area) const { return area_mm2 > 0.0 ? area / area_mm2 : 0.0; }
+  // The verdict as verdict() gives it from the pessimistic (p90) or the optimistic (p10) areas; marginal
+  // when they differ from each other.
+  Verdict verdict_at(bool pessimistic) const;
+  bool marginal_verdict() const { return verdict_at(true) != verdict_at(false); }
   // Interfaces still at or above the healing threshold when the healing integral ended, and their area.
   std::size_t still_warm = 0;
   double still_warm_area_mm2 = 0.0;
@@ -86,8 +104,9 @@ FusionSummary summarise_part(const HeatResult& heat);
 std::vector<FusionSummary> summarise_groups(const HeatResult& heat, std::span<const int> group_of_cell,
                                             std::size_t group_count);
 
-// Per cell, its worst interface as the younger one (too hot before too cold before ok); kNoInterface for a
-// cell that landed on nothing but the table and touches nothing older.
+// Per cell, its worst interface as the younger one (too hot before too cold before marginal before ok, an
+// interface whose verdict changes within its bands counting as marginal); kNoInterface for a cell that landed
+// on nothing but the table and touches nothing older.
 std::vector<Verdict> cell_verdicts(const ThermalMesh& mesh, const HeatResult& heat);
 
 // Per cell, the temperature of what it landed on as it was born, °C: the area-weighted mean substrate

@@ -6,6 +6,8 @@
 // (thermal/summary.hpp). It reads the toolpath and the deposit and nothing of how they were made.
 #pragma once
 
+#include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/material.hpp"
@@ -15,6 +17,7 @@
 #include "thermal/heat.hpp"
 #include "thermal/mesh.hpp"
 #include "thermal/summary.hpp"
+#include "thermal/uncertainty.hpp"
 
 namespace beadtwin::thermal {
 
@@ -28,6 +31,10 @@ struct ThermalInput {
   // The integrator, births, lumping, the history and snapshot times (s, from the print's start), the
   // progress callback and the MPI ranks the solve is shared among.
   HeatOptions heat;
+  // The P10-P90 bands of the interfaces over the ranges of material.ranges and environment.ranges
+  // (thermal/uncertainty.hpp): off, or linearised at the cost of one more heat solve per heat input.
+  UncertaintyMethod uncertainty = UncertaintyMethod::kOff;
+  double uncertainty_tolerance = 1.0;  // the extra solves' tolerances as factors on heat's (> 0)
 };
 
 // What the thermal stage makes.
@@ -36,6 +43,10 @@ struct ThermalResult {
   HeatResult heat;
   std::vector<FusionSummary> layers;  // parallel to Toolpath::layers
   std::vector<Verdict> cells;  // per thermal cell, its worst interface (cell_verdicts), for the fusion map
+  // With the bands estimated: the inputs with a range that they use, the extra heat solves and healing
+  // integrals they cost; empty and 0 without.
+  std::vector<std::string> uncertain_inputs;
+  std::size_t extra_heat_solves = 0, extra_healing_laws = 0;
 };
 
 // Builds the thermal mesh of `input.deposit`, solves its heat transfer from the first birth to the end of

@@ -211,6 +211,13 @@ const Param<Machine> kMachine[] = {
           "convection (0: no fan)",
       .source = "estimate per machine"},
      BT_MEMBER(Machine, environment.fan_convection_W_m2K)},
+    {{.key = "ranges",
+      .meaning = "plausible ranges of the environment's inputs that decide the fusion verdicts, by their "
+                 "keys: environment.ambient, environment.bed_temp, environment.convection, "
+                 "environment.bed_contact, environment.fan_convection; written as a material's ranges",
+      .source = "docs/physics.md (uncertainty of the verdicts)",
+      .derived = true,
+      .form = "map of key: range"}},
     {{.key = "gcode.units",
       .default_text = "in",
       .meaning = "units of the print program: in or mm",
@@ -470,6 +477,17 @@ const Param<Material> kMaterial[] = {
       .meaning = "where the values come from (free text, kept with the file)",
       .derived = true},
      BT_MEMBER(Material, sources)},
+    {{.key = "ranges",
+      .meaning =
+          "plausible ranges of the inputs that decide the fusion verdicts, by their keys: density, "
+          "specific_heat, conductivity (factors: {scale: [lo, hi]}), emissivity, deposition_temp, "
+          "glass_transition, fusion.viscosity, fusion.max_slump, fusion.reptation_time, fusion.wlf_c1, "
+          "fusion.wlf_c2, fusion.activation_energy, fusion.required_healing; each [lo, hi] "
+          "(uniform), {range: [lo, hi], distribution: log-uniform} or {distribution: normal, sigma: "
+          "s}, and must contain the value (thermal.uncertainty)",
+      .source = "docs/physics.md (uncertainty of the verdicts)",
+      .derived = true,
+      .form = "map of key: range"}},
 };
 
 }  // namespace

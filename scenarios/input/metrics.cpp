@@ -35,6 +35,12 @@ template <auto Member>
 std::optional<double> section(const SectionRow& s) {
   return as_value(s.*Member);
 }
+// The whole part's figures of its interfaces (Metrics::fusion); unset without interfaces.
+template <auto Member>
+std::optional<double> fusion(const Metrics& m) {
+  return m.interfaces > 0 ? std::optional<double>(m.fusion.*Member) : std::nullopt;
+}
+
 template <double Stats3::*Member>
 std::optional<double> layer_time(const Metrics& m) {
   return m.layer_time_s.*Member;
@@ -102,6 +108,26 @@ const MetricDef kMetrics[] = {
      "hot; unset where no bead landed on another)"},
     {"interfaces.too_cold_fraction", U::kFraction, Better::kLower, kGate, part<&Metrics::too_cold_fraction>,
      "share of the interface area that does not heal"},
+    {"interfaces.too_cold_fraction_p90", U::kFraction, Better::kLower, kGate,
+     fusion<&FusionRow::too_cold_fraction_p90>,
+     "share of the interface area too cold at the cold end of each interface's P10-P90 band over the inputs' "
+     "plausible ranges (thermal.uncertainty; the pessimistic too_cold_fraction, equal to it when off)"},
+    {"interfaces.too_cold_fraction_p10", U::kFraction, Better::kLower, kGate,
+     fusion<&FusionRow::too_cold_fraction_p10>,
+     "share of the interface area too cold even at the warm end of each one's band (the optimistic "
+     "too_cold_fraction)"},
+    {"interfaces.too_hot_fraction_p90", U::kFraction, Better::kLower, kGate,
+     fusion<&FusionRow::too_hot_fraction_p90>,
+     "share of the interface area too hot at the hot end of each one's band (the pessimistic "
+     "too_hot_fraction)"},
+    {"interfaces.too_hot_fraction_p10", U::kFraction, Better::kLower, kGate,
+     fusion<&FusionRow::too_hot_fraction_p10>,
+     "share of the interface area too hot even at the cool end of each one's band (the optimistic "
+     "too_hot_fraction)"},
+    {"interfaces.marginal_fraction", U::kFraction, Better::kLower, kGate,
+     fusion<&FusionRow::marginal_fraction>,
+     "share of the interface area whose verdict changes within its P10-P90 band (marginal; 0 without "
+     "thermal.uncertainty)"},
     {"interfaces.min_healing", U::kRatio, Better::kHigher, kGate, healing<Metrics, &Metrics::min_healing>,
      "least degree of healing over the interfaces (1: fully healed; unset without interfaces)"},
     {"interfaces.mean_healing", U::kRatio, Better::kHigher, kGate, healing<Metrics, &Metrics::mean_healing>,
@@ -182,6 +208,11 @@ const SectionMetricDef kSectionMetrics[] = {
      "least degree of healing over them (unset without interfaces)"},
     {"interfaces.mean_healing", U::kRatio, Better::kHigher, kGate,
      healing<SectionRow, &SectionRow::healing_mean>, "degree of healing, area-weighted mean over them"},
+    {"interfaces.too_cold_fraction_p90", U::kFraction, Better::kLower, kGate,
+     section<&SectionRow::too_cold_fraction_p90>,
+     "share of their area too cold at the cold end of each one's P10-P90 band"},
+    {"interfaces.marginal_fraction", U::kFraction, Better::kLower, kGate,
+     section<&SectionRow::marginal_fraction>, "share of their area whose verdict changes within its band"},
 };
 
 constexpr std::string_view kSectionPrefix = "sections.";

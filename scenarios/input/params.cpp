@@ -290,6 +290,22 @@ const Param<ThermalSpec> kThermal[] = {
                  "false: every open face radiates to the air over its whole hemisphere",
       .source = "docs/physics.md"},
      BT_MEMBER(ThermalSpec, view_factors)},
+    {{.key = "uncertainty",
+      .default_text = "off",
+      .meaning = "the P10-P90 band of every interface's substrate and surface temperature and healing over "
+                 "the plausible ranges its material and machine files give (ranges), and its verdict at "
+                 "both ends (marginal where they differ): linearised (one more heat solve per heat input "
+                 "with a range, run two at a time; the healing law's inputs cost no solve: about 8 times the "
+                 "thermal stage's time) or off",
+      .source = "docs/physics.md (uncertainty of the verdicts)"},
+     BT_MEMBER(ThermalSpec, uncertainty)},
+    {{.key = "uncertainty_tolerance",
+      .default_text = "1",
+      .range = {.min = 1, .max = 100},
+      .meaning = "the bands' extra heat solves run at rel_tol and abs_tol times this (rel_tol at most 0.1): "
+                 "cheaper, at the cost of the band's accuracy",
+      .source = "docs/physics.md (uncertainty of the verdicts)"},
+     BT_MEMBER(ThermalSpec, uncertainty_tolerance)},
 };
 
 const Param<RenderSpec> kRender[] = {

@@ -20,6 +20,11 @@ struct Stats3 {
   double min = 0, mean = 0, max = 0;
 };
 
+// A P10-P90 band; NaN where not estimated.
+struct Band {
+  double p10 = std::numeric_limits<double>::quiet_NaN(), p90 = std::numeric_limits<double>::quiet_NaN();
+};
+
 // The printed part against its CAD (sim/cad_compare.hpp, docs/physics.md), beyond the two headline numbers.
 struct CadMetrics {
   double max_stock_mm = 0, mean_stock_mm = 0;                      // over the CAD surface, area-weighted
@@ -55,6 +60,16 @@ struct FusionRow {
   int too_hot = 0, too_cold = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0;
   thermal::Verdict verdict = thermal::Verdict::kNoInterface;
+  // Over the inputs' plausible ranges (thermal.uncertainty; thermal::FusionSummary): the P10-P90 bands of the
+  // substrate's and the surface's mean temperature and of the mean healing (NaN without them), the share of
+  // the area whose verdict changes within its bands, the shares too hot and too cold at the pessimistic
+  // (p90) and optimistic (p10) end of each interface's bands, and whether the verdict, taken at either end,
+  // changes (marginal).
+  Band substrate_band_c, surface_band_c, healing_band;
+  double marginal_fraction = 0;
+  double too_hot_fraction_p10 = 0, too_hot_fraction_p90 = 0, too_cold_fraction_p10 = 0,
+         too_cold_fraction_p90 = 0;
+  bool marginal = false;
 };
 
 // A section's interfaces, as LayerRow has them per layer, and what it takes to print: its layers, the
@@ -84,6 +99,8 @@ struct Metrics {
   std::optional<CadMetrics> cad;
   int interfaces = 0;
   double too_hot_fraction = 0, too_cold_fraction = 0, min_healing = 0, mean_healing = 0;
+  // The whole part's bands and shares over the inputs' plausible ranges, as FusionRow has them per layer.
+  FusionRow fusion;
   // Share of the interface area still at or above the healing threshold when the healing integral ended.
   double still_warm_fraction = 0;
   // The most the soft material under a landing bead slumped, over what the material allows; NaN: none landed

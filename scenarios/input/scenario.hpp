@@ -23,6 +23,7 @@
 #include "render/camera.hpp"
 #include "slicer/mesh.hpp"
 #include "slicer/plan.hpp"
+#include "thermal/fusion.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -179,6 +180,10 @@ struct ThermalSpec {
   double abs_tol_k = 0.05;
   bool lump = true;          // settled cells lumped (thermal::HeatOptions::lump)
   bool view_factors = true;  // radiation with each face's view of the sky (thermal::HeatOptions)
+  // The verdicts' bands over the inputs' plausible ranges (thermal/uncertainty.hpp).
+  // Off by default: the bands cost one more heat solve per heat input (docs/physics.md).
+  thermal::UncertaintyMethod uncertainty = thermal::UncertaintyMethod::kOff;
+  double uncertainty_tolerance = 1.0;  // the bands' extra solves' tolerances, as factors on rel_tol, abs_tol
   // Temperature snapshots, s; +infinity: the end of the print.
   std::vector<double> snapshot_times_s;
 };

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "scenarios/input/params.hpp"
+#include "scenarios/input/ranges.hpp"
 
 namespace beadtwin::scenarios {
 
@@ -64,11 +65,47 @@ void check_extruder(BlockReader& r, const Machine& m) {
         "a constant feed runs from melt on to melt off: give the machine gcode.melt_on and gcode.melt_off");
 }
 
+// The material's inputs that take a range, at their values.
+std::vector<RangeKey> material_range_keys(const Material& m) {
+  using D = Dimension;
+  const bool table = !m.specific_heat_by_temp.empty();
+  return {
+      {"density", D::kDensity, m.density_kg_m3},
+      {"specific_heat", D::kSpecificHeat, m.specific_heat_J_kgK, table,
+       " (the material gives specific_heat_by_temp, which the factors scale)"},
+      {"conductivity", D::kConductivity, m.conductivity_through_W_mK, true,
+       " (the three conductivities move by one factor)"},
+      {"emissivity", D::kFraction, m.emissivity},
+      {"deposition_temp", D::kTemperature, m.deposition_temp_c},
+      {"glass_transition", D::kTemperature, m.glass_transition_c},
+      {"fusion.viscosity", D::kViscosity, m.viscosity_ref_Pa_s},
+      {"fusion.max_slump", D::kFraction, m.max_slump},
+      {"fusion.reptation_time", D::kTime, m.reptation_time_ref_s},
+      {"fusion.wlf_c1", D::kDimensionless, m.wlf_c1},
+      {"fusion.wlf_c2", D::kDimensionless, m.wlf_c2_k},
+      {"fusion.activation_energy", D::kMolarEnergy, m.healing_activation_J_mol},
+      {"fusion.required_healing", D::kFraction, m.required_healing},
+  };
+}
+
+std::vector<RangeKey> environment_range_keys(const Environment& e) {
+  using D = Dimension;
+  return {
+      {"environment.ambient", D::kTemperature, e.ambient_c},
+      {"environment.bed_temp", D::kTemperature, e.bed_temp_c},
+      // Read as factors on the value, which scale convection_by_height alike where the machine gives it.
+      {"environment.convection", D::kHeatTransferCoeff, e.convection_W_m2K},
+      {"environment.bed_contact", D::kHeatTransferCoeff, e.bed_contact_W_m2K},
+      {"environment.fan_convection", D::kHeatTransferCoeff, e.fan_convection_W_m2K},
+  };
+}
+
 }  // namespace
 
 Machine read_machine(BlockReader& r) {
   Machine m;
   r.read(machine_params(), m);
+  m.environment.ranges = read_ranges(r, environment_range_keys(m.environment));
   check_extruder(r, m);
   if (m.rapid_g0) m.dialect.rapid_feed_mm_s = m.motion.max_travel_mm_s;
   r.finish(machine_params());
@@ -90,6 +127,7 @@ Material read_material(BlockReader& r) {
            "this material gives specific_heat_by_temp, which the heat solve uses instead: set "
            "material.specific_heat_by_temp, or set it to null as well to use this one value");
   if (std::isnan(m.softening_temp_c)) m.softening_temp_c = m.glass_transition_c;
+  m.ranges = read_ranges(r, material_range_keys(m));
   r.finish(material_params());
   return m;
 }

@@ -43,6 +43,11 @@ Metrics distinct_metrics() {
   m.mean_healing = 0.97;
   m.still_warm_fraction = 0.015;
   m.max_slump_ratio = 0.35;
+  m.fusion.too_cold_fraction_p90 = 0.13;
+  m.fusion.too_cold_fraction_p10 = 0.05;
+  m.fusion.too_hot_fraction_p90 = 0.06;
+  m.fusion.too_hot_fraction_p10 = 0.03;
+  m.fusion.marginal_fraction = 0.09;
   m.layer_time_s = {280, 300, 330};
   m.extruder_demand = 0.83;
   m.planned_voids = 2;
@@ -76,6 +81,8 @@ Metrics distinct_metrics() {
   floor.too_cold_fraction = 0.02;
   floor.healing = 0.71;
   floor.healing_mean = 0.98;
+  floor.too_cold_fraction_p90 = 0.035;
+  floor.marginal_fraction = 0.025;
   SectionRow walls = floor;
   walls.name = "walls";
   walls.interfaces = 0;  // nothing to heal
@@ -109,6 +116,11 @@ const std::map<std::string, double> kExpected = {
     {"interfaces.mean_healing", 0.97},
     {"interfaces.still_warm_fraction", 0.015},
     {"interfaces.max_slump_ratio", 0.35},
+    {"interfaces.too_cold_fraction_p90", 0.13},
+    {"interfaces.too_cold_fraction_p10", 0.05},
+    {"interfaces.too_hot_fraction_p90", 0.06},
+    {"interfaces.too_hot_fraction_p10", 0.03},
+    {"interfaces.marginal_fraction", 0.09},
     {"layer_time_s.min", 280},
     {"layer_time_s.mean", 300},
     {"layer_time_s.max", 330},
@@ -171,6 +183,8 @@ TEST(Metrics, SectionFiguresAreNamedBySection) {
   EXPECT_EQ(m.get("sections.floor.interfaces.too_cold_fraction"), 0.02);
   EXPECT_EQ(m.get("sections.floor.interfaces.min_healing"), 0.71);
   EXPECT_EQ(m.get("sections.floor.interfaces.mean_healing"), 0.98);
+  EXPECT_EQ(m.get("sections.floor.interfaces.too_cold_fraction_p90"), 0.035);
+  EXPECT_EQ(m.get("sections.floor.interfaces.marginal_fraction"), 0.025);
   EXPECT_EQ(m.get("sections.walls.interfaces.min_healing"), std::nullopt);  // no interface
   EXPECT_EQ(m.get("sections.roof.print_time_s"), std::nullopt);             // no such section
   EXPECT_EQ(gate_metric_section("sections.my.walls.mass_kg"), "my.walls");

@@ -342,9 +342,17 @@ TEST(Run, DefaultScenarioMeasuresThePartAgainstItsCad) {
   RunOptions o;
   o.out_dir = std::filesystem::temp_directory_path() / "beadtwin_run_default";
   std::filesystem::remove_all(o.out_dir);
-  (void)run_scenario(sc, o);
+  const RunResult r = run_scenario(sc, o);
   const auto j = nlohmann::json::parse(read_file(o.out_dir / "report.json"));
-  ASSERT_EQ(j["variants"].size(), 1u);
+  ASSERT_EQ(j["variants"].size(), 2u);
+  // What the default shows: the cautious baseline's layers come too late to heal and it fails the too-cold
+  // gate; the faster layers its window points to carry and heal, and pass every gate.
+  ASSERT_EQ(r.variants.size(), 2u);
+  EXPECT_FALSE(r.variants[0].passed);
+  EXPECT_GT(r.variants[0].metrics.too_cold_fraction, 0.3);
+  EXPECT_LT(r.variants[0].metrics.too_hot_fraction, 0.05);
+  EXPECT_TRUE(r.variants[1].passed);
+  EXPECT_LT(r.variants[1].metrics.too_cold_fraction, 0.1);
   const auto& m = j["variants"][0]["metrics"];
   ASSERT_TRUE(m["min_stock_mm"].is_number()) << m.dump();
   ASSERT_TRUE(m["undercut_fraction"].is_number());

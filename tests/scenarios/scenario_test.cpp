@@ -70,7 +70,11 @@ InputError load_error(const std::string& text) {
 TEST(Scenario, DefaultScenarioIsEmbeddedAndValid) {
   const Scenario sc = load_default_scenario();
   EXPECT_EQ(sc.name, "lsam-open-box");
-  ASSERT_EQ(sc.variants.size(), 1u);
+  // The cautious baseline and the faster layers the report's window points to.
+  ASSERT_EQ(sc.variants.size(), 2u);
+  EXPECT_EQ(sc.variants[1].name, "faster-layers");
+  EXPECT_GT(sc.variants[1].sections[1].print_speed_mm_s, sc.variants[0].sections[1].print_speed_mm_s);
+  EXPECT_GT(sc.variants[1].sections[0].print_speed_mm_s, sc.variants[0].sections[0].print_speed_mm_s);
   const Variant& v = sc.variants[0];
   ASSERT_EQ(v.sections.size(), 2u);
   EXPECT_EQ(v.sections[0].boundary.passes, 2);
@@ -412,6 +416,25 @@ TEST(Gates, ParseAndEvaluate) {
   EXPECT_FALSE(r[2].passed);
   m.too_cold_fraction = 0.1;
   EXPECT_TRUE(evaluate_gates(sc.gates, m)[2].passed);
+}
+
+// The pessimistic gate: too cold at the cold end of each interface's band, beside the nominal one.
+TEST(Gates, OnTheColdEndOfTheBands) {
+  const Scenario sc = load_scenario_text(
+      replace(kGood, "  - porosity < 0.05\n",
+              "  - interfaces.too_cold_fraction <= 10 %\n  - interfaces.too_cold_fraction_p90 <= 10 %\n"),
+      "t");
+  Metrics m;
+  m.interfaces = 100;
+  m.too_cold_fraction = 0.05;
+  m.fusion.too_cold_fraction_p90 = 0.15;
+  const auto r = evaluate_gates(sc.gates, m);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_TRUE(r[0].passed);
+  EXPECT_FALSE(r[1].passed);
+  EXPECT_EQ(r[1].value, 0.15);
+  m.interfaces = 0;  // nothing measured without interfaces
+  EXPECT_NE(evaluate_gates(sc.gates, m)[1].message.find("not measured"), std::string::npos);
 }
 
 // A section's figures as sections.NAME.FIGURE: judged on that section's row, refused for a figure that is

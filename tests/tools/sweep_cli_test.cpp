@@ -171,6 +171,9 @@ TEST(Sweep, AnEditedMaterialFileBesideTheScenarioStartsItAfresh) {
   // A denser material: both variants run again and weigh more.
   std::string denser = shipped;
   denser.replace(denser.find("density: 1140 kg/m3"), 19, "density: 1300 kg/m3");
+  // Its plausible range with it: a file's value must lie in its own range.
+  const std::string range = "density: [1100 kg/m3, 1180 kg/m3]";
+  denser.replace(denser.find(range), range.size(), "density: [1250 kg/m3, 1350 kg/m3]");
   std::ofstream(dir / "materials/mine.yaml") << denser;
   const auto edited = beadtwin_cmd(cmd);
   ASSERT_EQ(edited.code, 0) << edited.output;

@@ -224,7 +224,8 @@ void BandSum::add_log_integral(double mean_offset, double sd) {
   var_[2] += sd * sd;
 }
 
-void BandSum::finish(const UncertaintyPlan& plan, const Material& material, InterfaceResult& r) const {
+void BandSum::finish(const UncertaintyPlan& plan, const Material& material, const Reptation& reptation,
+                     InterfaceResult& r) const {
   const double sd_t = std::sqrt(var_[0]), sd_s = std::sqrt(var_[1]), sd_l = std::sqrt(var_[2]);
   if (r.on_top) {
     r.substrate_p10_c = mean_[0] - kZ90 * sd_t;
@@ -241,7 +242,6 @@ void BandSum::finish(const UncertaintyPlan& plan, const Material& material, Inte
   // the substrate); that limit moves by Δ ln(η_ref · allowed) over the slope of ln a(T) there.
   double hot_mean = -std::numeric_limits<double>::infinity(), hot_sd = 0.0;
   if (r.on_top && std::isfinite(r.support.limit_c)) {
-    const Reptation reptation(material);
     const double lim = r.support.limit_c;
     const double slope = reptation.log_time(lim - 0.5) - reptation.log_time(lim + 0.5);  // −d ln a/dT, 1/K
     const Moments& ls = plan.log_support;
@@ -288,6 +288,7 @@ void estimate_bands(const UncertaintyPlan& plan, const ThermalMesh& mesh, std::s
   } else {
     tbb::parallel_for(std::size_t{0}, plan.heat.size(), solve);
   }
+  const Reptation reptation(material);
   for (std::size_t k = 0; k < heat.interfaces.size(); ++k) {
     InterfaceResult& r = heat.interfaces[k];
     BandSum sum(r);
@@ -298,7 +299,7 @@ void estimate_bands(const UncertaintyPlan& plan, const ThermalMesh& mesh, std::s
       sum.add({.log_integral = d}, plan.laws[l].step, plan.laws[l].mean_offset, plan.laws[l].sd);
     }
     sum.add_log_integral(-plan.log_reptation_time.mean, plan.log_reptation_time.sd);
-    sum.finish(plan, material, r);
+    sum.finish(plan, material, reptation, r);
   }
 }
 

@@ -90,7 +90,9 @@ class BandSum {
   // Adds a shift of ln ∫ dt/t_w by an input whose own effect is linear: its mean offset and sd in ln I.
   void add_log_integral(double mean_offset, double sd);
   // Writes the bands and end verdicts into `r`, with the thresholds' spreads of `plan`.
-  void finish(const UncertaintyPlan& plan, const Material& material, InterfaceResult& r) const;
+  // `reptation`: the material's law (the slope that moves the support's limit).
+  void finish(const UncertaintyPlan& plan, const Material& material, const Reptation& reptation,
+              InterfaceResult& r) const;
 
  private:
   double mean_[3];  // substrate, surface, ln I

@@ -54,7 +54,7 @@ TEST(Uncertainty, HealingScalesAsTheReptationTimeToTheMinusQuarter) {
   r.healing = std::pow(0.05, 0.25);
   BandSum sum(r);
   sum.add_log_integral(-plan.log_reptation_time.mean, plan.log_reptation_time.sd);
-  sum.finish(plan, m, r);
+  sum.finish(plan, m, Reptation(m), r);
   EXPECT_NEAR(r.healing_p10, r.healing * std::exp(-kZ90 * sigma / 4.0), 1e-12);
   EXPECT_NEAR(r.healing_p90, std::min(1.0, r.healing * std::exp(kZ90 * sigma / 4.0)), 1e-12);
   // 0.47 at the value, 0.33-0.68 across the band: below 0.9 throughout, too cold at both ends.
@@ -66,7 +66,7 @@ TEST(Uncertainty, HealingScalesAsTheReptationTimeToTheMinusQuarter) {
   r.healing_integral = std::pow(0.9, 4.0);
   BandSum near(r);
   near.add_log_integral(0.0, sigma);
-  near.finish(plan, m, r);
+  near.finish(plan, m, Reptation(m), r);
   EXPECT_EQ(r.verdict_cold, Verdict::kTooCold);
   EXPECT_EQ(r.verdict_hot, Verdict::kOk);
   EXPECT_TRUE(r.marginal());

@@ -18,14 +18,31 @@ constexpr double kOnTopCos = 0.5;
 // Gaps in the wall's line across the bead that still count as the same wall (the triangles between round
 // beads side by side), voxels.
 constexpr int kBridgedVoxels = 2;
-// Sub-intervals per column segment in the integral of 1/η (Simpson's rule; 1/η changes by decades over a
-// few kelvin near the softening temperature, so the segments are cut finely).
-constexpr int kSimpsonIntervals = 16;
+// The table of ∫ 1/η dT: its spacing, K, and how far it reaches above the deposition temperature, K (the
+// hot edge's search shifts columns above it; beyond the table the integral is taken by Simpson's rule,
+// with sub-intervals no wider than kSimpsonStepK). 1/η changes by a third per kelvin at most near the
+// glass transition (WLF's C1/C2 there), so 1/η is exponential within a step to a few parts in 10^5.
+constexpr double kTableStepK = 0.05;
+constexpr double kTableAboveDepositionK = 100.0;
+constexpr double kSimpsonStepK = 0.25;
+// Segments of a column whose ends differ by less than this, K, are taken at one temperature.
+constexpr double kUniformK = 1e-6;
 // The hot edge's search (Support::judge_column): steps, their largest size, K, and the tolerance on
 // ln(δ / allowed) (0.005: half a per cent of the allowed slump, a few hundredths of a kelvin).
 constexpr int kSecantSteps = 12;
 constexpr double kMaxSecantStepK = 40.0;
 constexpr double kSecantTolerance = 0.005;
+
+// ∫ f over [0, x] of a step of width h whose ends have f = a and f = b (x = h: the whole step), f taken as
+// exponential between them (linear where either end is 0).
+double exponential_part(double a, double b, double h, double x) {
+  if (!(a > 0.0) || !(b > 0.0)) return a * x + (b - a) * x * x / (2.0 * h);
+  const double rx = std::log(b / a) * x / h;
+  return std::abs(rx) < 1e-6 ? a * x * (1.0 + 0.5 * rx) : a * x * std::expm1(rx) / rx;
+}
+double exponential_part(double a, double b, double h) {
+  return exponential_part(a, b, h, h);
+}
 
 // Material voxels in a straight horizontal line from `centre` along `dir`, both ways: the wall's width, mm.
 double width_across(const openvdb::Int32Grid& grid, const Eigen::Vector3d& centre, const Eigen::Vector3d& dir,
@@ -97,18 +114,51 @@ Support::Support(const Material& material, const SupportLoad& load)
       viscosity_ref_Pa_s_(material.viscosity_ref_Pa_s),
       weight_Pa_per_mm_(material.density_kg_m3 * kGravity_m_s2 * 1e-3),
       allowed_(material.max_slump),
-      load_(load) {
+      load_(load),
+      table_step_k_(kTableStepK) {
   if (!(viscosity_ref_Pa_s_ > 0.0))
     throw InputError({}, "fusion.viscosity", fmt::format("must be positive, is {}", viscosity_ref_Pa_s_));
   if (!(allowed_ > 0.0))
     throw InputError({}, "fusion.max_slump", fmt::format("must be positive, is {}", allowed_));
+  const double top_c = std::max(deposition_c_, softening_c_) + kTableAboveDepositionK;
+  const auto points = static_cast<std::size_t>(std::ceil((top_c - softening_c_) / kTableStepK)) + 1;
+  table_fluidity_.resize(points);
+  table_cumulative_.assign(points, 0.0);
+  for (std::size_t k = 0; k < points; ++k) table_fluidity_[k] = raw_fluidity(node_c(k));
+  for (std::size_t k = 1; k < points; ++k)
+    table_cumulative_[k] =
+        table_cumulative_[k - 1] + exponential_part(table_fluidity_[k - 1], table_fluidity_[k], kTableStepK);
+}
+
+double Support::raw_fluidity(double temp_c) const {
+  const double log_time = reptation_.log_time(temp_c);
+  return std::isfinite(log_time) ? std::exp(-log_time) / viscosity_ref_Pa_s_ : 0.0;
 }
 
 double Support::fluidity(double temp_c) const {
+  return temp_c > softening_c_ ? raw_fluidity(temp_c) : 0.0;
+}
+
+double Support::cumulative(double temp_c) const {
   if (!(temp_c > softening_c_)) return 0.0;
-  const double log_time = reptation_.log_time(temp_c);
-  if (!std::isfinite(log_time)) return 0.0;
-  return std::exp(-log_time) / viscosity_ref_Pa_s_;
+  const double x = (temp_c - softening_c_) / kTableStepK;
+  const std::size_t last = table_cumulative_.size() - 1;
+  if (x < static_cast<double>(last)) {
+    const auto k = static_cast<std::size_t>(x);
+    return table_cumulative_[k] +
+           exponential_part(table_fluidity_[k], table_fluidity_[k + 1], kTableStepK, temp_c - node_c(k));
+  }
+  const double top_c = node_c(last);
+  const int n = 2 * std::max(1, static_cast<int>(std::ceil((temp_c - top_c) / (2.0 * kSimpsonStepK))));
+  double sum = 0.0;
+  for (int k = 0; k <= n; ++k)
+    sum +=
+        raw_fluidity(top_c + (temp_c - top_c) * k / n) * (k == 0 || k == n ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0));
+  return table_cumulative_[last] + sum * (temp_c - top_c) / (3.0 * n);
+}
+
+double Support::fluidity_integral(double low_c, double high_c) const {
+  return cumulative(high_c) - cumulative(low_c);
 }
 
 SupportResult Support::judge(std::span<const SupportCell> cells, std::uint32_t older, std::uint32_t younger,
@@ -146,12 +196,11 @@ Support::Slump Support::slump(std::span<const double> z_mm, std::span<const doub
     const bool ends = !(t1 > softening_c_);
     if (ends) length *= (t0 - softening_c_) / (t0 - t1);
     const double t_end = ends ? softening_c_ : t1;
-    double sum = 0.0;
-    for (int k = 0; k <= kSimpsonIntervals; ++k) {
-      const double f = fluidity(t0 + (t_end - t0) * k / kSimpsonIntervals);
-      sum += f * (k == 0 || k == kSimpsonIntervals ? 1.0 : (k % 2 == 1 ? 4.0 : 2.0));
-    }
-    compliance += sum * length / (3.0 * kSimpsonIntervals);
+    // T linear in z over the segment: ∫ dz/η = length · ∫ dT/η / ΔT.
+    if (std::abs(t0 - t_end) < kUniformK)
+      compliance += fluidity(0.5 * (t0 + t_end)) * length;
+    else
+      compliance += length * (cumulative(t0) - cumulative(t_end)) / (t0 - t_end);
     out.soft_height_mm += length;
     if (ends) break;
   }

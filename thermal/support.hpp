@@ -102,6 +102,9 @@ class Support {
 
   // 1 / η at `temp_c`, 1/(Pa·s); 0 at or below the softening temperature.
   double fluidity(double temp_c) const;
+  // ∫ 1/η dT from `low_c` up to `high_c` (low_c ≤ high_c), K/(Pa·s); only the part above the softening
+  // temperature counts.
+  double fluidity_integral(double low_c, double high_c) const;
   double softening_c() const { return softening_c_; }
 
  private:
@@ -112,6 +115,14 @@ class Support {
   Slump slump(std::span<const double> z_mm, std::span<const double> temp_c, double offset_k,
               double wall_width_mm, double layer_height_mm, double speed_mm_s, double soft_for_s) const;
 
+  // The fluidity integral from the softening temperature up to `temp_c`, from the table (exact for a
+  // fluidity exponential between its points) within it, by Simpson's rule above it.
+  double cumulative(double temp_c) const;
+  // The table's k-th temperature, °C.
+  double node_c(std::size_t k) const { return softening_c_ + static_cast<double>(k) * table_step_k_; }
+  // 1 / η at `temp_c` without the softening cut-off (0 where the reptation law gives no finite time).
+  double raw_fluidity(double temp_c) const;
+
   Reptation reptation_;
   double deposition_c_;
   double softening_c_;
@@ -119,6 +130,9 @@ class Support {
   double weight_Pa_per_mm_;  // ρ g, Pa per mm of height
   double allowed_;           // allowed slump, a fraction of the layer height
   SupportLoad load_;
+  // The fluidity and its integral from the softening temperature at node_c(k).
+  double table_step_k_;
+  std::vector<double> table_fluidity_, table_cumulative_;
 };
 
 }  // namespace beadtwin::thermal

@@ -109,6 +109,8 @@ class HeatSolve {
   void born_group(const BirthGroup& g, std::span<double> state);
   // Whether the soft material under interface r's younger cell carries it (r.on_top), from `state`.
   void judge_support(InterfaceResult& r, std::span<const double> state) const;
+  // The substrate's temperature, rate and surface temperature for an interface whose older cell is born.
+  void measure_substrate(InterfaceResult& r, std::span<const double> state) const;
   // The view factors of the cells whose view the births so far changed, into the model.
   void update_views();
   // Lumps the settled cells in before_ (HeatOptions::lump) if it is time; true if any were.
@@ -265,7 +267,24 @@ void HeatSolve::judge_support(InterfaceResult& r, std::span<const double> state)
   const auto temp_c = [&](std::uint32_t c) {
     return c < mesh_born_ ? state[model_of_[c]] : material_.deposition_temp_c;
   };
-  r.support = support_.judge(support_cells_, r.older, r.younger, births_.interval_s, temp_c);
+  r.support = support_.judge(support_cells_, r.older, r.younger, births_.interval_s, temp_c, r.substrate_c);
+}
+
+void HeatSolve::measure_substrate(InterfaceResult& r, std::span<const double> state) const {
+  // The older cell's bead through its height, by volume: the same on any number of cells through it.
+  const std::uint32_t top = support_cells_[r.older].bead_top;
+  double volume = 0.0, temp = 0.0, rate = 0.0, loss = 0.0;
+  for (std::uint32_t c = top; c != SupportCell::kNone && support_cells_[c].bead_top == top;
+       c = support_cells_[c].below) {
+    const double v = mesh_.cells[c].volume_mm3;
+    volume += v;
+    temp += v * state[model_of_[c]];
+    rate += v * model_.rate(model_of_[c], state.data(), loss);
+  }
+  r.substrate_c = temp / volume;
+  r.substrate_rate_K_s = rate / volume;
+  const std::size_t older = model_of_[r.older];
+  r.substrate_surface_c = model_.face_surface_c(older, model_of_[r.younger], state[older]);
 }
 
 void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
@@ -274,13 +293,7 @@ void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
       InterfaceResult& r = interfaces_[k];
       r.substrate_c = material_.deposition_temp_c;
       r.substrate_surface_c = r.substrate_c;
-      if (r.older < mesh_born_) {
-        double loss = 0.0;
-        const std::size_t older = model_of_[r.older];
-        r.substrate_c = state[older];
-        r.substrate_surface_c = model_.face_surface_c(older, model_of_[r.younger], r.substrate_c);
-        r.substrate_rate_K_s = model_.rate(older, state.data(), loss);
-      }
+      if (r.older < mesh_born_) measure_substrate(r, state);
       if (r.on_top) judge_support(r, state);
     }
   model_.birth(model_of_[g.end], state);

@@ -107,13 +107,15 @@ struct TemperatureSnapshot {
 struct InterfaceResult {
   std::uint32_t older = 0, younger = 0;  // cells
   double area_mm2 = 0.0;
-  bool on_top = false;       // the younger lands on the older (contact within 60° of horizontal)
-  double substrate_c = 0.0;  // the older cell's temperature as the younger was born
+  bool on_top = false;  // the younger lands on the older (contact within 60° of horizontal)
+  // The mean temperature of the older cell's bead through its height (its cells through the layer, by
+  // volume) as the younger was born, °C.
+  double substrate_c = 0.0;
   // The temperature of the older cell's face where the younger lands, as the younger was born, °C: the
   // surface a thermal camera reads just before the bead covers it (the cell's temperature less the drop
   // through its half cell, thermal/surface.hpp).
   double substrate_surface_c = 0.0;
-  // How fast the older cell was cooling then, K/s (NaN when both were born together).
+  // How fast that bead was cooling then, K/s (NaN when both were born together).
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
   // Where the younger lands on top (on_top): whether the soft material under it carries it
   // (thermal/support.hpp), with the temperatures as it landed.

@@ -72,9 +72,26 @@ std::vector<SupportCell> support_cells(const ThermalMesh& mesh, const Toolpath* 
   std::vector<double> below_area(n, 0.0);
   for (const ThermalLink& l : mesh.links) {
     const double area = l.area_mm2();
-    if (!(area > 0.0) || l.area_vector_mm2.z() < kOnTopCos * area || area <= below_area[l.b]) continue;
-    below_area[l.b] = area;
-    out[l.b].below = l.a;
+    if (!(area > 0.0)) continue;
+    // On an older cell; or, for the slices of one bead through its height (born together, its top slice
+    // first), on a younger one of the same bead. Nothing rests on a cell laid after it otherwise, so the
+    // walk down a column always ends.
+    const double up = l.area_vector_mm2.z();
+    const bool same_bead =
+        mesh.cells[l.a].move == mesh.cells[l.b].move && mesh.cells[l.a].birth_s == mesh.cells[l.b].birth_s;
+    const std::uint32_t above = up > 0.0 ? l.b : l.a, under = up > 0.0 ? l.a : l.b;
+    if (std::abs(up) < kOnTopCos * area || (above == l.a && !same_bead) || area <= below_area[above])
+      continue;
+    below_area[above] = area;
+    out[above].below = under;
+  }
+  // A bead's slices through its height are born together, top first (the mesh's order), and share a move.
+  for (std::uint32_t c = 0; c < n; ++c) out[c].bead_top = c;
+  for (std::uint32_t c = 0; c < n; ++c) {
+    const std::uint32_t b = out[c].below;
+    if (b != SupportCell::kNone && b > c && mesh.cells[b].move == mesh.cells[c].move &&
+        mesh.cells[b].birth_s == mesh.cells[c].birth_s)
+      out[b].bead_top = out[c].bead_top;
   }
   const double vs = mesh.voxel_size_mm;
   for (std::size_t c = 0; c < n; ++c) {
@@ -162,7 +179,8 @@ double Support::fluidity_integral(double low_c, double high_c) const {
 }
 
 SupportResult Support::judge(std::span<const SupportCell> cells, std::uint32_t older, std::uint32_t younger,
-                             double min_load_s, const std::function<double(std::uint32_t)>& temp_c) const {
+                             double min_load_s, const std::function<double(std::uint32_t)>& temp_c,
+                             double reference_c) const {
   // The column under the new bead, walked down while it is soft and one cell further, where it is not (or
   // to the table): the substrate cell uniform from its top to its centre, linear between centres, the last
   // cell uniform down to its bottom.
@@ -180,7 +198,8 @@ SupportResult Support::judge(std::span<const SupportCell> cells, std::uint32_t o
   t.push_back(t.back());
   const SupportCell& y = cells[younger];
   const double soft_for_s = std::max(y.birth_s - cells[deepest_soft].birth_s, min_load_s);
-  return judge_column(z, t, cells[older].wall_width_mm, y.layer_height_mm, y.speed_mm_s, soft_for_s);
+  return judge_column(z, t, cells[older].wall_width_mm, y.layer_height_mm, y.speed_mm_s, soft_for_s,
+                      reference_c);
 }
 
 Support::Slump Support::slump(std::span<const double> z_mm, std::span<const double> temp_c, double offset_k,
@@ -217,8 +236,9 @@ Support::Slump Support::slump(std::span<const double> z_mm, std::span<const doub
 
 SupportResult Support::judge_column(std::span<const double> z_mm, std::span<const double> temp_c,
                                     double wall_width_mm, double layer_height_mm, double speed_mm_s,
-                                    double soft_for_s) const {
+                                    double soft_for_s, double reference_c) const {
   BT_CHECK(z_mm.size() == temp_c.size() && z_mm.size() >= 2);
+  if (std::isnan(reference_c)) reference_c = temp_c[0];
   SupportResult r;
   r.wall_width_mm = wall_width_mm;
   r.allowed_mm = allowed_ * layer_height_mm;
@@ -245,7 +265,7 @@ SupportResult Support::judge_column(std::span<const double> z_mm, std::span<cons
     x1 += step;
     f1 = gap(x1);
     if (std::abs(f1) < kSecantTolerance) {
-      r.limit_c = std::max(softening_c_, temp_c[0] + x1);
+      r.limit_c = std::max(softening_c_, reference_c + x1);
       // Hotter than the bead is laid: no temperature the print reaches slumps it.
       if (r.limit_c > deposition_c_) r.limit_c = std::numeric_limits<double>::infinity();
       break;

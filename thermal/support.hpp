@@ -46,6 +46,9 @@ struct SupportCell {
   // The cell this one rests on: of its older contacts within 60° of horizontal, the largest; kNone on the
   // table or where nothing lies under it.
   std::uint32_t below = kNone;
+  // The top cell of its bead's column through the layer height (thermal.cells_through): itself where the
+  // bead is one cell through.
+  std::uint32_t bead_top = 0;
   double birth_s = 0.0;  // when it landed
   float centre_z_mm = 0.0f;
   float top_z_mm = 0.0f;         // the top of its material (its centre and half its height)
@@ -88,17 +91,21 @@ class Support {
 
   // The landing of `younger` on `older` (indices into `cells`), with every cell's temperature, °C, given by
   // `temp_c(cell)`. The soft material has carried weight for at least `min_load_s` (the solver's birth
-  // interval: cells born together landed within it).
+  // interval: cells born together landed within it). The hot edge is stated as a value of `reference_c`
+  // (the substrate temperature as the caller measures it; NaN: the older cell's own) shifted as the column.
   SupportResult judge(std::span<const SupportCell> cells, std::uint32_t older, std::uint32_t younger,
-                      double min_load_s, const std::function<double(std::uint32_t)>& temp_c) const;
+                      double min_load_s, const std::function<double(std::uint32_t)>& temp_c,
+                      double reference_c = std::numeric_limits<double>::quiet_NaN()) const;
 
   // The same for a column given directly: points from the top of the material under the bead down to a
   // rigid bottom (the table, or far enough down to be below the softening temperature), their heights `z_mm`
   // (falling) and temperatures `temp_c` (linear between the points), the wall's width, and the new bead's
-  // layer height and speed. For the 1-D wall model and the tests.
+  // layer height and speed. For the 1-D wall model and the tests. `reference_c` as for judge (NaN: the
+  // top point's temperature).
   SupportResult judge_column(std::span<const double> z_mm, std::span<const double> temp_c,
                              double wall_width_mm, double layer_height_mm, double speed_mm_s,
-                             double layer_time_s) const;
+                             double layer_time_s,
+                             double reference_c = std::numeric_limits<double>::quiet_NaN()) const;
 
   // 1 / η at `temp_c`, 1/(Pa·s); 0 at or below the softening temperature.
   double fluidity(double temp_c) const;

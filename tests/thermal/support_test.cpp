@@ -199,5 +199,38 @@ TEST(SupportTest, OneBeadAndSixBeadWallsAtTheSameTemperaturesGetDifferentVerdict
   EXPECT_NEAR(at_limit.slump_mm / at_limit.allowed_mm, 1.0, 0.01);
 }
 
+TEST(SupportTest, ABeadCutIntoSlicesThroughItsHeightIsJudgedAsOneCellThrough) {
+  // The one-bead wall meshed with one and with five cells through each bead: the column under a landing
+  // walks down through the slices (each rests on the one under it, born with it), the wall is soft to the
+  // table either way, and the hot edge is the same within the meshes' difference in heights.
+  const Material m = cf_abs();
+  const Support support(m, {.roller_pressure_Pa = 3e5, .roller_contact_mm = 12.7});
+  constexpr int kLayers = 6;
+  sim::DepositOptions options;
+  options.voxel_size_mm = kBeadHeight / 5.0;
+  const Toolpath one = wall(1, kLayers);
+  const sim::Deposit deposit = sim::deposit(one, options);
+  const ThermalMesh whole = build_thermal_mesh(one, deposit);
+  const ThermalMesh sliced = build_thermal_mesh(one, deposit, {.cells_through = 5});
+  const Landing a = middle_landing(whole, kLayers - 1, 0.0), b = middle_landing(sliced, kLayers - 1, 0.0);
+  ASSERT_NE(a.younger, 0u);
+  ASSERT_NE(b.younger, 0u);
+  // The sliced landing's older cell is the top slice of the bead under it: its column holds five cells.
+  const std::uint32_t top = sliced.support[b.older].bead_top;
+  int slices = 0;
+  for (std::uint32_t c = top; c != SupportCell::kNone && sliced.support[c].bead_top == top;
+       c = sliced.support[c].below)
+    ++slices;
+  EXPECT_EQ(slices, 5);
+  const auto judge = [&](const ThermalMesh& mesh, const Landing& l) {
+    return support.judge(mesh.support, l.older, l.younger, 1800.0, [](std::uint32_t) { return 150.0; });
+  };
+  const SupportResult on_whole = judge(whole, a), on_sliced = judge(sliced, b);
+  EXPECT_NEAR(on_sliced.soft_height_mm, on_whole.soft_height_mm, 0.5 * kBeadHeight);
+  EXPECT_NEAR(on_sliced.soft_height_mm, (kLayers - 1) * kBeadHeight, 0.5 * kBeadHeight);
+  EXPECT_NEAR(on_sliced.slump_mm / on_whole.slump_mm, 1.0, 0.15);
+  EXPECT_NEAR(on_sliced.limit_c, on_whole.limit_c, 1.0);
+}
+
 }  // namespace
 }  // namespace beadtwin::thermal

@@ -138,12 +138,11 @@ def crossing(t, values, level):
 
 
 def sweep_numbers(rows):
-    """Where layer 13's substrate reaches T_g and the support limit, and where its healing falls to 0.9."""
+    """Where layer 13's substrate reaches T_g and where its healing falls to 0.9."""
     t = [float(r["layer_time_s"]) for r in rows]
     substrate = [float(r["substrate_c"]) for r in rows]
     healing = [float(r["healing_mean"]) for r in rows]
-    for name, values, level in (("substrate at the support limit 125 C", substrate, 125.0),
-                                ("substrate at T_g 110 C", substrate, 110.0),
+    for name, values, level in (("substrate at T_g 110 C", substrate, 110.0),
                                 ("healing at the required 0.9", healing, 0.9)):
         at = crossing(t, values, level)
         print(f"layer time with the {name}: " + (f"{at:.1f} s" if at is not None else "not within the sweep"))
@@ -177,7 +176,6 @@ def layer_time_plot(rows, evidence, path):
     bottom = Plot(fig, (80, 360, 740, 580), x_range, (0, 1), "layer time, s", "mean degree of healing")
     substrate = [float(r["substrate_c"]) for r in rows]
     healing = [float(r["healing_mean"]) for r in rows]
-    top.hline(125, "#aa5500", "support limit 125 °C")
     top.hline(110, "#555555", "T_g 110 °C")
     top.line(t, substrate, COLOURS[0])
     top.dots(t, substrate, COLOURS[0])
@@ -189,7 +187,7 @@ def layer_time_plot(rows, evidence, path):
         if x_range[0] <= x <= x_range[1]:
             top.vline(x, "#2ca02c", f'{row["id"]}: {row["kind"].replace("_", " ")}')
             bottom.vline(x, "#2ca02c")
-    top.legend([("substrate cell mean (stands in for the surface)", COLOURS[0], False)], x=top.left + 330)
+    top.legend([("substrate surface, as a camera reads it", COLOURS[0], False)], x=top.left + 330)
     fig.write(path)
 
 

@@ -102,9 +102,8 @@ Solved solve(const Variant& v, double snapshot_every_s = 0.0) {
 }
 
 // What a thermal camera reads of the substrate where the next layer lands, °C: the surface of the layer
-// below just before it is covered. The model gives each interface its substrate cell's mean temperature as
-// the new bead lands, a few kelvin above the surface; their area-weighted mean over the layer stands in for
-// the surface reading until the model reports a surface temperature. The one place to change then.
+// below just before it is covered, as the model reports it (the substrate cell's face, behind its half
+// cell), area-weighted over the layer.
 double substrate_as_camera_reads_c(const thermal::FusionSummary& landing_layer) {
   return landing_layer.surface.mean_c;
 }
@@ -127,8 +126,8 @@ std::size_t camera_cell(const thermal::ThermalMesh& mesh, int layer, double x_mm
   return best;
 }
 
-// What the camera reads of `cell` in `snapshot`, °C: the cell's mean temperature, until the model reports
-// the temperature of its open surface.
+// What the camera reads of `cell` in `snapshot`, °C: the cell's mean temperature (a snapshot holds the
+// cells' temperatures, not their faces'), a few kelvin above the surface the camera sees.
 double side_as_camera_reads_c(const thermal::TemperatureSnapshot& snapshot, std::size_t cell) {
   return snapshot.temp_c.at(cell);
 }

@@ -349,7 +349,7 @@ Wall1dResult solve_wall_1d(std::span<const Wall1dLayer> layers, const Material& 
                      fmt::format("sample interval {} s keeps too many values over {} s and {} layers",
                                  options.sample_interval_s, t_end - t0, layers.size()));
 
-  Wall1dModel model(layers, material, env, options.nodes_per_layer);
+  Wall1dModel model(layers, material, env, options.nodes_per_layer, options.side_half_cell);
   model.set_tolerances(options.rel_tol, options.abs_tol_k, kHealingAbsTol);
   const Support support(material, options.support);
   Recorder recorder(model, support, layers, sample_times(t0, t_end, options.sample_interval_s));

@@ -47,6 +47,9 @@ struct Wall1dOptions {
   double cooldown_s = 600;       // simulated time after the last layer (healing goes on), >= 0
   double sample_interval_s = 5;  // for the temperature history kept for plots, > 0
   SupportLoad support;           // the roller or tamper on each new layer (the too-hot verdict)
+  // The sides lose heat through half the layer's width, as the 3-D model's open faces do through their
+  // half cells; false: at the nodes' temperature, as a model resolving only the height has it.
+  bool side_half_cell = true;
 };
 
 // What one layer's interface (with the layer below) went through.

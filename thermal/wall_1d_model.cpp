@@ -16,7 +16,7 @@ constexpr double kMPerMm = 1e-3;
 }  // namespace
 
 Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material,
-                         const Environment& env, int nodes_per_layer)
+                         const Environment& env, int nodes_per_layer, bool side_half_cell)
     : material_(material),
       n_(static_cast<std::size_t>(nodes_per_layer)),
       block_(n_ + 2),
@@ -43,7 +43,7 @@ Wall1dModel::Wall1dModel(std::span<const Wall1dLayer> layers, const Material& ma
     layer.inner_conductance_W_K = k * area_m2 / node_thickness_m;
     layer.side_area_node_m2 = in.perimeter_mm * kMPerMm * node_thickness_m;
     layer.top_r_m2K_W = 0.5 * node_thickness_m / k;
-    layer.side_r_m2K_W = in.perimeter_mm > 0.0
+    layer.side_r_m2K_W = side_half_cell && in.perimeter_mm > 0.0
                              ? in.area_mm2 / in.perimeter_mm * kMPerMm / material.conductivity_across_W_mK
                              : 0.0;
     if (i > 0) {

@@ -32,8 +32,9 @@ namespace beadtwin::thermal {
 // the integration error.
 class Wall1dModel final : public OdeSystem {
  public:
+  // `side_half_cell`: the sides lose heat through half the layer's width (else at the nodes' temperature).
   Wall1dModel(std::span<const Wall1dLayer> layers, const Material& material, const Environment& env,
-              int nodes_per_layer);
+              int nodes_per_layer, bool side_half_cell);
 
   // The state's size and the Jacobian's bandwidths (for the banded solver).
   std::size_t size() const { return layers_.size() * block_; }

@@ -166,6 +166,10 @@ thermal::Wall1dResult papers_one_d_model(const Toolpath& tp, double end_s) {
   thermal::Wall1dOptions o;
   o.cooldown_s = end_s - stack.back().end_s;
   o.sample_interval_s = 1.0;
+  // The paper's model resolves the height only: each node is one temperature across the wall's width and
+  // its sides lose heat at it. (Through half the 20 mm width at 0.17 W/mK, as beadtwin's own 1-D reference
+  // has it, the sides lose about half as much and this curve runs 13 K hotter: docs/validation.md.)
+  o.side_half_cell = false;
   return thermal::solve_wall_1d(stack, paper.material, paper.machine.environment, o);
 }
 

@@ -154,26 +154,29 @@ void set_scale(Field& f, const std::optional<std::pair<double, double>>& range, 
   f.scale.map = std::move(map);
 }
 
-// Each piece of bead by its worst interface's fusion verdict: a category per verdict.
+// Each piece of bead by its worst interface's fusion verdict: a category per verdict, in kVerdicts' order.
 Field fusion_field(const thermal::ThermalResult& th, const openvdb::FloatGrid& fill) {
   using thermal::Verdict;
   Field f;
   f.heading = "Fusion";
   f.title = "each piece of bead by its worst interface";
-  // The legend's order; a cell's value is its verdict's place in it.
   static constexpr std::pair<Verdict, const char*> kVerdicts[] = {
       {Verdict::kOk, "fuses"},
       {Verdict::kTooHot, "too hot: landed on soft material"},
       {Verdict::kTooCold, "too cold: does not heal"},
       {Verdict::kMarginal, "marginal: changes within the P10-P90 band"},
       {Verdict::kNoInterface, "no interface (on the table)"}};
-  for (const auto& [v, label] : kVerdicts) f.categories.push_back({verdict_colour(v), label});
+  // Marginal only where the bands were estimated (thermal.uncertainty): without them no verdict can be. A
+  // cell's value is its verdict's place among the categories listed.
+  const bool bands = !th.uncertain_inputs.empty();
+  std::vector<Verdict> listed;
+  for (const auto& [v, label] : kVerdicts)
+    if (bands || v != Verdict::kMarginal)
+      listed.push_back(v), f.categories.push_back({verdict_colour(v), label});
   std::vector<double> by_cell;
   by_cell.reserve(th.cells.size());
   for (const Verdict v : th.cells)
-    by_cell.push_back(static_cast<double>(std::find_if(std::begin(kVerdicts), std::end(kVerdicts),
-                                                       [v](const auto& e) { return e.first == v; }) -
-                                          std::begin(kVerdicts)));
+    by_cell.push_back(static_cast<double>(std::find(listed.begin(), listed.end(), v) - listed.begin()));
   f.voxels = values_by_label(fill, *th.mesh.cell_grid, by_cell);
   return f;
 }

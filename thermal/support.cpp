@@ -85,14 +85,11 @@ std::vector<SupportCell> support_cells(const ThermalMesh& mesh, const Toolpath* 
     below_area[above] = area;
     out[above].below = under;
   }
-  // A bead's slices through its height are born together, top first (the mesh's order), and share a move.
+  // A cell rests on a younger one only within its own bead (above), whose top slice comes first.
   for (std::uint32_t c = 0; c < n; ++c) out[c].bead_top = c;
-  for (std::uint32_t c = 0; c < n; ++c) {
-    const std::uint32_t b = out[c].below;
-    if (b != SupportCell::kNone && b > c && mesh.cells[b].move == mesh.cells[c].move &&
-        mesh.cells[b].birth_s == mesh.cells[c].birth_s)
+  for (std::uint32_t c = 0; c < n; ++c)
+    if (const std::uint32_t b = out[c].below; b != SupportCell::kNone && b > c)
       out[b].bead_top = out[c].bead_top;
-  }
   const double vs = mesh.voxel_size_mm;
   for (std::size_t c = 0; c < n; ++c) {
     const ThermalCell& cell = mesh.cells[c];
@@ -131,8 +128,7 @@ Support::Support(const Material& material, const SupportLoad& load)
       viscosity_ref_Pa_s_(material.viscosity_ref_Pa_s),
       weight_Pa_per_mm_(material.density_kg_m3 * kGravity_m_s2 * 1e-3),
       allowed_(material.max_slump),
-      load_(load),
-      table_step_k_(kTableStepK) {
+      load_(load) {
   if (!(viscosity_ref_Pa_s_ > 0.0))
     throw InputError({}, "fusion.viscosity", fmt::format("must be positive, is {}", viscosity_ref_Pa_s_));
   if (!(allowed_ > 0.0))
@@ -145,6 +141,10 @@ Support::Support(const Material& material, const SupportLoad& load)
   for (std::size_t k = 1; k < points; ++k)
     table_cumulative_[k] =
         table_cumulative_[k - 1] + exponential_part(table_fluidity_[k - 1], table_fluidity_[k], kTableStepK);
+}
+
+double Support::node_c(std::size_t k) const {
+  return softening_c_ + static_cast<double>(k) * kTableStepK;
 }
 
 double Support::raw_fluidity(double temp_c) const {
@@ -184,7 +184,10 @@ SupportResult Support::judge(std::span<const SupportCell> cells, std::uint32_t o
   // The column under the new bead, walked down while it is soft and one cell further, where it is not (or
   // to the table): the substrate cell uniform from its top to its centre, linear between centres, the last
   // cell uniform down to its bottom.
-  std::vector<double> z{cells[older].top_z_mm}, t{temp_c(older)};
+  // Reused per thread: a landing is judged at every birth, and its column is a handful of points.
+  thread_local std::vector<double> z, t;
+  z.assign(1, cells[older].top_z_mm);
+  t.assign(1, temp_c(older));
   std::uint32_t c = older, deepest_soft = older;
   for (;;) {
     z.push_back(cells[c].centre_z_mm);

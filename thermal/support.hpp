@@ -126,7 +126,7 @@ class Support {
   // fluidity exponential between its points) within it, by Simpson's rule above it.
   double cumulative(double temp_c) const;
   // The table's k-th temperature, °C.
-  double node_c(std::size_t k) const { return softening_c_ + static_cast<double>(k) * table_step_k_; }
+  double node_c(std::size_t k) const;
   // 1 / η at `temp_c` without the softening cut-off (0 where the reptation law gives no finite time).
   double raw_fluidity(double temp_c) const;
 
@@ -138,7 +138,6 @@ class Support {
   double allowed_;           // allowed slump, a fraction of the layer height
   SupportLoad load_;
   // The fluidity and its integral from the softening temperature at node_c(k).
-  double table_step_k_;
   std::vector<double> table_fluidity_, table_cumulative_;
 };
 

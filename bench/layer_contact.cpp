@@ -4,12 +4,14 @@
 // sides narrow it) and the height of the layer's centroid against the toolpath's (docs/validation.md, mesh
 // convergence: why the verdicts move with the voxel size).
 //
-//   layer_contact SCENARIO [VOXEL_MM]   (the scenario's first variant; VOXEL_MM 0 or none: its own)
+//   layer_contact SCENARIO [VOXEL_MM [--no-follow]]   (the scenario's first variant; VOXEL_MM 0 or none: its
+//   own; --no-follow: every bead at its nominal height, DepositOptions::follow_substrate false)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <map>
+#include <string_view>
 
 #include "scenarios/input/scenario.hpp"
 #include "scenarios/variant_stages.hpp"
@@ -19,8 +21,9 @@
 using namespace beadtwin;
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 3) {
-    std::fprintf(stderr, "usage: layer_contact SCENARIO [VOXEL_MM]\n");
+  const bool no_follow = argc == 4 && std::string_view(argv[3]) == "--no-follow";
+  if (argc < 2 || argc > 4 || (argc == 4 && !no_follow)) {
+    std::fprintf(stderr, "usage: layer_contact SCENARIO [VOXEL_MM [--no-follow]]\n");
     return 2;
   }
   try {
@@ -28,7 +31,8 @@ int main(int argc, char** argv) {
     const scenarios::Variant& v = sc.variants.front();
     const Toolpath tp = scenarios::variant_toolpath(v);
     sim::DepositOptions o = scenarios::deposit_options(v);
-    if (argc == 3 && std::atof(argv[2]) > 0.0) o.voxel_size_mm = std::atof(argv[2]);
+    if (argc >= 3 && std::atof(argv[2]) > 0.0) o.voxel_size_mm = std::atof(argv[2]);
+    o.follow_substrate = !no_follow;
     const sim::Deposit d = sim::deposit(tp, o);
     const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, d, scenarios::thermal_mesh_options(v));
     struct Layer {

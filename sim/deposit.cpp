@@ -289,9 +289,13 @@ void lay_bead(const PlannedSweep& planned, const Move& move, std::vector<Coverag
   // Squeezing sideways into empty space reaches about half the bead height (the bead's round side).
   const int squeeze_radius =
       std::max(1, static_cast<int>(std::lround(0.5 * planned.sweep.profile.height_mm() / vs)));
+  // The excess may run down into the cusps beside the bead, down to its bottom.
+  const BeadSweep& sweep = planned.sweep;
+  const int floor_k =
+      voxel_row_at_or_above(std::min(sweep.start_top_mm, sweep.end_top_mm) - sweep.profile.height_mm(), vs);
   c.writer.add(cells, bead_volume / (swept * voxel_volume),
                {move.start_s, move.duration_s, move.layer, static_cast<int>(planned.move)}, spread_radius,
-               squeeze_radius, roller_k);
+               squeeze_radius, roller_k, floor_k);
   c.ploughed_voxels = ploughed + c.writer.last_ploughed_voxels();
 }
 

@@ -160,7 +160,8 @@ void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp&
 }
 
 void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fraction,
-                     const MoveStamp& stamp_of_move, int spread_radius, int squeeze_radius, int roller_k) {
+                     const MoveStamp& stamp_of_move, int spread_radius, int squeeze_radius, int roller_k,
+                     int floor_k) {
   BT_CHECK_OP(fill_per_fraction, >, 0.0);
   BT_CHECK_OP(spread_radius, >=, 1);
   BT_CHECK_OP(squeeze_radius, >=, 1);
@@ -169,6 +170,7 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
   overflow_.clear();
   ploughed_ = 0.0;
   roller_k_ = roller_k;
+  floor_k_ = floor_k;
   for (const CoverageCell& cell : cells) {
     const float held = fill_.getValue(cell.ijk);
     const double before = held;
@@ -197,12 +199,13 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   const int k0 = overflow.ijk.z();
   const int radius = std::max(spread_radius, squeeze_radius);
   window_.reset(overflow.ijk, radius);
+  int window_k = k0;
   const auto offer_ring = [&](int ring, int k, bool gaps_only) {
     ring_cells.clear();
     double room = 0.0;
     const auto consider = [&](int di, int dj) {
       const openvdb::Coord ijk(overflow.ijk.x() + di, overflow.ijk.y() + dj, k);
-      const float held = k == k0 ? window_.value(ijk.x(), ijk.y()) : fill_.getValue(ijk);
+      const float held = k == window_k ? window_.value(ijk.x(), ijk.y()) : fill_.getValue(ijk);
       if (held >= 1.0f || (gaps_only && held <= 0.0f)) return;
       ring_cells.emplace_back(ijk, held);
       room += 1.0 - held;
@@ -221,27 +224,47 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
     for (const auto& [ijk, held] : ring_cells) {
       const double free = 1.0 - held;
       set_fill(ijk, held, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
-      if (k == k0) window_.written(ijk.x(), ijk.y());
+      if (k == window_k) window_.written(ijk.x(), ijk.y());
       stamp(ijk, overflow.time_s, of);
     }
     excess -= share * room;
     if (k >= roller_k_) ploughed_ += share * room;
     return share < 1.0 || excess <= 0.0;
   };
-  // First into the gaps between beads already laid nearby; then the bead squeezes a little wider into empty
-  // space beside it; what is left rises (the roller ploughs). Keeping the excess local stops it from
-  // running ahead into space later beads will need, only to be pushed on again.
-  // Rings are read only where the leaves say there is a gap, or room: a ring that holds no gap offers nothing
-  // to the first phase, the rings inside the first that reaches a slice not full nothing to the second. (The
-  // first phase only fills gaps: it makes none, so what the leaves said holds.) The first few rings, where
-  // most spreads end, are asked of their blocks' gap masks ring by ring (near_gaps); the rest by rings().
+  // The gaps between beads already laid within `spread_radius` of the overflowing voxel, at level k (ring 0
+  // too below the overflow's own level). Rings are read only where the leaves say there is a gap: the first
+  // few rings, where most spreads end, are asked of their blocks' gap masks ring by ring (near_gaps); the
+  // rest by rings(). (This phase only fills gaps: it makes none, so what the leaves said holds.)
   constexpr int kNear = LevelWindow::kNearRings;
-  const std::uint32_t near = window_.near_gaps(overflow.ijk, std::min(kNear, spread_radius));
-  for (int ring = 1; ring <= std::min(kNear, spread_radius); ++ring)
-    if ((near >> ring & 1u) != 0 && offer_ring(ring, k0, true)) return;
+  const auto fill_gaps = [&](int k) {
+    if (k != window_k) {
+      window_.reset({overflow.ijk.x(), overflow.ijk.y(), k}, radius);
+      window_k = k;
+      if (offer_ring(0, k, true)) return true;
+    }
+    const std::uint32_t near =
+        window_.near_gaps({overflow.ijk.x(), overflow.ijk.y(), k}, std::min(kNear, spread_radius));
+    for (int ring = 1; ring <= std::min(kNear, spread_radius); ++ring)
+      if ((near >> ring & 1u) != 0 && offer_ring(ring, k, true)) return true;
+    const LevelWindow::Rings rings = window_.rings({overflow.ijk.x(), overflow.ijk.y(), k}, radius);
+    for (int ring = kNear + 1; ring <= spread_radius; ++ring)
+      if (rings.holds_gap(ring) && offer_ring(ring, k, true)) return true;
+    return false;
+  };
+  // First into the gaps between beads already laid nearby, at the overflow's level and then down to the
+  // bead's bottom (`floor_k`: the roller or the nozzle presses the bead into the cusps under its round
+  // sides); then the bead squeezes a little wider into empty space beside it; what is left rises (the
+  // roller ploughs). Keeping the excess local stops it from running ahead into space later beads will need,
+  // only to be pushed on again.
+  if (fill_gaps(k0)) return;
+  for (int k = k0 - 1; k >= floor_k_; --k)
+    if (fill_gaps(k)) return;
+  if (window_k != k0) {
+    window_.reset(overflow.ijk, radius);
+    window_k = k0;
+  }
+  // The rings inside the first that reaches a slice not full offer no room.
   const LevelWindow::Rings rings = window_.rings(overflow.ijk, radius);
-  for (int ring = kNear + 1; ring <= spread_radius; ++ring)
-    if (rings.holds_gap(ring) && offer_ring(ring, k0, true)) return;
   for (int ring = std::max(1, rings.first_room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;
   // Above the deposit every voxel is free, so this ends; the bound only guards against a broken grid.

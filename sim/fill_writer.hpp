@@ -41,11 +41,13 @@ class FillWriter {
   FillWriter& operator=(const FillWriter&) = delete;
 
   // Adds `fill_per_fraction` · fraction (in voxel volumes) to every cell. Excess goes into partly filled
-  // neighbours within `spread_radius` (>= 1) voxels in plan, then into any free voxel within
-  // `squeeze_radius` (>= 1), then upward.
+  // voxels within `spread_radius` (>= 1) voxels in plan, at its own level and then level by level down to
+  // index `floor_k` (the bead's bottom row; none below the overflow's level by default), then into any free
+  // voxel within `squeeze_radius` (>= 1) at its own level, then upward.
   // Material pushed into voxels at index k >= `roller_k` (above the roller's gap) counts as ploughed.
   void add(std::span<const CoverageCell> cells, double fill_per_fraction, const MoveStamp& stamp,
-           int spread_radius, int squeeze_radius, int roller_k = std::numeric_limits<int>::max());
+           int spread_radius, int squeeze_radius, int roller_k = std::numeric_limits<int>::max(),
+           int floor_k = std::numeric_limits<int>::max());
   // Material the last add() pushed above the roller, in voxel volumes.
   double last_ploughed_voxels() const { return ploughed_; }
 
@@ -159,6 +161,7 @@ class FillWriter {
   double redistributed_ = 0.0;
   double ploughed_ = 0.0;
   int roller_k_ = std::numeric_limits<int>::max();
+  int floor_k_ = std::numeric_limits<int>::max();
   int highest_k_ = std::numeric_limits<int>::min();
 };
 

@@ -8,7 +8,16 @@
 // limits each process to N threads.
 //
 //   thermal_bench SCENARIO [BIRTH_INTERVAL_S [REL_TOL ABS_TOL_K]]   (0: the default)
+//
+// THERMAL_BENCH_VOXEL=MM deposits at that voxel size instead of the scenario's. THERMAL_BENCH_KINDS=1 also
+// prints the interfaces by kind (on top of the layer below, on top of another, beside one in the same
+// layer, beside another), each with its share of the interface area, its share too cold, its healing and
+// its substrate temperature (area-weighted), the healing of those on the layer below by substrate
+// temperature (5 K bins, from layer 12 on), and the contact between cells of neighbouring and of the same
+// layers over layers 20-40 (docs/validation.md, mesh convergence).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -36,6 +45,56 @@ using namespace beadtwin;
 
 namespace {
 using bench::seconds_since;
+
+// THERMAL_BENCH_KINDS (above).
+void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h) {
+  constexpr const char* kNames[4] = {"on top of the layer below", "on top of another", "beside, same layer",
+                                     "beside another"};
+  double area[4] = {}, cold[4] = {}, healing[4] = {}, substrate[4] = {}, total = 0.0;
+  constexpr int kBins = 20;
+  double bin_area[kBins] = {}, bin_healing[kBins] = {};
+  for (const thermal::InterfaceResult& r : h.interfaces) {
+    const int older = mesh.cells[r.older].layer, younger = mesh.cells[r.younger].layer;
+    const int kind = r.on_top ? (younger == older + 1 ? 0 : 1) : (younger == older ? 2 : 3);
+    area[kind] += r.area_mm2;
+    cold[kind] += r.verdict == thermal::Verdict::kTooCold ? r.area_mm2 : 0.0;
+    healing[kind] += r.healing * r.area_mm2;
+    substrate[kind] += r.substrate_c * r.area_mm2;
+    total += r.area_mm2;
+    if (kind == 0 && older >= 12) {
+      const int bin = std::clamp(static_cast<int>(std::floor((r.substrate_c - 110.0) / 5.0)), 0, kBins - 1);
+      bin_area[bin] += r.area_mm2;
+      bin_healing[bin] += r.healing * r.area_mm2;
+    }
+  }
+  for (int k = 0; k < 4; ++k)
+    if (area[k] > 0.0)
+      std::printf("interfaces %-26s: area %.3f, too cold %.3f of them, healing %.3f, substrate %.1f C\n",
+                  kNames[k], area[k] / total, cold[k] / area[k], healing[k] / area[k],
+                  substrate[k] / area[k]);
+  for (int b = 0; b < kBins; ++b)
+    if (bin_area[b] > 0.0)
+      std::printf("  on the layer below, substrate %d-%d C: area %.4f, healing %.3f\n", 110 + 5 * b,
+                  115 + 5 * b, bin_area[b] / total, bin_healing[b] / bin_area[b]);
+  double between = 0.0, between_up = 0.0, same = 0.0, same_up = 0.0;
+  for (const thermal::ThermalLink& l : mesh.links) {
+    const int a = mesh.cells[l.a].layer, b = mesh.cells[l.b].layer;
+    if (!l.interface || a < 20 || a > 40 || b < 20 || b > 40) continue;
+    // Counted as on top: the contact's normal within 60° of vertical.
+    const double up = std::abs(l.area_vector_mm2.z()) > 0.5 * l.area_vector_mm2.norm() ? l.area_mm2() : 0.0;
+    if (std::abs(a - b) == 1) {
+      between += l.area_mm2();
+      between_up += up;
+    } else if (a == b) {
+      same += l.area_mm2();
+      same_up += up;
+    }
+  }
+  std::printf(
+      "layers 20-40: contact between layers %.3g mm2 (%.3g facing up), within a layer %.3g mm2 (%.3g "
+      "facing up)\n",
+      between, between_up, same, same_up);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,7 +119,10 @@ int main(int argc, char** argv) {
     const scenarios::Variant& v = sc.variants.front();
     const Toolpath tp = scenarios::variant_toolpath(v);
     auto t0 = std::chrono::steady_clock::now();
-    const sim::Deposit d = sim::deposit(tp, scenarios::deposit_options(v));
+    sim::DepositOptions deposit_options = scenarios::deposit_options(v);
+    if (const char* voxel = std::getenv("THERMAL_BENCH_VOXEL"))
+      deposit_options.voxel_size_mm = std::atof(voxel);
+    const sim::Deposit d = sim::deposit(tp, deposit_options);
     std::printf("deposit %.2f s, %zu voxels\n", seconds_since(t0), d.active_voxels);
     t0 = std::chrono::steady_clock::now();
     const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, d);
@@ -93,6 +155,7 @@ int main(int argc, char** argv) {
       cold += r.verdict == thermal::Verdict::kTooCold;
       min_healing = std::min(min_healing, r.healing);
     }
+    if (std::getenv("THERMAL_BENCH_KINDS")) print_kinds(mesh, h);
     const double simulated = h.end_time_s - h.start_time_s;
     std::printf(
         "heat %.2f s on %d rank(s): birth interval %.3f s, %zu events, %ld steps, %ld rhs, %ld gmres "

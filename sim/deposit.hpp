@@ -108,11 +108,13 @@ struct Deposit {
   double voxel_size_mm = 0.0;
   // Fill fraction per voxel, 0..1. Index space: voxel (i,j,k) spans [i,i+1)*voxel_size_mm etc.
   openvdb::FloatGrid::Ptr fill;
-  // Time (s) the voxel last received material.
+  // The grids below name, per voxel, the move that brought it at least as much material as it already held
+  // (sim/fill_writer.hpp): the move whose material it mostly is, not one that later topped it up.
+  // Time (s) that material landed.
   openvdb::FloatGrid::Ptr time;
-  // Toolpath layer index of the material in the voxel (-1 background, and for moves without a layer).
+  // Its toolpath layer index (-1 background, and for moves without a layer).
   openvdb::Int32Grid::Ptr layer;
-  // Index into Toolpath::moves of the move that last put material in the voxel (-1 background).
+  // Its move: index into Toolpath::moves (-1 background).
   openvdb::Int32Grid::Ptr move;
   // The enclosed gaps between beads (sim/porosity.hpp): empty voxels inside the part, whose walls do not
   // see the outside air.
@@ -169,12 +171,12 @@ Eigen::Vector3d voxel_center_mm(const openvdb::Coord& ijk, double voxel_size_mm)
 int voxel_row_at_or_above(double z_mm, double voxel_size_mm);
 
 // The fill of the part as it stood when toolpath layer `last_layer` was done: the voxels whose material
-// came from layers 0..last_layer (the layer grid names the last layer to fill a voxel, so a voxel a later
-// layer topped up is left out whole). Same transform as the deposit's fill. Preconditions: the deposit has
-// fill and layer grids.
+// came from layers 0..last_layer (the layer grid names the layer whose material a voxel mostly is, so a
+// voxel is in or out whole: in with the layer that brought most of it, even if a later layer topped it up).
+// Same transform as the deposit's fill. Preconditions: the deposit has fill and layer grids.
 openvdb::FloatGrid::Ptr fill_up_to_layer(const Deposit& deposit, int last_layer);
 // The fill of the part as it stood at `time_s` (s from the start of the print): the voxels whose material
-// had landed by then (the time grid names when a voxel last received material). Preconditions: the
+// had landed by then (the time grid names when the material a voxel mostly is landed). Preconditions: the
 // deposit has fill and time grids.
 openvdb::FloatGrid::Ptr fill_up_to_time(const Deposit& deposit, double time_s);
 

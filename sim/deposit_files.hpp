@@ -3,8 +3,8 @@
 //
 // Both hold the same three fields per voxel that holds material (sim/deposit.hpp):
 //   fill    fraction of the voxel holding material, 0..1
-//   time_s  time the voxel last received material, s from the start of the print
-//   layer   toolpath layer of its material (-1 for moves without a layer)
+//   time_s  time the material the voxel mostly holds landed, s from the start of the print
+//   layer   toolpath layer of that material (-1 for moves without a layer)
 // Lengths are mm in the machine frame; voxel (i,j,k) spans [i, i+1) · voxel_size_mm along x (likewise y, z).
 // Both writers are atomic: the file appears complete or not at all. They throw std::invalid_argument for a
 // deposit without material (an empty file helps nobody) and std::runtime_error when the file cannot be

@@ -176,7 +176,7 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
     const double before = held;
     const double after = before + cell.fraction * fill_per_fraction;
     const auto time_s = static_cast<float>(stamp_of_move.start_s + cell.along * stamp_of_move.duration_s);
-    if (before < 1.0) stamp(cell.ijk, time_s, stamp_of_move);
+    if (before < 1.0 && std::min(after, 1.0) - before >= before) stamp(cell.ijk, time_s, stamp_of_move);
     if (after > 1.0) {
       set_fill(cell.ijk, held, 1.0f);
       overflow_.push_back({cell.ijk, after - 1.0, time_s});
@@ -225,7 +225,7 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
       const double free = 1.0 - held;
       set_fill(ijk, held, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
       if (k == window_k) window_.written(ijk.x(), ijk.y());
-      stamp(ijk, overflow.time_s, of);
+      if ((share >= 1.0 ? free : share * free) >= held) stamp(ijk, overflow.time_s, of);
     }
     excess -= share * room;
     if (k >= roller_k_) ploughed_ += share * room;

@@ -5,8 +5,13 @@
 // the gaps between beads already laid nearby (voxels partly full, within a bead width), then into empty
 // space right beside it (the bead squeezes a little wider), then upward (the roller ploughs). Each ring of
 // neighbours shares the excess in proportion to its free room, so it spreads evenly to every side. Nothing
-// is ever dropped, so the grid holds exactly what was added, to float rounding. Each voxel that receives
-// material is stamped with the time, layer and index of the move.
+// is ever dropped, so the grid holds exactly what was added, to float rounding. A voxel is stamped with the
+// time, layer and index of the move that brought it at least as much material as it already held: the move
+// whose material it mostly is. A later move that tops it up with less leaves the stamp, so a bead's cells,
+// a layer's colour and the part as it stood after a layer follow the material, not the last touch (where
+// neighbouring beads overlap, a later bead tops up the earlier one's round corners; stamped by the last
+// touch, its cells wrapped round them and the two beads shared twice the contact they have, the more so
+// the finer the voxels).
 #pragma once
 
 #include <array>
@@ -21,7 +26,7 @@
 
 namespace beadtwin::sim {
 
-// What a voxel is stamped with when a move puts material into it.
+// What a voxel is stamped with when a move puts at least as much material into it as it held.
 struct MoveStamp {
   double start_s = 0.0;     // time the move starts
   double duration_s = 0.0;  // the voxel at `along` gets start_s + along · duration_s

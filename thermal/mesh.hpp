@@ -4,7 +4,7 @@
 // Consecutive depositing moves that join end to start form one bead (a chain). A chain is cut along its
 // length into pieces of about `cell_length_mm`, each piece across its width into `cells_across` strips (an
 // odd number, so there is a centre strip and two edges) and through its height into `cells_through` slices.
-// Each voxel of the deposit belongs to the cell of the move that laid its material (the deposit's move
+// Each voxel of the deposit belongs to the cell of the move whose material it mostly is (the deposit's move
 // grid): its place along, across and through that move's bead picks the piece, strip and slice. A cell is
 // therefore a piece of a real bead, including the material that bead pushed into the gaps below it, and it
 // is born when that material landed (the fill-weighted mean of its voxels' deposition times).

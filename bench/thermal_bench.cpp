@@ -13,8 +13,9 @@
 // prints the interfaces by kind (on top of the layer below, on top of another, beside one in the same
 // layer, beside another), each with its share of the interface area, its share too cold, its healing and
 // its substrate temperature (area-weighted), the healing of those on the layer below by substrate
-// temperature (5 K bins, from layer 12 on), and the contact between cells of neighbouring and of the same
-// layers over layers 20-40 (docs/validation.md, mesh convergence).
+// temperature (5 K bins, from layer 12 on) and by whether either cell has surface open for good, and the
+// contact between cells of neighbouring and of the same layers over layers 20-40 (docs/validation.md, mesh
+// convergence).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -53,6 +54,7 @@ void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h)
   double area[4] = {}, cold[4] = {}, healing[4] = {}, substrate[4] = {}, total = 0.0;
   constexpr int kBins = 20;
   double bin_area[kBins] = {}, bin_healing[kBins] = {};
+  double open_area[2] = {}, open_healing[2] = {}, open_substrate[2] = {}, open_cold[2] = {};
   for (const thermal::InterfaceResult& r : h.interfaces) {
     const int older = mesh.cells[r.older].layer, younger = mesh.cells[r.younger].layer;
     const int kind = r.on_top ? (younger == older + 1 ? 0 : 1) : (younger == older ? 2 : 3);
@@ -62,6 +64,11 @@ void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h)
     substrate[kind] += r.substrate_c * r.area_mm2;
     total += r.area_mm2;
     if (kind == 0 && older >= 12) {
+      const bool open = mesh.cells[r.older].open_area_mm2 > 0.0 || mesh.cells[r.younger].open_area_mm2 > 0.0;
+      open_area[open] += r.area_mm2;
+      open_healing[open] += r.healing * r.area_mm2;
+      open_substrate[open] += r.substrate_c * r.area_mm2;
+      open_cold[open] += r.verdict == thermal::Verdict::kTooCold ? r.area_mm2 : 0.0;
       const int bin = std::clamp(static_cast<int>(std::floor((r.substrate_c - 110.0) / 5.0)), 0, kBins - 1);
       bin_area[bin] += r.area_mm2;
       bin_healing[bin] += r.healing * r.area_mm2;
@@ -76,6 +83,13 @@ void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h)
     if (bin_area[b] > 0.0)
       std::printf("  on the layer below, substrate %d-%d C: area %.4f, healing %.3f\n", 110 + 5 * b,
                   115 + 5 * b, bin_area[b] / total, bin_healing[b] / bin_area[b]);
+  for (int open = 0; open < 2; ++open)
+    if (open_area[open] > 0.0)
+      std::printf(
+          "  on the layer below, %s: area %.3f, too cold %.3f of them, healing %.3f, substrate %.1f C\n",
+          open ? "a cell with open surface" : "no open surface", open_area[open] / total,
+          open_cold[open] / open_area[open], open_healing[open] / open_area[open],
+          open_substrate[open] / open_area[open]);
   double between = 0.0, between_up = 0.0, same = 0.0, same_up = 0.0;
   for (const thermal::ThermalLink& l : mesh.links) {
     const int a = mesh.cells[l.a].layer, b = mesh.cells[l.b].layer;

@@ -105,8 +105,8 @@ void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h)
     }
   }
   std::printf(
-      "layers 20-40: contact between layers %.3g mm2 (%.3g facing up), within a layer %.3g mm2 (%.3g "
-      "facing up)\n",
+      "layers 20-40: contact between layers %.3g mm2 (%.3g on top), within a layer %.3g mm2 (%.3g "
+      "on top)\n",
       between, between_up, same, same_up);
 }
 }  // namespace

@@ -91,17 +91,15 @@ void print_kinds(const thermal::ThermalMesh& mesh, const thermal::HeatResult& h)
           open_cold[open] / open_area[open], open_healing[open] / open_area[open],
           open_substrate[open] / open_area[open]);
   double between = 0.0, between_up = 0.0, same = 0.0, same_up = 0.0;
-  for (const thermal::ThermalLink& l : mesh.links) {
-    const int a = mesh.cells[l.a].layer, b = mesh.cells[l.b].layer;
-    if (!l.interface || a < 20 || a > 40 || b < 20 || b > 40) continue;
-    // Counted as on top: the contact's normal within 60° of vertical.
-    const double up = std::abs(l.area_vector_mm2.z()) > 0.5 * l.area_vector_mm2.norm() ? l.area_mm2() : 0.0;
-    if (std::abs(a - b) == 1) {
-      between += l.area_mm2();
-      between_up += up;
-    } else if (a == b) {
-      same += l.area_mm2();
-      same_up += up;
+  for (const thermal::InterfaceResult& r : h.interfaces) {
+    const int older = mesh.cells[r.older].layer, younger = mesh.cells[r.younger].layer;
+    if (older < 20 || younger > 40) continue;
+    if (younger == older + 1) {
+      between += r.area_mm2;
+      between_up += r.on_top ? r.area_mm2 : 0.0;
+    } else if (younger == older) {
+      same += r.area_mm2;
+      same_up += r.on_top ? r.area_mm2 : 0.0;
     }
   }
   std::printf(

@@ -153,7 +153,9 @@ void FillWriter::set_fill(const openvdb::Coord& ijk, float before, float value) 
   if (filled) m.full[z] |= bit;
 }
 
-void FillWriter::stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of) {
+void FillWriter::claim(const openvdb::Coord& ijk, double held, double added, float time_s,
+                       const MoveStamp& of) {
+  if (added < held) return;
   time_.setValue(ijk, time_s);
   layer_.setValue(ijk, of.layer);
   move_.setValue(ijk, of.move);
@@ -176,7 +178,7 @@ void FillWriter::add(std::span<const CoverageCell> cells, double fill_per_fracti
     const double before = held;
     const double after = before + cell.fraction * fill_per_fraction;
     const auto time_s = static_cast<float>(stamp_of_move.start_s + cell.along * stamp_of_move.duration_s);
-    if (before < 1.0 && std::min(after, 1.0) - before >= before) stamp(cell.ijk, time_s, stamp_of_move);
+    claim(cell.ijk, before, std::min(after, 1.0) - before, time_s, stamp_of_move);
     if (after > 1.0) {
       set_fill(cell.ijk, held, 1.0f);
       overflow_.push_back({cell.ijk, after - 1.0, time_s});
@@ -225,7 +227,7 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
       const double free = 1.0 - held;
       set_fill(ijk, held, share >= 1.0 ? 1.0f : static_cast<float>(1.0 - free + share * free));
       if (k == window_k) window_.written(ijk.x(), ijk.y());
-      if ((share >= 1.0 ? free : share * free) >= held) stamp(ijk, overflow.time_s, of);
+      claim(ijk, held, share >= 1.0 ? free : share * free, overflow.time_s, of);
     }
     excess -= share * room;
     if (k >= roller_k_) ploughed_ += share * room;
@@ -236,6 +238,7 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   // few rings, where most spreads end, are asked of their blocks' gap masks ring by ring (near_gaps); the
   // rest by rings(). (This phase only fills gaps: it makes none, so what the leaves said holds.)
   constexpr int kNear = LevelWindow::kNearRings;
+  LevelWindow::Rings rings_k0;  // the overflow's own level's, kept for the squeeze below
   const auto fill_gaps = [&](int k) {
     if (k != window_k) {
       window_.reset({overflow.ijk.x(), overflow.ijk.y(), k}, radius);
@@ -247,6 +250,7 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
     for (int ring = 1; ring <= std::min(kNear, spread_radius); ++ring)
       if ((near >> ring & 1u) != 0 && offer_ring(ring, k, true)) return true;
     const LevelWindow::Rings rings = window_.rings({overflow.ijk.x(), overflow.ijk.y(), k}, radius);
+    if (k == k0) rings_k0 = rings;
     for (int ring = kNear + 1; ring <= spread_radius; ++ring)
       if (rings.holds_gap(ring) && offer_ring(ring, k, true)) return true;
     return false;
@@ -259,13 +263,13 @@ void FillWriter::spread(const Overflow& overflow, const MoveStamp& of, int sprea
   if (fill_gaps(k0)) return;
   for (int k = k0 - 1; k >= floor_k_; --k)
     if (fill_gaps(k)) return;
-  if (window_k != k0) {
+  if (window_k != k0) {  // the levels below were looked at; the overflow's own is as it was
     window_.reset(overflow.ijk, radius);
     window_k = k0;
   }
-  // The rings inside the first that reaches a slice not full offer no room.
-  const LevelWindow::Rings rings = window_.rings(overflow.ijk, radius);
-  for (int ring = std::max(1, rings.first_room); ring <= squeeze_radius; ++ring)
+  // The rings inside the first that reaches a slice not full offer no room (the gaps filled since do not
+  // matter: a ring they filled is read and offers nothing).
+  for (int ring = std::max(1, rings_k0.first_room); ring <= squeeze_radius; ++ring)
     if (offer_ring(ring, k0, false)) return;
   // Above the deposit every voxel is free, so this ends; the bound only guards against a broken grid.
   constexpr int kMaxSlabsUp = 1 << 20;

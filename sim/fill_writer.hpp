@@ -152,7 +152,9 @@ class FillWriter {
 
   // Writes `value` into the fill at `ijk`, which held `before`, counting the voxel full if it now is.
   void set_fill(const openvdb::Coord& ijk, float before, float value);
-  void stamp(const openvdb::Coord& ijk, float time_s, const MoveStamp& of);
+  // Stamps `ijk` with `of` (and `time_s`) if `added`, the material the move just put into it, is at least
+  // the `held` it had before (voxel volumes): the voxel is the move's material.
+  void claim(const openvdb::Coord& ijk, double held, double added, float time_s, const MoveStamp& of);
   void spread(const Overflow& overflow, const MoveStamp& of, int spread_radius, int squeeze_radius);
 
   openvdb::FloatGrid::Accessor fill_;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -63,6 +64,9 @@ struct Move {
   bool roller_down = false;  // compression roller (or tamper) engaged
   float fan =
       0.0f;  // the part-cooling fan's (or air knife's) output while the move runs, 0 (off) to 1 (full)
+  // The hot end's set temperature the program commanded before the move (M104/M109 S), °C; NaN where it
+  // commanded none, and the material's deposition temperature stands for the bead's.
+  float nozzle_c = std::numeric_limits<float>::quiet_NaN();
   double feed_mm_s = 0.0;        // commanded speed
   double volume_mm3 = 0.0;       // material the move extrudes (0 for travel): the commanded volume
   double bead_width_mm = 0.0;    // intended flattened width

@@ -162,15 +162,19 @@ class GcodeReader::State {
       } else if (w.letter == 'O' || w.letter == 'N') {
         // program and line numbers
       } else if (w.letter == 'T') {
+        s.tool = w;
         if (w.value != 0.0) tool = &w;
       } else {
         s.params.add(w);
       }
     }
-    if (tool)
+    // M104 T1 S200 sets another tool's heater: no tool change.
+    const bool heater =
+        std::any_of(s.m.begin(), s.m.end(), [&](const Word& w) { return codes_.nozzle_temp.matches(w); });
+    if (tool && !heater)
       warn("tool change", tool->column,
            fmt::format("tool change T{} ignored: one extruder is modelled", tool->value));
-    else if (m6)
+    else if (m6 && !heater)
       warn("tool change", m6->column, "tool change (M6) ignored: one extruder is modelled");
     for (const Word& w : s.unknown) {
       const std::string code = fmt::format("{}{}", w.letter, w.value);
@@ -193,14 +197,18 @@ class GcodeReader::State {
 
   void run(SortedBlock& s) {
     // An ignored or unknown code owns the block's parameters (M104 S200, M204 S800, M203 X200 ...).
-    const bool housekeeping = !s.unhandled.empty() && !(s.motion || s.dwell || s.set_position || s.home);
+    // So does a heater's target (M104 S215): read first.
+    const bool heater = has_m(s, codes_.nozzle_temp);
+    const bool housekeeping =
+        (!s.unhandled.empty() || heater) && !(s.motion || s.dwell || s.set_position || s.home);
+    if (heater) nozzle_temp(s);
     if (housekeeping) {
       s.params.take_all();
     } else {
       if (const auto f = s.params.take('F')) feed_mm_s_ = *f * scale() / 60.0;
       // A dwell's S is its time, M200's S a switch, a reverse code's speed word the reverse speed.
       const bool speed_word =
-          speed_ != '\0' && !s.dwell && !has_m(s, codes_.reverse_on) && !has_m(s, codes_.fan_on) &&
+          speed_ != '\0' && !s.dwell && !has_m(s, codes_.reverse_on) && !has_m(s, codes_.fan_on) && !heater &&
           std::none_of(s.m.begin(), s.m.end(), [](const Word& w) { return is(w, 'M', 2000); });
       if (const auto rpm = speed_word ? s.params.take(speed_) : std::nullopt)
         set_rpm(*rpm, s.params.column(speed_));
@@ -260,6 +268,16 @@ class GcodeReader::State {
     const std::optional<double> output = p.take('S');
     if (index && *index != 0.0 && *index != 1.0) return;
     fan_ = output ? static_cast<float>(std::clamp(*output / opt_.fan_full, 0.0, 1.0)) : 1.0f;
+  }
+
+  // The hot end's target (ReaderOptions::nozzle_temp): S, or M109's R (wait while heating or cooling), in
+  // °C for the tool in use (no T, or T0); S0 turns the heater off and leaves the beads' temperature alone.
+  void nozzle_temp(SortedBlock& s) {
+    const std::optional<double> target = s.params.take('S');
+    const std::optional<double> either_way = s.params.take('R');
+    if (s.tool && s.tool->value != 0.0) return;
+    const std::optional<double> c = target ? target : either_way;
+    if (c && *c > 0.0) nozzle_c_ = static_cast<float>(*c);
   }
 
   // M200 D<diameter> (D0: off), S0/S1 (Marlin 2: off/on).
@@ -564,6 +582,7 @@ class GcodeReader::State {
     m.feature = Feature::kTravel;
     m.roller_down = roller_;
     m.fan = fan_;
+    m.nozzle_c = nozzle_c_;
     m.source_line = line_;
     return m;
   }
@@ -617,7 +636,8 @@ class GcodeReader::State {
   bool prime_pending_ = false;
   bool reverse_pending_ = false;
   bool roller_;
-  float fan_ = 0.0f;  // the part-cooling fan's output, 0..1
+  float fan_ = 0.0f;                                          // the part-cooling fan's output, 0..1
+  float nozzle_c_ = std::numeric_limits<float>::quiet_NaN();  // the hot end's target, °C; NaN: none yet
   const char speed_;  // the speed word's letter (ReaderOptions::rpm_word); '\0': none
 
   // What comments said.

@@ -51,6 +51,7 @@ CodeSets::CodeSets(const ReaderOptions& o)
       roller_up(o.roller_up, "reader.roller_up"),
       fan_on(o.fan_on, "reader.fan_on"),
       fan_off(o.fan_off, "reader.fan_off"),
+      nozzle_temp(o.nozzle_temp, "reader.nozzle_temp"),
       prime(o.prime, "reader.prime"),
       reverse_on(o.reverse_on, "reader.reverse_on"),
       reverse_off(o.reverse_off, "reader.reverse_off"),
@@ -62,7 +63,7 @@ bool CodeSets::acts_on(const Word& w) const {
     if (t == 20 || t == 300 || t == 820 || t == 830 || t == 2000) return true;
   }
   for (const CodeSet* s : {&melt_on, &melt_off, &heat_on, &heat_off, &roller_down, &roller_up, &fan_on,
-                           &fan_off, &prime, &reverse_on, &reverse_off})
+                           &fan_off, &nozzle_temp, &prime, &reverse_on, &reverse_off})
     if (s->matches(w)) return true;
   return false;
 }

@@ -54,8 +54,8 @@ struct CodeSets {
   // Whether the reader acts on M code `w`: a machine code of the options, M2, M30, M82, M83 or M200.
   bool acts_on(const Word& w) const;
 
-  CodeSet melt_on, melt_off, heat_on, heat_off, roller_down, roller_up, fan_on, fan_off, prime, reverse_on,
-      reverse_off, ignored;
+  CodeSet melt_on, melt_off, heat_on, heat_off, roller_down, roller_up, fan_on, fan_off, nozzle_temp, prime,
+      reverse_on, reverse_off, ignored;
 };
 
 // The parameter words of one block, each taken by the code that uses it; the rest are reported unused.
@@ -131,12 +131,13 @@ struct SortedBlock {
   std::optional<Word> dwell, set_position, home;
   std::vector<Word> unhandled;  // codes ignored or unknown: their parameters are theirs
   std::vector<Word> unknown;
-  std::vector<Word> m;  // M codes the reader acts on
+  std::vector<Word> m;       // M codes the reader acts on
+  std::optional<Word> tool;  // a T word
   Params params;
 
   void clear() {
     for (std::vector<Word>* v : {&modal_g, &unhandled, &unknown, &m}) v->clear();
-    motion = dwell = set_position = home = std::nullopt;
+    motion = dwell = set_position = home = tool = std::nullopt;
     params.clear();
   }
 };

@@ -41,6 +41,10 @@ struct ReaderOptions {
   std::vector<std::string> fan_on = {"M106"};
   std::vector<std::string> fan_off = {"M107"};
   double fan_full = 255.0;
+  // The hot end's target temperature, S in °C (M109's R likewise): the bead's temperature as it leaves the
+  // nozzle (Move::nozzle_c). A T word other than T0 names another tool's heater, which is left alone; S0
+  // (heater off) changes nothing for the beads still to come.
+  std::vector<std::string> nozzle_temp = {"M104", "M109"};
   // The roller is engaged from the start (until a roller-up code): a roller machine whose programs carry no
   // roller codes rolls every bead.
   bool roller_down_at_start = false;

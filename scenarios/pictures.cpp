@@ -393,6 +393,9 @@ PictureFrame picture_frame(const std::vector<const Variant*>& variants,
     f.layers = std::max(f.layers, static_cast<int>(tp.layers.size()));
     f.cold_c = std::min(f.cold_c, v.machine.environment.ambient_c);
     f.hot_c = std::max(f.hot_c, v.material.deposition_temp_c);
+    for (const Move& m : tp.moves)  // the program's nozzle temperatures
+      if (m.deposits() && std::isfinite(m.nozzle_c))
+        f.hot_c = std::max(f.hot_c, static_cast<double>(m.nozzle_c));
     const StockScale stock = stock_scale(v);
     f.stock_centre_mm = std::min(f.stock_centre_mm, stock.requested_mm);
     f.stock_half_range_mm = std::max(f.stock_half_range_mm, stock.half_range_mm);

@@ -24,6 +24,16 @@
 namespace beadtwin::thermal {
 namespace {
 
+// `material` with the deposition temperature of the hottest bead (ThermalCell::deposition_offset_k): the
+// support's tables reach that far.
+Material hottest_birth(const Material& material, const ThermalMesh& mesh) {
+  Material m = material;
+  double offset = 0.0;
+  for (const ThermalCell& c : mesh.cells) offset = std::max(offset, c.deposition_offset_k);
+  m.deposition_temp_c += offset;
+  return m;
+}
+
 // The median of value(i) over cells [0, n), n > 0.
 template <class F>
 double median_over_cells(std::size_t n, const F& value) {
@@ -176,7 +186,7 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       material_(material),
       options_(options),
       n_(mesh.cells.size()),
-      support_(material, options.support),
+      support_(hottest_birth(material, mesh), options.support),
       own_support_(mesh.support.size() == mesh.cells.size() ? std::vector<SupportCell>{}
                                                             : support_cells(mesh, nullptr)),
       support_cells_(own_support_.empty() ? std::span<const SupportCell>(mesh.support) : own_support_),
@@ -265,7 +275,7 @@ HeatResult HeatSolve::run() {
 
 void HeatSolve::judge_support(InterfaceResult& r, std::span<const double> state) const {
   const auto temp_c = [&](std::uint32_t c) {
-    return c < mesh_born_ ? state[model_of_[c]] : material_.deposition_temp_c;
+    return c < mesh_born_ ? state[model_of_[c]] : model_.birth_c(model_of_[c]);
   };
   r.support = support_.judge(support_cells_, r.older, r.younger, births_.interval_s, temp_c, r.substrate_c);
 }
@@ -291,7 +301,8 @@ void HeatSolve::born_group(const BirthGroup& g, std::span<double> state) {
   for (std::size_t i = mesh_born_; i < g.end; ++i)
     for (const std::uint32_t k : index_.of_younger(i)) {
       InterfaceResult& r = interfaces_[k];
-      r.substrate_c = material_.deposition_temp_c;
+      r.bead_c = model_.birth_c(model_of_[r.younger]);
+      r.substrate_c = model_.birth_c(model_of_[r.older]);
       r.substrate_surface_c = r.substrate_c;
       if (r.older < mesh_born_) measure_substrate(r, state);
       if (r.on_top) judge_support(r, state);

@@ -117,6 +117,9 @@ struct InterfaceResult {
   double substrate_surface_c = 0.0;
   // How fast that bead was cooling then, K/s (NaN when both were born together).
   double substrate_rate_K_s = std::numeric_limits<double>::quiet_NaN();
+  // The younger cell's temperature as it was born, °C (the deposition temperature, or the program's nozzle
+  // temperature for its bead: ThermalCell::deposition_offset_k).
+  double bead_c = std::numeric_limits<double>::quiet_NaN();
   // Where the younger lands on top (on_top): whether the soft material under it carries it
   // (thermal/support.hpp), with the temperatures as it landed.
   SupportResult support;

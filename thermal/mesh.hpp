@@ -65,7 +65,10 @@ struct ThermalCell {
   Eigen::Vector3d open_depth_mm3 = Eigen::Vector3d::Zero();
   double table_area_mm2 = 0.0;  // surface resting on the table, which lies under the centroid at table_z_mm
   std::size_t move = 0;         // the first move (index into Toolpath::moves) that laid its material
-  int layer = -1;               // that move's toolpath layer
+  // Born this much hotter than the material's deposition temperature, K: where the program commands another
+  // nozzle temperature for this bead than for most of the print (set by solve_thermal; 0 otherwise).
+  double deposition_offset_k = 0.0;
+  int layer = -1;  // that move's toolpath layer
 };
 
 // A contact between two cells through the voxel faces they share.

@@ -44,6 +44,8 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
       eps_sigma_(material.emissivity * kStefanBoltzmann_W_m2K4),
       table_radiant_c_(env.bed_insulated ? env.ambient_c : env.bed_temp_c) {
   fan_full_h_ = env.fan_convection_W_m2K;
+  birth_c_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i) birth_c_[i] = deposition_c_ + mesh.cells[i].deposition_offset_k;
   mass_kg_.resize(n_);
   exposed_m2_.resize(n_);
   exposed_rarea_.resize(n_);
@@ -192,13 +194,13 @@ double PartModel::time_constant_s(std::size_t i) const {
 
 void PartModel::birth(std::size_t end, std::span<double> y) {
   for (std::size_t i = born_; i < end; ++i) {
-    y[i] = deposition_c_;
+    y[i] = birth_c_[i];
     for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
       const std::uint32_t j = nb_cell_[k];
       if (j < end) close_face(i, k);
       if (j < born_) close_face(j, face_towards(j, static_cast<std::uint32_t>(i)));
     }
-    energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, deposition_c_);
+    energy_in_J_ += mass_kg_[i] * material_.enthalpy_J_kg(ambient_c_, birth_c_[i]);
   }
   const std::size_t before = born_;
   born_ = end;
@@ -212,7 +214,8 @@ void PartModel::birth(std::size_t end, std::span<double> y) {
 void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
   const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
   std::vector<double> mass(m, 0.0), exposed(m, 0.0), rarea(m, 0.0), table(m, 0.0), h_area(m, 0.0),
-      h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0), open(m, 0.0), sky(m, 0.0), table_view(m, 0.0);
+      h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0), open(m, 0.0), sky(m, 0.0), table_view(m, 0.0),
+      birth(m, 0.0);
   for (std::size_t i = 0; i < n_; ++i) {
     const std::size_t g = to[i];
     mass[g] += mass_kg_[i];
@@ -222,6 +225,7 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
     open[g] += open_m2_[i];
     sky[g] += sky_m2_[i];
     table_view[g] += table_view_m2_[i];
+    birth[g] += mass_kg_[i] * birth_c_[i];  // a cell not born yet stays a run of one
     h_area[g] += h_[i] * exposed_m2_[i];
     h_sum[g] += h_[i];
     count[g] += 1.0;
@@ -251,6 +255,8 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   state[cap] = y[cap_];
   const std::size_t born = born_ == 0 ? 0 : std::size_t{to[born_ - 1]} + 1;
   n_ = m;
+  for (std::size_t g = 0; g < m; ++g) birth[g] /= mass[g];
+  birth_c_ = std::move(birth);
   mass_kg_ = std::move(mass);
   exposed_m2_ = std::move(exposed);
   exposed_rarea_ = std::move(rarea);

@@ -55,8 +55,11 @@ class PartModel final : public OdeSystem {
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const;
 
-  // Cells [born(), end) are born: at the deposition temperature in y, their faces towards born cells closed.
+  // Cells [born(), end) are born: each at its birth temperature in y, their faces towards born cells closed.
   void birth(std::size_t end, std::span<double> y);
+  // Model cell i's temperature as it is born, °C: the deposition temperature and its cell's offset
+  // (ThermalCell::deposition_offset_k).
+  double birth_c(std::size_t i) const { return birth_c_[i]; }
 
   // The model's cells: the mesh's, less what lumping took.
   std::size_t size_of_model() const { return n_; }
@@ -217,7 +220,8 @@ class PartModel final : public OdeSystem {
   std::vector<double> h_;                  // convection coefficient at the cell's height, W/m²K
   double fan_full_h_ = 0.0, fan_h_ = 0.0;  // forced convection with the fan at full and now, W/m²K
   double deposition_c_, ambient_c_, bed_c_, eps_sigma_;
-  double table_radiant_c_;  // the table as the faces that see it see it: held at bed_c_, or the air's
+  std::vector<double> birth_c_;  // per cell: its temperature as it is born, °C
+  double table_radiant_c_;       // the table as the faces that see it see it: held at bed_c_, or the air's
   double energy_in_J_ = 0.0;
   double rel_tol_ = 1e-4, abs_tol_k_ = 0.01, abs_tol_J_ = 1.0;
 };

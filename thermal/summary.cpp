@@ -178,10 +178,11 @@ double weighted_quantile(std::vector<std::pair<double, double>> value_weight, do
 
 LayerTimeWindow layer_time_window(std::span<const InterfaceResult> landing, double duration_s,
                                   const Material& material, double ambient_c, double share) {
-  const double t_dep = material.deposition_temp_c;
   const Reptation reptation(material);
   std::vector<std::pair<double, double>> hot, cold;  // (wait, area)
   for (const InterfaceResult& r : landing) {
+    // The bead as it landed: the deposition temperature, or the program's nozzle temperature for it.
+    const double t_dep = std::isfinite(r.bead_c) ? r.bead_c : material.deposition_temp_c;
     // Laid together with the bead on it (no layer change between them), or warming as it was covered (a
     // neighbour laid just before): no cooling curve to follow.
     if (!(r.substrate_rate_K_s < 0.0)) continue;

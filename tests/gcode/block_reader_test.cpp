@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -618,6 +619,39 @@ TEST(GcodeReader, FanCodesSetTheFanOutputOfTheMovesAfterThem) {
   const Toolpath off = read("G1 X10 F600\nM106 S255\nG1 X20\nM300 S51\nG1 X30\n", other);
   EXPECT_FLOAT_EQ(off.moves.at(1).fan, 0.0f);
   EXPECT_FLOAT_EQ(off.moves.at(2).fan, 0.2f);
+}
+
+// The hot end's target (M104/M109 S, M109 R): every move carries the temperature the program last set for
+// the tool in use, NaN before any; a T word other than T0 names another tool's heater and is no tool change;
+// S0 (heater off) leaves the beads' temperature alone; the S of these blocks is never the pump's speed.
+TEST(GcodeReader, HeaterTargetsSetTheNozzleTemperatureOfTheMovesAfterThem) {
+  ReaderOptions o;
+  o.rpm_word = "S";
+  ReadStats st;
+  const Toolpath tp = read(
+      "M83\nG1 Z0.2 F600\nG1 X10 E1\nM104 S200\nG1 X20 E1\nM109 T0 S215\nG1 X30 E1\nM104 T1 S180\nG1 X40 E1\n"
+      "M104 S0\nG1 X50 E1\nM109 R190\nG1 X60 E1\n",
+      o, &st);
+  const auto nozzle_at = [&](double x) {
+    for (const Move& m : tp.moves)
+      if (std::abs(m.end.x() - x) < 1e-9) return m.nozzle_c;
+    ADD_FAILURE() << "no move to x = " << x;
+    return -1.0f;
+  };
+  EXPECT_TRUE(std::isnan(nozzle_at(10)));
+  EXPECT_FLOAT_EQ(nozzle_at(20), 200.0f);
+  EXPECT_FLOAT_EQ(nozzle_at(30), 215.0f);
+  EXPECT_FLOAT_EQ(nozzle_at(40), 215.0f);
+  EXPECT_FLOAT_EQ(nozzle_at(50), 215.0f);
+  EXPECT_FLOAT_EQ(nozzle_at(60), 190.0f);
+  EXPECT_EQ(st.warning_count(), 0u) << (st.messages.empty() ? "" : st.messages[0]);
+  double volume = 0.0;
+  for (const Move& m : tp.moves) volume += m.volume_mm3;
+  EXPECT_NEAR(volume, 6.0 * std::numbers::pi * 1.75 * 1.75 / 4.0, 1e-9) << "no S taken as a pump speed";
+  // On a machine whose programs set no temperature this way, M104 is housekeeping.
+  ReaderOptions other;
+  other.nozzle_temp = {};
+  EXPECT_TRUE(std::isnan(read("M104 S200\nG1 X10 E1 F600\n", other).moves.back().nozzle_c));
 }
 
 }  // namespace

@@ -104,6 +104,49 @@ TEST(ThermalStage, GivesWhatItsStepsGiveWithTheInputsOptions) {
     EXPECT_EQ(result.cells[i] == Verdict::kNoInterface, mesh.cells[i].layer == 0) << i;
 }
 
+// The program's nozzle temperature (Move::nozzle_c, M104/M109) is the beads' temperature: a program at
+// 230 °C on a material whose file says 200 °C heals exactly as the material at 230 °C would; a second bead
+// set 20 K hotter is born 20 K hotter, heals more, and the report's note says so.
+TEST(ThermalStage, TheProgramsNozzleTemperatureIsTheBeadsTemperature) {
+  const Toolpath plain = stacked_beads();
+  const sim::Deposit deposit = deposit_of(plain);
+  const ThermalResult from_file = solve_thermal(input_for(plain, deposit));  // the material at 230 °C
+  ASSERT_FALSE(from_file.heat.interfaces.empty());
+  for (const std::string& n : from_file.heat.notes) EXPECT_EQ(n.find("nozzle"), std::string::npos) << n;
+
+  const auto program_at = [&](float first_c, float second_c) {
+    Toolpath tp = plain;
+    for (Move& m : tp.moves) m.nozzle_c = m.layer == 0 ? first_c : second_c;
+    ThermalInput in = input_for(tp, deposit);
+    in.material.deposition_temp_c = 200.0;  // the file's; the program's stands
+    in.material.ranges = {{.key = "deposition_temp", .lo = 190.0, .hi = 210.0}};
+    return solve_thermal(in);
+  };
+  const ThermalResult same = program_at(230.0f, 230.0f);
+  ASSERT_EQ(same.heat.interfaces.size(), from_file.heat.interfaces.size());
+  for (std::size_t k = 0; k < same.heat.interfaces.size(); ++k) {
+    EXPECT_DOUBLE_EQ(same.heat.interfaces[k].healing_integral, from_file.heat.interfaces[k].healing_integral);
+    EXPECT_DOUBLE_EQ(same.heat.interfaces[k].bead_c, 230.0);
+  }
+  EXPECT_DOUBLE_EQ(same.heat.energy_in_J, from_file.heat.energy_in_J);
+
+  const ThermalResult hotter = program_at(230.0f, 250.0f);
+  double sum_same = 0.0, sum_hotter = 0.0;
+  for (std::size_t k = 0; k < hotter.heat.interfaces.size(); ++k) {
+    EXPECT_DOUBLE_EQ(hotter.heat.interfaces[k].bead_c, 250.0);
+    EXPECT_GT(hotter.heat.interfaces[k].healing_integral, same.heat.interfaces[k].healing_integral) << k;
+    sum_same += same.heat.interfaces[k].healing_integral;
+    sum_hotter += hotter.heat.interfaces[k].healing_integral;
+  }
+  EXPECT_GT(sum_hotter, 1.5 * sum_same);
+  EXPECT_GT(hotter.heat.energy_in_J, same.heat.energy_in_J);
+  bool noted = false;
+  for (const std::string& n : hotter.heat.notes)
+    noted = noted ||
+            (n.find("nozzle temperature") != std::string::npos && n.find("230-250") != std::string::npos);
+  EXPECT_TRUE(noted);
+}
+
 TEST(ThermalStage, BadOptionsAreInputErrorsNamingTheKey) {
   const Toolpath toolpath = stacked_beads();
   const sim::Deposit deposit = deposit_of(toolpath);

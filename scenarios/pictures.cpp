@@ -83,8 +83,7 @@ openvdb::FloatGrid::Ptr values_on(const openvdb::FloatGrid& fill, const MakeRead
   return out;
 }
 
-// The value per label of `labels` (cells, layers) on the material voxels: NaN where the label is outside
-// the table.
+// The value per label of `labels` (cells, layers) on the material voxels (NaN: label outside the table).
 openvdb::FloatGrid::Ptr values_by_label(const openvdb::FloatGrid& fill, const openvdb::Int32Grid& labels,
                                         const std::vector<double>& by_label) {
   return values_on(fill, [&] {
@@ -393,15 +392,14 @@ PictureFrame picture_frame(const std::vector<const Variant*>& variants,
     f.layers = std::max(f.layers, static_cast<int>(tp.layers.size()));
     f.cold_c = std::min(f.cold_c, v.machine.environment.ambient_c);
     f.hot_c = std::max(f.hot_c, v.material.deposition_temp_c);
-    for (const Move& m : tp.moves)  // the program's nozzle temperatures
-      if (m.deposits() && std::isfinite(m.nozzle_c))
-        f.hot_c = std::max(f.hot_c, static_cast<double>(m.nozzle_c));
     const StockScale stock = stock_scale(v);
     f.stock_centre_mm = std::min(f.stock_centre_mm, stock.requested_mm);
     f.stock_half_range_mm = std::max(f.stock_half_range_mm, stock.half_range_mm);
-    // The beads: every depositing move's ends, grown by half its bead across and by its height below.
+    // The beads: every depositing move's ends, grown by half its bead across and by its height below; the
+    // hottest the program sets the nozzle to.
     for (const Move& m : tp.moves) {
       if (!m.deposits()) continue;
+      if (std::isfinite(m.nozzle_c)) f.hot_c = std::max(f.hot_c, static_cast<double>(m.nozzle_c));
       const float half = static_cast<float>(0.5 * std::max(m.bead_width_mm, m.layer_height_mm));
       for (const Eigen::Vector3d& p : {m.start, m.end}) {
         const Eigen::Vector3f q = p.cast<float>();
@@ -646,8 +644,7 @@ void PictureWriter::without_thermal() {
       s.draw_image(k, nullptr);
     }
   }
-  // The progress frames are drawn in one go (each shape is dropped once drawn, so they are not prepared
-  // ahead).
+  // The progress frames are drawn in one go (each shape dropped once drawn: none prepared ahead).
   if (v.render.progress && !needs_thermal(v.render.progress->colour)) s.draw_progress(nullptr);
 }
 

@@ -169,8 +169,7 @@ class GcodeReader::State {
       }
     }
     // M104 T1 S200 sets another tool's heater: no tool change.
-    const bool heater =
-        std::any_of(s.m.begin(), s.m.end(), [&](const Word& w) { return codes_.nozzle_temp.matches(w); });
+    const bool heater = has_m(s, codes_.nozzle_temp);
     if (tool && !heater)
       warn("tool change", tool->column,
            fmt::format("tool change T{} ignored: one extruder is modelled", tool->value));

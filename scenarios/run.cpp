@@ -63,7 +63,7 @@ void note_passes_laid(const Variant& v, const slicer::PlanStats& plan, std::vect
 }
 
 // The notes of the thermal stage's choices.
-void note_thermal(const thermal::ThermalResult& th, std::vector<std::string>& notes) {
+void note_thermal(const Variant& v, const thermal::ThermalResult& th, std::vector<std::string>& notes) {
   for (const auto* n : {&th.heat.notes, &th.mesh.notes}) notes.insert(notes.end(), n->begin(), n->end());
   if (th.heat.ranks > 1)
     notes.push_back(fmt::format("thermal: solved across {} MPI ranks, each a slice of the part by height",
@@ -73,6 +73,19 @@ void note_thermal(const thermal::ThermalResult& th, std::vector<std::string>& no
         "thermal: P10-P90 bands over the plausible ranges of {} ({} more heat solves, {} more healing "
         "integrals; thermal.uncertainty: off leaves them out)",
         fmt::join(th.uncertain_inputs, ", "), th.extra_heat_solves, th.extra_healing_laws));
+  else if (!th.mesh.cells.empty()) {
+    // Without the bands the verdicts stand on the files' values alone: say how many of them are uncertain.
+    std::vector<std::string> ranged;
+    for (const auto* ranges : {&v.material.ranges, &v.machine.environment.ranges})
+      for (const InputRange& r : *ranges) ranged.push_back(r.key);
+    if (!ranged.empty())
+      notes.push_back(fmt::format(
+          "thermal: the verdicts are at the material and machine files' values, and {} of the inputs that "
+          "decide them have plausible ranges there ({}), many of them estimates; thermal.uncertainty: "
+          "linearised gives each layer's P10-P90 band and calls a verdict whose band crosses its threshold "
+          "marginal",
+          ranged.size(), fmt::join(ranged, ", ")));
+  }
 }
 
 // What a variant's run shares with the others: the scenario, the pictures' frame, where it writes, how.
@@ -137,7 +150,7 @@ VariantResult run_variant(const RunContext& run, const Variant& v, const Sliced&
         if (room) outputs.write_files(), outputs.pictures_without_thermal(cad ? &*cad : nullptr);
       });
   stages.record_aside("compare");
-  note_thermal(th, res.notes);
+  note_thermal(v, th, res.notes);
   if (!v.thermal.snapshot_times_s.empty())
     stages.run("snapshots", [&] { write_snapshots(v, th, dir, res.exported); });
   outputs.finish(th, cad ? &*cad : nullptr);

@@ -307,6 +307,19 @@ TEST(Run, SmallScenarioEndToEnd) {
     EXPECT_TRUE(m["cad"]["deviation_map"]["white_at_mm"].is_number());
   }
   EXPECT_NE(read_file(out / "report.html").find("<img src=\"fast/deviation.png\""), std::string::npos);
+  // Without the bands (thermal.uncertainty off) the notes say that the verdicts rest on the files' values,
+  // which of those have ranges, and how to get the bands.
+  for (const auto& v : j["variants"]) {
+    const auto& notes = v["notes"];
+    const auto it = std::find_if(notes.begin(), notes.end(), [](const nlohmann::json& n) {
+      return n.get<std::string>().find("inputs that decide them have plausible ranges") != std::string::npos;
+    });
+    ASSERT_NE(it, notes.end()) << notes.dump();
+    const std::string note = it->get<std::string>();
+    for (const char* key : {"fusion.reptation_time", "fusion.wlf_c1", "environment.convection",
+                            "thermal.uncertainty: linearised"})
+      EXPECT_NE(note.find(key), std::string::npos) << key << " not in: " << note;
+  }
   // The slow variant prints the same part with longer layer times, so its substrate is colder.
   const auto& fast = j["variants"][0];
   const auto& slow = j["variants"][1];

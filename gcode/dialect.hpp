@@ -20,6 +20,11 @@ struct GcodeDialect {
   std::string fan_on = "M106";
   std::string fan_off = "M107";
   double fan_full = 255.0;
+  // Codes that set the hot end's temperature, separated by spaces (M104 S215, M109 S215 or R215 in Marlin,
+  // Klipper and Prusa firmware): read, never written. The reader takes their S as the bead's temperature;
+  // empty: they are housekeeping and the beads are laid at the material's deposition_temp (a pellet
+  // extruder whose bead is measured colder than its set point).
+  std::string nozzle_temp = "M104 M109";
   int decimals = 3;
   // Fanuc macro program (seed 002): layers repeating one path are written once in a WHILE loop
   // (gcode/macro_loops.hpp).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -87,6 +88,9 @@ ReaderOptions reader_options_for(const GcodeDialect& d, const Extruder* extruder
   o.fan_on = codes(d.fan_on);
   o.fan_off = codes(d.fan_off);
   o.fan_full = d.fan_full;
+  o.nozzle_temp.clear();
+  std::istringstream nozzle_codes(d.nozzle_temp);
+  for (std::string code; nozzle_codes >> code;) o.nozzle_temp.push_back(code);
   o.prime = codes(d.prime_code);
   o.reverse_on = codes(d.reverse_on);
   o.reverse_off = codes(d.reverse_off);

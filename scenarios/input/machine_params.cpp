@@ -260,6 +260,14 @@ const Param<Machine> kMachine[] = {
       .meaning = "the fan-on code's S at full output (255 in Marlin, Klipper and Prusa firmware)",
       .source = "Marlin M106"},
      BT_MEMBER(Machine, dialect.fan_full)},
+    {{.key = "gcode.nozzle_temp",
+      .default_text = "M104 M109",
+      .meaning = "codes that set the hot end's temperature, separated by spaces: their S (M109's R) is the "
+                 "bead's temperature (T other than T0: another tool's heater, left alone); none: they are "
+                 "ignored and the beads are laid at the material's deposition_temp",
+      .source = "Marlin, Klipper and Prusa firmware M104/M109",
+      .none_is_empty = true},
+     BT_MEMBER(Machine, dialect.nozzle_temp)},
     {{.key = "gcode.macro_step_limit",
       .default_text = "10000000",
       .range = {1000, 2000000000},

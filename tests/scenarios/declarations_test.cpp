@@ -516,7 +516,8 @@ TEST(Declarations, EveryMachineCodeReachesTheWriterAndTheReader) {
       }
     settings.push_back({"machine." + std::string(p.key), value});
   }
-  ASSERT_EQ(codes.size(), 12u) << "melt, heat, roller, fan, prime and reverse codes, and the speed word";
+  ASSERT_EQ(codes.size(), 13u)
+      << "melt, heat, roller, fan, nozzle temperature, prime and reverse codes, and the speed word";
   const Scenario sc = load_with(settings);
   const Machine& m = sc.variants.at(0).machine;
   for (std::size_t i = 0; i < codes.size(); ++i)
@@ -538,6 +539,7 @@ TEST(Declarations, EveryMachineCodeReachesTheWriterAndTheReader) {
   EXPECT_TRUE(has(reader.reverse_off, m.dialect.reverse_off));
   EXPECT_TRUE(has(reader.fan_on, m.dialect.fan_on));
   EXPECT_TRUE(has(reader.fan_off, m.dialect.fan_off));
+  EXPECT_TRUE(has(reader.nozzle_temp, m.dialect.nozzle_temp));
   EXPECT_EQ(reader.rpm_word, m.dialect.rpm_word);
 
   const Toolpath written = short_print(m.extruder);
@@ -547,10 +549,11 @@ TEST(Declarations, EveryMachineCodeReachesTheWriterAndTheReader) {
   reverse.reverse_rpm = 20;
   options.melt = {reverse};
   const std::string program = gcode::write_gcode(written, m.dialect, {}, options);
-  // The speed word shows in the speeds read back; the fan codes are only read (beadtwin's programs run no
-  // part-cooling fan).
+  // The speed word shows in the speeds read back; the fan and nozzle temperature codes are only read
+  // (beadtwin's programs run no part-cooling fan and set no hot end's temperature).
   for (const Param<Machine>* p : codes) {
-    if (!p->choices.empty() || std::string_view(p->key).starts_with("gcode.fan")) continue;
+    const std::string_view key = p->key;
+    if (!p->choices.empty() || key.starts_with("gcode.fan") || key == "gcode.nozzle_temp") continue;
     EXPECT_NE(program.find(p->get(m).text()), std::string::npos) << p->key << " not written:\n" << program;
   }
   std::istringstream in(program);

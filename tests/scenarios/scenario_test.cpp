@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -913,6 +914,39 @@ TEST(ProgramCheck, MaterialFromTheProgramsFilamentType) {
     EXPECT_EQ(s.variants.front().material.name, material);
     EXPECT_TRUE(said(s, message)) << fmt::format("{}", fmt::join(s.warnings, " | "));
   }
+}
+
+// The program's heater codes set the beads' temperature (gcode.nozzle_temp, M104 and M109 by default); a
+// machine whose bead is measured colder than its set point turns them off, and the material's
+// deposition_temp lays the beads.
+TEST(ProgramCheck, TheMachineSaysWhetherTheProgramsHeaterCodesSetTheBeadsTemperature) {
+  const auto dir = std::filesystem::temp_directory_path() / "bt_check_nozzle_temp";
+  std::filesystem::create_directories(dir);
+  ProgramCheck check;
+  check.program = dir / "p.gcode";
+  check.machine = "desktop-fff";
+  check.material = "pla";
+  std::ofstream(check.program) << "G21\nG90\nM83\nM104 S215\nG1 Z0.3 F600\nG1 X20 Y0 E1\nM109 S230\n"
+                                  "G1 X20 Y20 E1\n";
+  const auto nozzle = [](const Scenario& s) {
+    std::vector<float> c;
+    for (const Move& m : s.variants.front().program->moves)
+      if (m.deposits()) c.push_back(m.nozzle_c);
+    return c;
+  };
+  const std::vector<float> set = nozzle(load_program_check(check));
+  ASSERT_EQ(set.size(), 2u);
+  EXPECT_FLOAT_EQ(set[0], 215.0f);
+  EXPECT_FLOAT_EQ(set[1], 230.0f);
+  check.settings = {{"machine.gcode.nozzle_temp", "none"}};
+  const Scenario ignored = load_program_check(check);
+  EXPECT_EQ(ignored.variants.front().machine.dialect.nozzle_temp, "");
+  for (const float c : nozzle(ignored)) EXPECT_TRUE(std::isnan(c));
+  check.settings = {{"machine.gcode.nozzle_temp", "M109"}};
+  const std::vector<float> only_m109 = nozzle(load_program_check(check));
+  ASSERT_EQ(only_m109.size(), 2u);
+  EXPECT_TRUE(std::isnan(only_m109[0]));
+  EXPECT_FLOAT_EQ(only_m109[1], 230.0f);
 }
 
 // The same for CuraEngine: its estimate is the last ";TIME_ELAPSED:" of the program

@@ -26,6 +26,7 @@ printf "budget: %.1f times the reference, %.1f s on this machine today\n" "$budg
 # The variants of the built-in default scenario, as its file lists them.
 variants=$(awk '/^variants:/ {v = 1; next} v && /^[^ #]/ {v = 0} v && /- name:/ {print $3}' \
   "$root/scenarios/data/default.yaml")
+[ -n "$variants" ] || { echo "no variants found in scenarios/data/default.yaml" >&2; exit 2; }
 for variant in $variants; do
   : > "$work/$variant.runs"
   for _ in $(seq "$runs"); do timed "$work/$variant.runs" "$bin" run -q -o "$work/$variant" --variant "$variant"; done

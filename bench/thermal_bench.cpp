@@ -137,7 +137,12 @@ int main(int argc, char** argv) {
     const sim::Deposit d = sim::deposit(tp, deposit_options);
     std::printf("deposit %.2f s, %zu voxels\n", seconds_since(t0), d.active_voxels);
     t0 = std::chrono::steady_clock::now();
-    const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, d);
+    // The cells through and across a bead: THERMAL_BENCH_CELLS="THROUGH ACROSS" (else the variant's).
+    thermal::MeshOptions mesh_options = scenarios::thermal_mesh_options(v);
+    if (const char* cells = std::getenv("THERMAL_BENCH_CELLS"))
+      if (std::sscanf(cells, "%d %d", &mesh_options.cells_through, &mesh_options.cells_across) != 2)
+        throw std::runtime_error("THERMAL_BENCH_CELLS: expected \"THROUGH ACROSS\"");
+    const thermal::ThermalMesh mesh = thermal::build_thermal_mesh(tp, d, mesh_options);
     std::size_t interfaces = 0;
     for (const thermal::ThermalLink& l : mesh.links) interfaces += l.interface;
     std::printf("mesh %.2f s, %zu chains, %zu cells, %zu links, %zu interfaces\n", seconds_since(t0),

@@ -17,7 +17,7 @@ BirthSchedule plan_births(std::span<const ThermalCell> cells, double median_time
         interval, span / static_cast<double>(std::max<std::size_t>(options.max_automatic_birth_events, 1)));
     if (interval > s.automatic_interval_s)
       s.note = fmt::format(
-          "thermal birth interval {:.3g} s instead of {:.3g} s (a fifth of the cells' median time constant), "
+          "thermal birth interval {:.3g} s instead of {:.3g} s (a fifth of the beads' median time constant), "
           "so that the print's cells are born in at most about {} events; set thermal.birth_interval to "
           "choose",
           interval, s.automatic_interval_s, options.max_automatic_birth_events);

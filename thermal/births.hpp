@@ -2,9 +2,9 @@
 // birth_interval_s): which cells are born together, and when.
 //
 // Each birth event restarts the integrator, so cells laid within one birth interval are born together, at
-// the middle of their birth times. The interval is the one asked for, or else a fifth of the cells' median
-// conduction time constant, made longer where the print would need more than about
-// max_automatic_birth_events events.
+// the middle of their birth times. The interval is the one asked for, or else a fifth of the beads' median
+// conduction time constant (each bead's slices through its height together), made longer where the print
+// would need more than about max_automatic_birth_events events.
 #pragma once
 
 #include <cstddef>
@@ -31,7 +31,7 @@ struct BirthSchedule {
   std::string note;                   // why the automatic interval was made longer; empty if it was not
 };
 
-// The groups of `cells` (in birth order, at least one) born together. `median_time_constant_s`: the cells'
+// The groups of `cells` (in birth order, at least one) born together. `median_time_constant_s`: the beads'
 // median conduction time constant (C / ΣG), s, > 0. Uses options.birth_interval_s (0: automatic) and
 // options.max_automatic_birth_events.
 BirthSchedule plan_births(std::span<const ThermalCell> cells, double median_time_constant_s,

@@ -43,11 +43,66 @@ double median_over_cells(std::size_t n, const F& value) {
   return v[n / 2];
 }
 
+// Each bead's slices through its height (SupportCell::bead_top), top first: its column.
+std::vector<std::vector<std::uint32_t>> bead_columns(std::span<const SupportCell> support) {
+  std::vector<std::vector<std::uint32_t>> columns;
+  for (std::uint32_t top = 0; top < support.size(); ++top) {
+    if (support[top].bead_top != top) continue;
+    std::vector<std::uint32_t>& column = columns.emplace_back();
+    for (std::uint32_t c = top; c != SupportCell::kNone && support[c].bead_top == top; c = support[c].below)
+      column.push_back(c);
+  }
+  return columns;
+}
+
+// The mass of the beads, each bead's slices through its height together: its median, kg.
+double median_bead_mass_kg(const PartModel& model, std::span<const SupportCell> support) {
+  const std::vector<std::vector<std::uint32_t>> columns = bead_columns(support);
+  return median_over_cells(columns.size(), [&](std::size_t i) {
+    double kg = 0.0;
+    for (const std::uint32_t c : columns[i]) kg += model.mass_kg(c);
+    return kg;
+  });
+}
+
+// The most slices through one bead.
+int most_slices(std::span<const SupportCell> support) {
+  std::size_t most = 1;
+  for (const std::vector<std::uint32_t>& column : bead_columns(support)) most = std::max(most, column.size());
+  return static_cast<int>(std::min<std::size_t>(most, 15));
+}
+
+// By cell, the bead whose slice it is (SupportCell::bead_top: LumpRules::column); empty where every bead is
+// one cell through.
+std::vector<std::uint32_t> bead_column_of_cells(std::span<const SupportCell> support) {
+  std::vector<std::uint32_t> column(support.size());
+  bool sliced = false;
+  for (std::size_t c = 0; c < support.size(); ++c) {
+    column[c] = support[c].bead_top;
+    sliced = sliced || column[c] != c;
+  }
+  if (!sliced) column.clear();
+  return column;
+}
+
 // The cells' median conduction time constant, s (5 s when it is not finite: cells without contacts): it
-// sets the birth interval and the longest step.
+// sets the longest step.
 double median_time_constant_s(const PartModel& model) {
   const double tau =
       median_over_cells(model.size_of_model(), [&](std::size_t i) { return model.time_constant_s(i); });
+  return std::isfinite(tau) ? tau : 5.0;
+}
+
+// The same of the beads, each bead's slices through its height taken together: it sets the birth interval,
+// the same on any number of cells through a bead. Thinner slices have shorter time constants, but only the
+// young ones keep them (the lumper merges a bead's slices once it is covered), and what they add to the
+// temperatures between births of this interval is within the solve's convergence (docs/validation.md, mesh
+// convergence).
+double median_bead_time_constant_s(const PartModel& model, std::span<const SupportCell> support) {
+  const std::vector<std::vector<std::uint32_t>> columns = bead_columns(support);
+  if (columns.empty()) return median_time_constant_s(model);
+  const double tau =
+      median_over_cells(columns.size(), [&](std::size_t i) { return model.time_constant_s(columns[i]); });
   return std::isfinite(tau) ? tau : 5.0;
 }
 
@@ -86,6 +141,8 @@ void check_options(const HeatOptions& o) {
     throw InputError({}, "thermal.sample_interval", fmt::format("must be > 0, got {}", o.sample_interval_s));
   if (o.lump_depth < 1 || o.lump_depth > 100)
     throw InputError({}, "thermal.lump_depth", fmt::format("must be 1..100, got {}", o.lump_depth));
+  if (o.lump_slice_beads < 1 || o.lump_slice_beads > 8)
+    throw InputError({}, "thermal.lump_slice_beads", fmt::format("must be 1..8, got {}", o.lump_slice_beads));
   if (!(o.lump_tolerance_k >= 0.0) || !std::isfinite(o.lump_tolerance_k))
     throw InputError({}, "thermal.lump_tolerance",
                      fmt::format("must be 0 or more, got {}", o.lump_tolerance_k));
@@ -162,6 +219,9 @@ class HeatSolve {
   HealingIntegrator healing_;
   HistoryRecorder history_;
   Lumper lumper_;
+  // By model cell, the bead whose slices through its height it holds (LumpRules::column); empty where every
+  // bead is one cell through.
+  std::vector<std::uint32_t> column_;
   std::vector<std::uint32_t> model_of_;
   std::unique_ptr<SkyView> sky_;  // null without view factors
   std::vector<CellView> views_;   // per mesh cell, as the model has them
@@ -192,7 +252,7 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       support_cells_(own_support_.empty() ? std::span<const SupportCell>(mesh.support) : own_support_),
       model_(mesh, material, env),
       median_tau_(median_time_constant_s(model_)),
-      births_(plan_births(mesh.cells, median_tau_, options)),
+      births_(plan_births(mesh.cells, median_bead_time_constant_s(model_, support_cells_), options)),
       t0_(births_.groups.front().time_s),
       t_print_(std::max(births_.groups.back().time_s, end_s)),
       t_end_(t_print_ + options.cooldown_s),
@@ -201,7 +261,8 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       index_(interfaces_, n_),
       healing_(material, index_, options.healing_laws),
       history_(mesh, layer_count, t0_, t_end_, options),
-      lumper_(options, median_over_cells(n_, [&](std::size_t i) { return model_.mass_kg(i); })),
+      lumper_(options, median_bead_mass_kg(model_, support_cells_), most_slices(support_cells_)),
+      column_(bead_column_of_cells(support_cells_)),
       model_of_(n_ + 1) {
   model_.set_tolerances(options.rel_tol, options.abs_tol_k);
   model_.set_communicator(options.communicator);
@@ -323,12 +384,24 @@ void HeatSolve::update_views() {
 }
 
 bool HeatSolve::lump_settled() {
-  const std::vector<std::uint32_t> to = lumper_.settled(model_, before_, mesh_born_);
+  const std::vector<std::uint32_t> to = lumper_.settled(model_, before_, mesh_born_, column_);
   if (to.empty()) return false;
   const std::size_t m = model_.size_of_model();
   const std::uint32_t runs = to.back() + 1;
+  // The beads lumped from their slices conduct from their own centroids (PartModel::lump); a cell of more
+  // than one bead holds none.
+  std::vector<std::uint8_t> recentre;
+  if (!column_.empty()) {
+    std::vector<std::uint32_t> column(runs, kNoColumn);
+    for (std::size_t k = 0; k < m; ++k)
+      column[to[k]] = k == 0 || to[k] != to[k - 1] || column_[k] == column[to[k]] ? column_[k] : kNoColumn;
+    column_ = std::move(column);
+    recentre.resize(runs);
+    for (std::size_t k = 1; k < m; ++k)  // of more than one cell
+      if (to[k] == to[k - 1] && column_[to[k]] != kNoColumn) recentre[to[k]] = 1;
+  }
   healing_.flush_lumps(index_);
-  model_.lump(to, before_);
+  model_.lump(to, before_, recentre);
   for (std::uint32_t& c : model_of_) c = c < m ? to[c] : runs;
   temps_.assign(model_of_[n_], material_.deposition_temp_c);
   cap_ = model_.capacity();

@@ -48,8 +48,9 @@ struct FanSetting {
 struct HeatOptions {
   double rel_tol = 1e-3;    // CVODE relative tolerance
   double abs_tol_k = 0.05;  // CVODE absolute tolerance on temperatures, K
-  // Cells laid within this time are born together, s; 0: a fifth of the cells' median conduction time
-  // constant (C / ΣG), which keeps the births' grouping well inside how fast a cell's temperature can move,
+  // Cells laid within this time are born together, s; 0: a fifth of the beads' median conduction time
+  // constant (C / ΣG, a bead's slices through its height together, as they are once covered: lump), which
+  // keeps the births' grouping well inside how fast a bead's temperature can move,
   // made longer where that would be more than max_automatic_birth_events: each event restarts the
   // integrator, and a long print of small beads (a desktop program) would be tens of thousands of them.
   double birth_interval_s = 0.0;
@@ -72,13 +73,19 @@ struct HeatOptions {
   // Settled cells lumped (docs/physics.md, settled cells): when at least lump_check_cells cells (and a
   // quarter of the model's) have been born since the last look, runs of consecutive born cells that touch
   // one another, lie more than lump_depth contacts below the top (cells with a neighbour not yet born) and
-  // are within lump_tolerance_k of one another become one cell each, of at most 64 median cells' mass. A
-  // long print's cells far below the top then cost each step a fraction of what they would unlumped.
+  // are within lump_tolerance_k of one another become one cell each, of at most 64 median beads' mass. A
+  // long print's cells far below the top then cost each step a fraction of what they would unlumped. A bead
+  // cut into n slices through its height (thermal.cells_through) becomes one cell, whatever the slices'
+  // temperatures, once lump_slice_beads beads lie over it: once all its slices lie at least
+  // lump_slice_beads × n contacts below the top (at most lump_depth). The slices resolve a bead's cooling
+  // from its top while it is the top and the substrate of the next bead; below that the bead is one cell as
+  // at one cell through, conducting from its own centroid (PartModel::lump).
   bool lump = true;
   int lump_depth = 20;
+  int lump_slice_beads = 2;
   double lump_tolerance_k = 0.5;
   std::size_t lump_check_cells = 4096;
-  double lump_max_cells = 64.0;  // a lumped cell's most mass, in median cells
+  double lump_max_cells = 64.0;  // a lumped cell's most mass, in median beads (a bead's slices together)
   // Each cell's surface for good radiates with its view factors of the sky and the table, found by rays
   // against the part as laid so far (thermal/view_factor.hpp; a mesh without its cell grid has none);
   // false: every open face sees only the sky.

@@ -219,18 +219,32 @@ std::vector<CellKey> order_cells(const Toolpath& toolpath, const MetCells& met, 
     ThermalCell cell;
     std::uint32_t number;  // in the order met
   };
+  // The slices of one strip through the bead's height are born together, from its first move: their
+  // material lands in one pass, and born together they come one after another in birth order (top slice
+  // first), which the lumper needs to merge them into one cell once the bead is covered (thermal/lumper.hpp).
+  struct Strip {
+    double time = 0.0, fill = 0.0;
+    std::size_t move = std::numeric_limits<std::size_t>::max();
+  };
+  std::unordered_map<CellKey, Strip> strips;
+  for (std::size_t m = 0; m < met.sums.size(); ++m) {
+    Strip& s = strips[met.keys[m] >> 4];
+    s.time += met.sums[m].time, s.fill += met.sums[m].fill;
+    s.move = std::min(s.move, met.sums[m].move);
+  }
   std::vector<Met> by_birth;
   by_birth.reserve(met.sums.size());
   for (std::size_t m = 0; m < met.sums.size(); ++m) {
     const CellSums& c = met.sums[m];
+    const Strip& strip = strips.at(met.keys[m] >> 4);
     ThermalCell cell;
     cell.volume_mm3 = c.fill * voxel_volume_mm3;
     cell.centroid_mm = c.fill > 0.0 ? Eigen::Vector3d(c.moment / c.fill) : Eigen::Vector3d::Zero();
-    cell.birth_s = c.fill > 0.0 ? c.time / c.fill : 0.0;
+    cell.birth_s = strip.fill > 0.0 ? strip.time / strip.fill : 0.0;
     const double angle = 0.5 * std::atan2(c.sin2, c.cos2);
     cell.along = Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    cell.move = c.move;
-    cell.layer = toolpath.moves[c.move].layer;
+    cell.move = strip.move;
+    cell.layer = toolpath.moves[strip.move].layer;
     by_birth.push_back({met.keys[m], cell, static_cast<std::uint32_t>(m)});
   }
   std::sort(by_birth.begin(), by_birth.end(), [](const Met& x, const Met& y) {

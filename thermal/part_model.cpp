@@ -22,7 +22,15 @@ struct Neighbour {
   double conductance_W_K = 0.0;
   double area_m2 = 0.0;
   double rarea = 0.0;  // area × this cell's half-cell resistance to the contact, m²·m²K/W
+  Eigen::Vector3f w = Eigen::Vector3f::Zero();  // PartModel::nb_w_
 };
+
+// A conductance `g_W_K` through `area_m2` with `extra` (m²K/W, negative: less) resistance in series, as a
+// lumped cell's centroid moves away from or towards the contact (PartModel::lump, recentre); never more
+// than four times what it was (the centroid of a bead's slices lies inside it).
+double in_series(double g_W_K, double extra, double area_m2) {
+  return area_m2 > 0.0 ? 1.0 / std::max(1.0 / g_W_K + extra / area_m2, 0.25 / g_W_K) : g_W_K;
+}
 
 // The conductivity tensor of a cell whose bead runs along `along` (a unit vector in plan).
 Eigen::Matrix3d conductivity(const Eigen::Vector2d& along, const Material& m) {
@@ -46,10 +54,13 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
   fan_full_h_ = env.fan_convection_W_m2K;
   birth_c_.resize(n_);
   for (std::size_t i = 0; i < n_; ++i) birth_c_[i] = deposition_c_ + mesh.cells[i].deposition_offset_k;
+  centroid_mm_.resize(n_);
+  for (std::size_t i = 0; i < n_; ++i) centroid_mm_[i] = mesh.cells[i].centroid_mm;
   mass_kg_.resize(n_);
   exposed_m2_.resize(n_);
   exposed_rarea_.resize(n_);
   table_W_K_.resize(n_);
+  table_area_m2_.resize(n_);
   h_.resize(n_);
   const Eigen::Vector3d inverse_k(1.0 / material.conductivity_along_W_mK,
                                   1.0 / material.conductivity_across_W_mK,
@@ -63,6 +74,7 @@ PartModel::PartModel(const ThermalMesh& mesh, const Material& material, const En
     exposed_rarea_[i] = c.open_depth_mm3.dot(inverse_k) * kM3PerMm3;
     // The table's contact in series with the conduction from the centroid down to the table.
     const double down_m = std::max(c.centroid_mm.z() - mesh.table_z_mm, 0.0) * kMPerMm;
+    table_area_m2_[i] = c.table_area_mm2 * kM2PerMm2;
     table_W_K_[i] = env.bed_insulated || c.table_area_mm2 <= 0.0
                         ? 0.0
                         : c.table_area_mm2 * kM2PerMm2 /
@@ -113,8 +125,11 @@ void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& materia
                                : 0.5 * distance;
     const double a_half = std::min(to_face, distance), b_half = distance - a_half;
     const double area_m2 = area * kM2PerMm2;
-    neighbours[next[l.a]++] = {l.b, g, area_m2, area_m2 * a_half * kMPerMm / normal.dot(k_a * normal)};
-    neighbours[next[l.b]++] = {l.a, g, area_m2, area_m2 * b_half * kMPerMm / normal.dot(k_b * normal)};
+    const double ka_n = normal.dot(k_a * normal), kb_n = normal.dot(k_b * normal);
+    neighbours[next[l.a]++] = {l.b, g, area_m2, area_m2 * a_half * kMPerMm / ka_n,
+                               (normal / ka_n).cast<float>()};
+    neighbours[next[l.b]++] = {l.a, g, area_m2, area_m2 * b_half * kMPerMm / kb_n,
+                               (-normal / kb_n).cast<float>()};
   }
   // Sorted by neighbour, so the born ones come first; kept as three arrays, so that the integrator's
   // loops read 12 bytes a neighbour (who and the conductance) rather than a whole Neighbour.
@@ -126,11 +141,13 @@ void PartModel::list_neighbours(const ThermalMesh& mesh, const Material& materia
   nb_g_.reserve(neighbours.size());
   nb_area_m2_.reserve(neighbours.size());
   nb_rarea_.reserve(neighbours.size());
+  nb_w_.reserve(neighbours.size());
   for (const Neighbour& nb : neighbours) {
     nb_cell_.push_back(nb.cell);
     nb_g_.push_back(nb.conductance_W_K);
     nb_area_m2_.push_back(nb.area_m2);
     nb_rarea_.push_back(nb.rarea);
+    nb_w_.push_back(nb.w);
   }
 }
 
@@ -187,9 +204,31 @@ std::span<const double> PartModel::gather(std::span<const double> local, std::ve
 }
 
 double PartModel::time_constant_s(std::size_t i) const {
-  double g = table_W_K_[i];
-  for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) g += nb_g_[k];
-  return g > 0.0 ? heat_capacity(i, deposition_c_) / g : std::numeric_limits<double>::infinity();
+  const auto cell = static_cast<std::uint32_t>(i);
+  return time_constant_s(std::span<const std::uint32_t>(&cell, 1));
+}
+
+double PartModel::time_constant_s(std::span<const std::uint32_t> cells) const {
+  double c = 0.0, g = 0.0, mass = 0.0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const std::uint32_t i : cells) mass += mass_kg_[i], centroid += mass_kg_[i] * centroid_mm_[i];
+  if (mass > 0.0) centroid /= mass;
+  const bool moves = cells.size() > 1;
+  for (const std::uint32_t i : cells) {
+    c += heat_capacity(i, deposition_c_);
+    if (table_W_K_[i] > 0.0)
+      g += moves ? in_series(
+                       table_W_K_[i],
+                       (centroid.z() - centroid_mm_[i].z()) * kMPerMm / material_.conductivity_through_W_mK,
+                       table_area_m2_[i])
+                 : table_W_K_[i];
+    for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
+      if (std::find(cells.begin(), cells.end(), nb_cell_[k]) != cells.end()) continue;
+      const double shift = (centroid_mm_[i] - centroid).dot(nb_w_[k].cast<double>()) * kMPerMm;
+      g += moves ? in_series(nb_g_[k], shift, nb_area_m2_[k]) : nb_g_[k];
+    }
+  }
+  return g > 0.0 ? c / g : std::numeric_limits<double>::infinity();
 }
 
 void PartModel::birth(std::size_t end, std::span<double> y) {
@@ -211,17 +250,19 @@ void PartModel::birth(std::size_t end, std::span<double> y) {
   }
 }
 
-void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) {
+void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y,
+                     std::span<const std::uint8_t> recentre) {
   const std::size_t m = n_ == 0 ? 0 : std::size_t{to[n_ - 1]} + 1;
   std::vector<double> mass(m, 0.0), exposed(m, 0.0), rarea(m, 0.0), table(m, 0.0), h_area(m, 0.0),
       h_sum(m, 0.0), count(m, 0.0), enthalpy(m, 0.0), open(m, 0.0), sky(m, 0.0), table_view(m, 0.0),
       birth(m, 0.0);
+  std::vector<Eigen::Vector3d> centroid(m, Eigen::Vector3d::Zero());
   for (std::size_t i = 0; i < n_; ++i) {
     const std::size_t g = to[i];
     mass[g] += mass_kg_[i];
+    centroid[g] += mass_kg_[i] * centroid_mm_[i];
     exposed[g] += exposed_m2_[i];
     rarea[g] += exposed_rarea_[i];
-    table[g] += table_W_K_[i];
     open[g] += open_m2_[i];
     sky[g] += sky_m2_[i];
     table_view[g] += table_view_m2_[i];
@@ -233,10 +274,24 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   }
   std::vector<double> h(m);
   for (std::size_t g = 0; g < m; ++g) h[g] = exposed[g] > 0.0 ? h_area[g] / exposed[g] : h_sum[g] / count[g];
+  for (std::size_t g = 0; g < m; ++g) centroid[g] /= mass[g];
+  // The table's contact in series with the half cell down to it, from the new centroid where recentred.
+  std::vector<double> table_area(m, 0.0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    const std::size_t g = to[i];
+    table_area[g] += table_area_m2_[i];
+    if (table_W_K_[i] <= 0.0) continue;
+    const double lower_m = (centroid[g].z() - centroid_mm_[i].z()) * kMPerMm;  // the new centroid's height
+    const bool moves = g < recentre.size() && recentre[g] != 0;
+    table[g] +=
+        moves ? in_series(table_W_K_[i], lower_m / material_.conductivity_through_W_mK, table_area_m2_[i])
+              : table_W_K_[i];
+  }
   std::vector<std::size_t> first;
   std::vector<std::uint32_t> nb_cell;
   std::vector<double> nb_g, nb_area, nb_rarea;
-  merge_neighbours(to, m, first, nb_cell, nb_g, nb_area, nb_rarea);
+  std::vector<Eigen::Vector3f> nb_w;
+  merge_neighbours(to, m, centroid, recentre, first, nb_w, nb_cell, nb_g, nb_area, nb_rarea);
   // The state: each new cell at the temperature that holds its enthalpy (Newton on m h(T) = H from the
   // mass-weighted mean; c_p changes slowly with T, so a few steps reach round-off).
   const std::size_t cap = cap_ == 0 ? 0 : std::size_t{to[cap_ - 1]} + 1;
@@ -273,6 +328,9 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
   nb_g_ = std::move(nb_g);
   nb_area_m2_ = std::move(nb_area);
   nb_rarea_ = std::move(nb_rarea);
+  nb_w_ = std::move(nb_w);
+  centroid_mm_ = std::move(centroid);
+  table_area_m2_ = std::move(table_area);
   loss_.assign(n_, 0.0);
   born_ = born;
   born_end_.resize(n_);
@@ -283,35 +341,68 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y) 
 }
 
 void PartModel::merge_neighbours(std::span<const std::uint32_t> to, std::size_t m,
-                                 std::vector<std::size_t>& first, std::vector<std::uint32_t>& nb_cell,
+                                 std::span<const Eigen::Vector3d> centroid_mm,
+                                 std::span<const std::uint8_t> recentre, std::vector<std::size_t>& first,
+                                 std::vector<Eigen::Vector3f>& nb_w, std::vector<std::uint32_t>& nb_cell,
                                  std::vector<double>& nb_g, std::vector<double>& nb_area,
                                  std::vector<double>& nb_rarea) const {
+  // Whether old cell i's new cell is recentred; how much further the contact k's face lies from i's new
+  // centroid than from its own, over i's conductivity along the normal (i's half of the contact's
+  // resistance times the area, m²K/W).
+  const auto recentred = [&](std::size_t i) { return to[i] < recentre.size() && recentre[to[i]] != 0; };
+  const auto shift = [&](std::size_t i, std::size_t k) {
+    return (centroid_mm_[i] - centroid_mm[to[i]]).dot(nb_w_[k].cast<double>()) * kMPerMm;
+  };
   // The members' lists, renumbered (still in order, as `to` keeps order), merged per neighbour.
   first.assign(m + 1, 0);
   nb_cell.reserve(nb_cell_.size());
   nb_g.reserve(nb_cell_.size());
   nb_area.reserve(nb_cell_.size());
   nb_rarea.reserve(nb_cell_.size());
-  std::vector<std::pair<std::uint32_t, std::size_t>> entries;  // (new neighbour, old entry)
+  nb_w.reserve(nb_cell_.size());
+  struct Entry {
+    std::uint32_t neighbour;  // new
+    std::size_t k;            // old entry
+    std::size_t member;       // old cell
+    bool operator<(const Entry& o) const {
+      return neighbour != o.neighbour ? neighbour < o.neighbour : k < o.k;
+    }
+  };
+  std::vector<Entry> entries;
   for (std::size_t i = 0; i < n_;) {
     const std::uint32_t g = to[i];
     std::size_t j = i;
     entries.clear();
     for (; j < n_ && to[j] == g; ++j)
       for (std::size_t k = first_[j]; k < first_[j + 1]; ++k)
-        if (to[nb_cell_[k]] != g) entries.emplace_back(to[nb_cell_[k]], k);
+        if (to[nb_cell_[k]] != g) entries.push_back({to[nb_cell_[k]], k, j});
     std::sort(entries.begin(), entries.end());
     for (std::size_t e = 0; e < entries.size(); ++e) {
-      if (e == 0 || entries[e].first != entries[e - 1].first) {
-        nb_cell.push_back(entries[e].first);
+      if (e == 0 || entries[e].neighbour != entries[e - 1].neighbour) {
+        if (e > 0 && nb_area.back() > 0.0) nb_w.back() /= static_cast<float>(nb_area.back());
+        nb_cell.push_back(entries[e].neighbour);
         nb_g.push_back(0.0);
         nb_area.push_back(0.0);
         nb_rarea.push_back(0.0);
+        nb_w.push_back(Eigen::Vector3f::Zero());
       }
-      nb_g.back() += nb_g_[entries[e].second];
-      nb_area.back() += nb_area_m2_[entries[e].second];
-      nb_rarea.back() += nb_rarea_[entries[e].second];
+      const std::size_t k = entries[e].k, member = entries[e].member;
+      const double area = nb_area_m2_[k];
+      double g_k = nb_g_[k], rarea_k = nb_rarea_[k];
+      const std::uint32_t other = nb_cell_[k];
+      if (area > 0.0 && (recentred(member) || recentred(other))) {  // each side from its new centroid
+        const double mine = recentred(member) ? shift(member, k) : 0.0;
+        const double theirs =
+            recentred(other) ? shift(other, face_towards(other, static_cast<std::uint32_t>(member))) : 0.0;
+        g_k = in_series(g_k, mine + theirs, area);
+        rarea_k = std::max(rarea_k + area * mine, 0.25 * rarea_k);
+      }
+      nb_g.back() += g_k;
+      nb_area.back() += area;
+      nb_rarea.back() += rarea_k;
+      nb_w.back() += static_cast<float>(area) * nb_w_[k];
     }
+    if (!entries.empty() && nb_area.back() > 0.0) nb_w.back() /= static_cast<float>(nb_area.back());
     first[g + 1] = nb_cell.size();
     i = j;
   }

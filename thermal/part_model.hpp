@@ -54,6 +54,9 @@ class PartModel final : public OdeSystem {
   std::size_t born() const { return born_; }  // cells born so far: [0, born())
   // C / ΣG of cell i over all its contacts, s.
   double time_constant_s(std::size_t i) const;
+  // The same of `cells` taken together, as lump would make them with recentre: their heat capacity over
+  // their contacts with every other cell and the table, s.
+  double time_constant_s(std::span<const std::uint32_t> cells) const;
 
   // Cells [born(), end) are born: each at its birth temperature in y, their faces towards born cells closed.
   void birth(std::size_t end, std::span<double> y);
@@ -78,8 +81,13 @@ class PartModel final : public OdeSystem {
   // A lumped cell has its members' mass, open and table surface and contacts (summed per neighbour; the
   // contacts between members go); its temperature is the one at which it holds its members' enthalpy, so the
   // energy stored does not change. `y` (the first capacity() cells) becomes the new cells' state; the energy
-  // lost, after it, is carried over.
-  void lump(std::span<const std::uint32_t> to, std::vector<double>& y);
+  // lost, after it, is carried over. A new cell g with `recentre[g]` (the slices of one bead through its
+  // height: LumpRules::column) conducts from its own centroid: each contact's half on its side, and the half
+  // cell down to the table, runs from the lumped cell's centroid rather than its member's, so that a bead of
+  // two slices lumped conducts as a bead of one cell would (without it the lump would keep its top slice's
+  // short path to the bead above). Empty: none.
+  void lump(std::span<const std::uint32_t> to, std::vector<double>& y,
+            std::span<const std::uint8_t> recentre = {});
 
   // Energy relative to ambient brought in by the births so far, J.
   double energy_in_J() const { return energy_in_J_; }
@@ -153,8 +161,10 @@ class PartModel final : public OdeSystem {
   // The contacts of `mesh` as neighbour lists (first_, nb_*), each sorted by neighbour.
   void list_neighbours(const ThermalMesh& mesh, const Material& material);
   // The lumped cells' contacts (see lump): the members' lists renumbered by `to` and merged per neighbour,
-  // into the neighbour lists of the m cells afterwards.
-  void merge_neighbours(std::span<const std::uint32_t> to, std::size_t m, std::vector<std::size_t>& first,
+  // into the neighbour lists of the m cells afterwards (`centroid_mm`: theirs; `recentre` as for lump).
+  void merge_neighbours(std::span<const std::uint32_t> to, std::size_t m,
+                        std::span<const Eigen::Vector3d> centroid_mm, std::span<const std::uint8_t> recentre,
+                        std::vector<std::size_t>& first, std::vector<Eigen::Vector3f>& nb_w,
                         std::vector<std::uint32_t>& nb_cell, std::vector<double>& nb_g,
                         std::vector<double>& nb_area, std::vector<double>& nb_rarea) const;
   void find_born_end(std::size_t i);
@@ -189,7 +199,8 @@ class PartModel final : public OdeSystem {
   std::vector<double> exposed_m2_;  // open now: for good, and towards neighbours not yet born
   // Σ area × half-cell resistance of those faces, m²·m²K/W (thermal/surface.hpp)
   std::vector<double> exposed_rarea_;
-  std::vector<double> table_W_K_;  // to the table: its contact in series with the half cell down to it
+  std::vector<double> table_W_K_;      // to the table: its contact in series with the half cell down to it
+  std::vector<double> table_area_m2_;  // resting on the table
   // The surface for good (open to the air whatever is born), m², and its area times its sky and table view
   // factors, m²; from them and exposed_m2_, the air side's ε σ F and mean radiant temperature, °C.
   std::vector<double> open_m2_, sky_m2_, table_view_m2_, eps_sigma_view_, radiant_c_;
@@ -200,6 +211,11 @@ class PartModel final : public OdeSystem {
   std::vector<double> nb_g_;
   std::vector<double> nb_area_m2_;
   std::vector<double> nb_rarea_;
+  // Per contact: its normal away from this cell over this cell's conductivity along it, 1/(W/mK) (a
+  // lumped contact: its members' mean by area); moving the cell's centroid by d (m) away from the contact
+  // adds d·w / area to the contact's resistance (lump, recentre).
+  std::vector<Eigen::Vector3f> nb_w_;
+  std::vector<Eigen::Vector3d> centroid_mm_;  // per cell (a lumped one: its members' by mass)
   // Per cell: the end of its born neighbours, [first_[i], born_end_[i]) (kept for the born cells and their
   // neighbours at every birth), so the integrator's loops need not test each neighbour.
   std::vector<std::size_t> born_end_;

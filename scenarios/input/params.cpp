@@ -229,7 +229,7 @@ const Param<ThermalSpec> kThermal[] = {
     {{.key = "birth_interval",
       .dim = D::kTime,
       .range = {.min = 0, .max = 1e4, .min_exclusive = true},
-      .meaning = "cells laid within this time are born together; absent: a fifth of the cells' median "
+      .meaning = "cells laid within this time are born together; absent: a fifth of the beads' median "
                  "conduction time constant, made longer (with a note) where the print would need more than "
                  "5,000 birth events",
       .source = "thermal/heat.hpp",
@@ -279,8 +279,9 @@ const Param<ThermalSpec> kThermal[] = {
     {{.key = "lump",
       .default_text = "true",
       .meaning = "lump settled cells (more than 20 contacts below the top, within 0.5 K along the bead) "
-                 "into one cell per run, with a note: a long print's old layers then cost little in each "
-                 "step; false: keep every cell",
+                 "into one cell per run, with a note, and a bead's slices through its height into one cell "
+                 "once two beads lie over it: a long print's old layers then cost little in each step; "
+                 "false: keep every cell",
       .source = "docs/physics.md"},
      BT_MEMBER(ThermalSpec, lump)},
     {{.key = "view_factors",

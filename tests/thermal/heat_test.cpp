@@ -746,6 +746,9 @@ TEST(HeatInput, BadOptionsNameTheirKey) {
   o = {};
   o.lump_tolerance_k = -0.1;
   EXPECT_EQ(key_of(o), "thermal.lump_tolerance");
+  o = {};
+  o.lump_slice_beads = 0;
+  EXPECT_EQ(key_of(o), "thermal.lump_slice_beads");
 }
 
 TEST(HeatInput, EmptyMeshGivesAnEmptyResult) {

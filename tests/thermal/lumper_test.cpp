@@ -107,5 +107,38 @@ TEST(Lumper, LooksOnceEnoughCellsWereBornAndLumpsOnlyWhenEnoughWouldGo) {
   EXPECT_TRUE(lumper.settled(model, uneven, 489).empty());
 }
 
+TEST(Lumper, ACoveredBeadsSlicesBecomeOneCellWhateverTheirTemperatures) {
+  // Ten cells in a row as five beads of two slices (columns 0, 2, 4, 6, 8), eight born: cells 4-7 lie 3, 2,
+  // 1 and 0 contacts below the top.
+  const ThermalMesh mesh = bar(10);
+  std::vector<double> y;
+  const PartModel model = born_model(mesh, 8, y);
+  const std::vector<std::uint8_t> depth = contacts_below_top(model, 20);
+  const std::vector<double> state = {100.0, 140.0, 100.0, 180.0, 100.0, 100.0, 100.0, 100.0};
+  std::vector<std::uint32_t> column = {0, 0, 2, 2, 4, 4, 6, 6, 8, 8};
+  std::vector<std::uint32_t> to;
+  LumpRules rules{.settled = false, .column = column, .slice_depth = 2};
+  // Beads 0, 2 and 4 lie at least 2 contacts down (4 and 5: 3 and 2); bead 6 does not; bead 8 is not born.
+  EXPECT_EQ(settled_runs(model, state, depth, rules, to), 7u);
+  EXPECT_EQ(to, (std::vector<std::uint32_t>{0, 0, 1, 1, 2, 2, 3, 4, 5, 6}));
+  // A cell of no single bead (or of another) ends a run.
+  column[3] = kNoColumn;
+  EXPECT_EQ(settled_runs(model, state, depth, rules, to), 8u);
+  EXPECT_EQ(to, (std::vector<std::uint32_t>{0, 0, 1, 2, 3, 3, 4, 5, 6, 7}));
+  // With the settled cells too (cells 0-3 more than 3 contacts down): a covered bead's run comes first;
+  // where there is none (cell 1 of no bead), the settled run, within its tolerance.
+  const std::vector<std::uint8_t> shallow = contacts_below_top(model, 3);
+  column[1] = kNoColumn;
+  column[3] = 2;
+  rules.settled = true;
+  rules.tolerance_k = 100.0;
+  rules.max_mass_kg = 100.0 * model.mass_kg(0);
+  EXPECT_EQ(settled_runs(model, state, shallow, rules, to), 6u);
+  EXPECT_EQ(to, (std::vector<std::uint32_t>{0, 0, 0, 0, 1, 1, 2, 3, 4, 5}));
+  rules.tolerance_k = 50.0;  // cell 3, at 180 °C, is more than 50 K off cells 0-2 (100-140 °C)
+  EXPECT_EQ(settled_runs(model, state, shallow, rules, to), 7u);
+  EXPECT_EQ(to, (std::vector<std::uint32_t>{0, 0, 0, 1, 2, 2, 3, 4, 5, 6}));
+}
+
 }  // namespace
 }  // namespace beadtwin::thermal

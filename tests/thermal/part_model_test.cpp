@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "tests/thermal/test_meshes.hpp"
@@ -67,6 +68,47 @@ TEST(PartModel, LumpingKeepsTheEnergyAndSumsTheContactsWithTheRest) {
   ASSERT_EQ(model.neighbours(0).size(), 1u);  // the contact between its members is gone
   EXPECT_EQ(model.neighbours(0)[0], 1u);
   EXPECT_EQ(model.time_constant_s(2), tau_3);  // the last cell is as it was
+}
+
+// A stack up the z axis of 10 × 10 mm cells, 100 mm² contacts: a 5 mm bead at the bottom, one 5 mm high
+// from z = 5 mm (as one cell, or as two 2.5 mm slices), and a 5 mm bead on top.
+ThermalMesh stack(bool sliced) {
+  ThermalMesh mesh;
+  mesh.voxel_size_mm = 0.5;
+  std::vector<std::pair<double, double>> cells = {{0.0, 5.0}, {5.0, 10.0}, {10.0, 15.0}};  // bottom, top
+  if (sliced) cells = {{0.0, 5.0}, {5.0, 7.5}, {7.5, 10.0}, {10.0, 15.0}};
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const auto [bottom, top] = cells[i];
+    mesh.cells.push_back(cell_at({0.0, 0.0, 0.5 * (bottom + top)}, 100.0 * (top - bottom)));
+    if (i == 0) continue;
+    ThermalLink l = link(static_cast<std::uint32_t>(i - 1), static_cast<std::uint32_t>(i), {0.0, 0.0, 100.0});
+    l.face_centroid_mm = {0.0, 0.0, bottom};
+    mesh.links.push_back(l);
+  }
+  return mesh;
+}
+
+TEST(PartModel, ABeadLumpedFromItsSlicesConductsFromItsOwnCentroid) {
+  const Material material = test_material();
+  std::vector<double> y(5, 0.0), y_one(4, 0.0);
+  PartModel sliced(stack(true), material, Environment{}), one(stack(false), material, Environment{});
+  sliced.birth(4, y);
+  one.birth(3, y_one);
+  // The two slices together, as the birth interval takes them, and once lumped: as the bead of one cell.
+  const std::vector<std::uint32_t> slices = {1, 2};
+  EXPECT_NEAR(sliced.time_constant_s(slices), one.time_constant_s(1), 1e-6 * one.time_constant_s(1));
+  // Without recentring, the lump keeps its slices' short paths to the beads below and above: the bead on
+  // top, with no other contact, then exchanges heat faster than with a bead of one cell under it.
+  PartModel kept = sliced;
+  std::vector<double> y_kept = y;
+  const std::vector<std::uint32_t> to = {0, 1, 1, 2};
+  kept.lump(to, y_kept);
+  EXPECT_LT(kept.time_constant_s(2), 0.9 * one.time_constant_s(2));
+  const std::vector<std::uint8_t> recentre = {0, 1, 0};
+  sliced.lump(to, y, recentre);
+  ASSERT_EQ(sliced.size_of_model(), 3u);
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(sliced.time_constant_s(i), one.time_constant_s(i), 1e-6 * one.time_constant_s(i)) << i;
 }
 
 }  // namespace

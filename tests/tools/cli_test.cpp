@@ -180,6 +180,9 @@ TEST(Cli, CheckSimulatesAProgramAsItIsWritten) {
   EXPECT_NE(report.find("\"program\""), std::string::npos);
   EXPECT_NE(report.find("assumed machine desktop-fff"), std::string::npos);  // in the report too
   EXPECT_TRUE(std::filesystem::exists(out / "program" / "fusion.png"));
+  // A desktop bead's conduction time through its height is short against its layer time: one cell through
+  // it resolves its cooling, and the report does not ask for more.
+  EXPECT_EQ(report.find("thermal.cells_through: 2"), std::string::npos);
 
   // A macro program (layers in a WHILE loop) against the plain one as baseline, on the gantry.
   const auto yaml =
@@ -199,6 +202,10 @@ TEST(Cli, CheckSimulatesAProgramAsItIsWritten) {
   EXPECT_EQ(both.code, 0) << both.output;
   EXPECT_EQ(both.output.find("assumed machine"), std::string::npos) << both.output;
   const std::string two = read_file(out / "report.json");
+  // A 5 mm CF-ABS bead's conduction time through its height (about 2 minutes) is not short against the
+  // ring's layer time: the report says that one cell through it is optimistic, and how to check.
+  EXPECT_NE(two.find("is not short against the layer time"), std::string::npos);
+  EXPECT_NE(two.find("thermal.cells_through: 2"), std::string::npos);
   // The same part either way: the same commanded volume in both variants.
   const auto volume = [&](std::size_t from) {
     const std::size_t at = two.find("\"commanded_volume_mm3\":", from);

@@ -5,17 +5,20 @@
 # 2026-11-27 (e769a0c, docs/PERFORMANCE.md), where that reference took 0.794 s: 10 s there is 12.6 times
 # the reference, and that is the budget on any machine. The machine has since run two to three times slower
 # some days; seconds alone cannot tell the code from the machine.
-# Usage: bench/default_budget.sh [BUILD_DIR] [RUNS]   (RUNS of each variant and of the reference, default 3)
+# Usage: bench/default_budget.sh [BUILD_DIR] [RUNS] [--set KEY=VALUE ...]
+#   RUNS of each variant and of the reference (default 3); the settings go to every run of the default
+#   scenario (say --set thermal.cells_through=2, to see what a finer mesh would cost against the budget).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 build="${1:-$root/build}"
 runs="${2:-3}"
+settings=("${@:3}")
 bin="$build/tools/beadtwin"
 [ -x "$bin" ] || { echo "build beadtwin first (cmake --build $build --target beadtwin)" >&2; exit 2; }
 reference_then_s=0.794  # prusa-slicer on the sphere, suite run of 2026-11-27 (e769a0c)
 budget_then_s=10
 
-echo "default scenario per variant against the budget ($(commit_id), $runs runs each)"
+echo "default scenario per variant against the budget ($(commit_id), $runs runs each${settings[*]:+, ${settings[*]}})"
 bash "$root/bench/slice_vs_prusa.sh" "$build" "$runs" > "$work/slice.txt"
 reference_s=$(grep -m1 "^prusa-slicer" "$work/slice.txt" | sed 's/.*: *//; s/ s$//')
 budget_units=$(echo "$budget_then_s / $reference_then_s" | bc -l)
@@ -29,7 +32,9 @@ variants=$(awk '/^variants:/ {v = 1; next} v && /^[^ #]/ {v = 0} v && /- name:/ 
 [ -n "$variants" ] || { echo "no variants found in scenarios/data/default.yaml" >&2; exit 2; }
 for variant in $variants; do
   : > "$work/$variant.runs"
-  for _ in $(seq "$runs"); do timed "$work/$variant.runs" "$bin" run -q -o "$work/$variant" --variant "$variant"; done
+  for _ in $(seq "$runs"); do
+    timed "$work/$variant.runs" "$bin" run -q -o "$work/$variant" --variant "$variant" "${settings[@]}"
+  done
   seconds=$(awk '{print $1}' "$work/$variant.runs" | median)
   units=$(echo "$seconds / $reference_s" | bc -l)
   verdict=$(echo "$units <= $budget_units" | bc -l)

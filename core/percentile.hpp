@@ -8,6 +8,13 @@
 
 namespace beadtwin {
 
+// The median of `values` (not empty): the middle item, the upper of the two middle ones for an even count.
+inline double median(std::vector<double> values) {
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
 // A value and the weight it stands for (a sample's stock and its area, say).
 struct Weighted {
   double value = 0.0;

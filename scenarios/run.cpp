@@ -9,6 +9,7 @@
 #include <fmt/ranges.h>
 
 #include "core/atomic_file.hpp"
+#include "core/percentile.hpp"
 #include "scenarios/beside.hpp"
 #include "scenarios/exports.hpp"
 #include "scenarios/gate_results.hpp"
@@ -63,13 +64,6 @@ void note_passes_laid(const Variant& v, const slicer::PlanStats& plan, std::vect
 }
 
 // The notes of the thermal stage's choices.
-// The median of `values` (not empty).
-double median_of(std::vector<double> values) {
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
-
 // Where a bead's conduction time through its height, h²/α, is not short against the time before the next
 // layer covers it (the median layer time under 2.5 times it), one cell through the bead does not resolve
 // its cooling from the top, and healing comes out optimistic (docs/validation.md, mesh convergence). Measured
@@ -90,8 +84,8 @@ std::optional<std::string> resolution_note(const Variant& v, const Toolpath& tp)
   const Material& m = v.material;
   const double alpha_m2_s =
       m.conductivity_through_W_mK / (m.density_kg_m3 * m.specific_heat_at(m.deposition_temp_c));
-  const double h_m = median_of(heights) * 1e-3;
-  const double conduction_s = h_m * h_m / alpha_m2_s, layer_s = median_of(layer_times);
+  const double h_m = median(heights) * 1e-3;
+  const double conduction_s = h_m * h_m / alpha_m2_s, layer_s = median(layer_times);
   if (!(layer_s < 2.5 * conduction_s)) return std::nullopt;
   return fmt::format(
       "thermal: one cell through beads {:.3g} mm high, whose conduction time h²/α ({:.3g} s) is not short "

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/hash.hpp"
+#include "core/percentile.hpp"
 #include "thermal/births.hpp"
 #include "thermal/cvode.hpp"
 #include "thermal/healing.hpp"
@@ -39,8 +40,7 @@ template <class F>
 double median_over_cells(std::size_t n, const F& value) {
   std::vector<double> v(n);
   for (std::size_t i = 0; i < n; ++i) v[i] = value(i);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n / 2), v.end());
-  return v[n / 2];
+  return median(std::move(v));
 }
 
 // Each bead's slices through its height (SupportCell::bead_top), top first: its column.
@@ -53,23 +53,6 @@ std::vector<std::vector<std::uint32_t>> bead_columns(std::span<const SupportCell
       column.push_back(c);
   }
   return columns;
-}
-
-// The mass of the beads, each bead's slices through its height together: its median, kg.
-double median_bead_mass_kg(const PartModel& model, std::span<const SupportCell> support) {
-  const std::vector<std::vector<std::uint32_t>> columns = bead_columns(support);
-  return median_over_cells(columns.size(), [&](std::size_t i) {
-    double kg = 0.0;
-    for (const std::uint32_t c : columns[i]) kg += model.mass_kg(c);
-    return kg;
-  });
-}
-
-// The most slices through one bead.
-int most_slices(std::span<const SupportCell> support) {
-  std::size_t most = 1;
-  for (const std::vector<std::uint32_t>& column : bead_columns(support)) most = std::max(most, column.size());
-  return static_cast<int>(std::min<std::size_t>(most, 15));
 }
 
 // By cell, the bead whose slice it is (SupportCell::bead_top: LumpRules::column); empty where every bead is
@@ -93,17 +76,33 @@ double median_time_constant_s(const PartModel& model) {
   return std::isfinite(tau) ? tau : 5.0;
 }
 
-// The same of the beads, each bead's slices through its height taken together: it sets the birth interval,
-// the same on any number of cells through a bead. Thinner slices have shorter time constants, but only the
-// young ones keep them (the lumper merges a bead's slices once it is covered), and what they add to the
-// temperatures between births of this interval is within the solve's convergence (docs/validation.md, mesh
-// convergence).
-double median_bead_time_constant_s(const PartModel& model, std::span<const SupportCell> support) {
+// What the births and the lumper take from the beads, each bead's slices through its height together.
+struct Beads {
+  // The median conduction time constant, s (as median_time_constant_s): it sets the birth interval, the
+  // same on any number of cells through a bead. Thinner slices have shorter time constants, but only the
+  // young ones keep them (the lumper merges a bead's slices once it is covered), and what they add to the
+  // temperatures between births of this interval is within the solve's convergence (docs/validation.md,
+  // mesh convergence).
+  double median_time_constant_s = 5.0;
+  double median_mass_kg = 0.0;
+  int most_slices = 1;  // through one bead, at most 15
+};
+
+Beads beads_of(const PartModel& model, std::span<const SupportCell> support) {
   const std::vector<std::vector<std::uint32_t>> columns = bead_columns(support);
-  if (columns.empty()) return median_time_constant_s(model);
+  Beads b;
   const double tau =
       median_over_cells(columns.size(), [&](std::size_t i) { return model.time_constant_s(columns[i]); });
-  return std::isfinite(tau) ? tau : 5.0;
+  b.median_time_constant_s = std::isfinite(tau) ? tau : 5.0;
+  b.median_mass_kg = median_over_cells(columns.size(), [&](std::size_t i) {
+    double kg = 0.0;
+    for (const std::uint32_t c : columns[i]) kg += model.mass_kg(c);
+    return kg;
+  });
+  std::size_t most = 1;
+  for (const std::vector<std::uint32_t>& column : columns) most = std::max(most, column.size());
+  b.most_slices = static_cast<int>(std::min<std::size_t>(most, 15));
+  return b;
 }
 
 // Across ranks, every rank must solve the same part and options, or their messages would not match: each
@@ -211,6 +210,7 @@ class HeatSolve {
   std::span<const SupportCell> support_cells_;
   PartModel model_;
   double median_tau_;
+  Beads beads_;
   BirthSchedule births_;
   // First birth, end of the print (the last birth or end_s), end of the cooldown, latest end of the healing.
   double t0_, t_print_, t_end_, t_cap_;
@@ -252,7 +252,8 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       support_cells_(own_support_.empty() ? std::span<const SupportCell>(mesh.support) : own_support_),
       model_(mesh, material, env),
       median_tau_(median_time_constant_s(model_)),
-      births_(plan_births(mesh.cells, median_bead_time_constant_s(model_, support_cells_), options)),
+      beads_(beads_of(model_, support_cells_)),
+      births_(plan_births(mesh.cells, beads_.median_time_constant_s, options)),
       t0_(births_.groups.front().time_s),
       t_print_(std::max(births_.groups.back().time_s, end_s)),
       t_end_(t_print_ + options.cooldown_s),
@@ -261,7 +262,7 @@ HeatSolve::HeatSolve(const ThermalMesh& mesh, std::size_t layer_count, double en
       index_(interfaces_, n_),
       healing_(material, index_, options.healing_laws),
       history_(mesh, layer_count, t0_, t_end_, options),
-      lumper_(options, median_bead_mass_kg(model_, support_cells_), most_slices(support_cells_)),
+      lumper_(options, beads_.median_mass_kg, beads_.most_slices),
       column_(bead_column_of_cells(support_cells_)),
       model_of_(n_ + 1) {
   model_.set_tolerances(options.rel_tol, options.abs_tol_k);

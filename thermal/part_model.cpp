@@ -208,6 +208,15 @@ double PartModel::time_constant_s(std::size_t i) const {
   return time_constant_s(std::span<const std::uint32_t>(&cell, 1));
 }
 
+double PartModel::half_shift(std::size_t i, std::size_t k, const Eigen::Vector3d& centroid_mm) const {
+  return (centroid_mm_[i] - centroid_mm).dot(nb_w_[k].cast<double>()) * kMPerMm;
+}
+
+double PartModel::table_from(std::size_t i, double centroid_z_mm) const {
+  const double higher_m = (centroid_z_mm - centroid_mm_[i].z()) * kMPerMm;
+  return in_series(table_W_K_[i], higher_m / material_.conductivity_through_W_mK, table_area_m2_[i]);
+}
+
 double PartModel::time_constant_s(std::span<const std::uint32_t> cells) const {
   double c = 0.0, g = 0.0, mass = 0.0;
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -216,16 +225,10 @@ double PartModel::time_constant_s(std::span<const std::uint32_t> cells) const {
   const bool moves = cells.size() > 1;
   for (const std::uint32_t i : cells) {
     c += heat_capacity(i, deposition_c_);
-    if (table_W_K_[i] > 0.0)
-      g += moves ? in_series(
-                       table_W_K_[i],
-                       (centroid.z() - centroid_mm_[i].z()) * kMPerMm / material_.conductivity_through_W_mK,
-                       table_area_m2_[i])
-                 : table_W_K_[i];
+    if (table_W_K_[i] > 0.0) g += moves ? table_from(i, centroid.z()) : table_W_K_[i];
     for (std::size_t k = first_[i]; k < first_[i + 1]; ++k) {
       if (std::find(cells.begin(), cells.end(), nb_cell_[k]) != cells.end()) continue;
-      const double shift = (centroid_mm_[i] - centroid).dot(nb_w_[k].cast<double>()) * kMPerMm;
-      g += moves ? in_series(nb_g_[k], shift, nb_area_m2_[k]) : nb_g_[k];
+      g += moves ? in_series(nb_g_[k], half_shift(i, k, centroid), nb_area_m2_[k]) : nb_g_[k];
     }
   }
   return g > 0.0 ? c / g : std::numeric_limits<double>::infinity();
@@ -281,11 +284,8 @@ void PartModel::lump(std::span<const std::uint32_t> to, std::vector<double>& y,
     const std::size_t g = to[i];
     table_area[g] += table_area_m2_[i];
     if (table_W_K_[i] <= 0.0) continue;
-    const double lower_m = (centroid[g].z() - centroid_mm_[i].z()) * kMPerMm;  // the new centroid's height
     const bool moves = g < recentre.size() && recentre[g] != 0;
-    table[g] +=
-        moves ? in_series(table_W_K_[i], lower_m / material_.conductivity_through_W_mK, table_area_m2_[i])
-              : table_W_K_[i];
+    table[g] += moves ? table_from(i, centroid[g].z()) : table_W_K_[i];
   }
   std::vector<std::size_t> first;
   std::vector<std::uint32_t> nb_cell;
@@ -346,13 +346,9 @@ void PartModel::merge_neighbours(std::span<const std::uint32_t> to, std::size_t 
                                  std::vector<Eigen::Vector3f>& nb_w, std::vector<std::uint32_t>& nb_cell,
                                  std::vector<double>& nb_g, std::vector<double>& nb_area,
                                  std::vector<double>& nb_rarea) const {
-  // Whether old cell i's new cell is recentred; how much further the contact k's face lies from i's new
-  // centroid than from its own, over i's conductivity along the normal (i's half of the contact's
-  // resistance times the area, m²K/W).
+  // Whether old cell i's new cell is recentred; half_shift of its contact k to that cell's centroid.
   const auto recentred = [&](std::size_t i) { return to[i] < recentre.size() && recentre[to[i]] != 0; };
-  const auto shift = [&](std::size_t i, std::size_t k) {
-    return (centroid_mm_[i] - centroid_mm[to[i]]).dot(nb_w_[k].cast<double>()) * kMPerMm;
-  };
+  const auto shift = [&](std::size_t i, std::size_t k) { return half_shift(i, k, centroid_mm[to[i]]); };
   // The members' lists, renumbered (still in order, as `to` keeps order), merged per neighbour.
   first.assign(m + 1, 0);
   nb_cell.reserve(nb_cell_.size());

@@ -168,6 +168,11 @@ class PartModel final : public OdeSystem {
                         std::vector<std::uint32_t>& nb_cell, std::vector<double>& nb_g,
                         std::vector<double>& nb_area, std::vector<double>& nb_rarea) const;
   void find_born_end(std::size_t i);
+  // How much further cell i's contact k lies from `centroid_mm` than from i's own centroid, over i's
+  // conductivity along the contact's normal (i's half of its resistance times the area, m²K/W).
+  double half_shift(std::size_t i, std::size_t k, const Eigen::Vector3d& centroid_mm) const;
+  // Cell i's contact with the table (table_W_K_, > 0) from a centroid at height `centroid_z_mm`, W/K.
+  double table_from(std::size_t i, double centroid_z_mm) const;
   // Cell i's contact k (an index into its neighbour lists) is no longer open surface: its neighbour is born.
   void close_face(std::size_t i, std::size_t k) {
     exposed_m2_[i] -= nb_area_m2_[k];
